@@ -1,0 +1,33 @@
+# moorline developer targets. Every target creates .venv on first use.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+
+.PHONY: demo test verify bench lint clean
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e ".[test]"
+	touch $(STAMP)
+
+demo: $(STAMP)
+	$(BIN)/moorline run cases/oc3_line.yaml --out out
+	@echo "results and plots written under out/oc3-line/"
+
+test: $(STAMP)
+	$(BIN)/python -m pytest -q
+
+verify: $(STAMP)
+	$(BIN)/python -m pytest -q -m "slow or not slow"
+	$(BIN)/moorline verify
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/bench_statics.py
+
+lint: $(STAMP)
+	$(BIN)/ruff check src tests benchmarks
+
+clean:
+	rm -rf $(VENV) out build *.egg-info src/*.egg-info

@@ -1,0 +1,121 @@
+"""Line types, points and lines: the parts a cable system is made of (frozen, no logic)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+Vector3 = tuple[float, float, float]
+PointKind = Literal["fixed", "free", "prescribed"]
+MaterialKind = Literal["elastic", "viscoelastic"]
+
+
+@dataclass(frozen=True)
+class LineType:
+    """Cross-section properties shared by lines of one kind.
+
+    Attributes
+    ----------
+    name
+        Identifier used by lines.
+    diameter
+        Hydrodynamic (volume-equivalent) diameter [length].
+    mass_per_length
+        Dry mass per unstretched length [mass/length].
+    EA
+        Axial stiffness [force]. For a viscoelastic line, the long-term (quasi-static) K0*A.
+    displaced_area
+        Displaced cross-section [length^2]; ``None`` means ``pi d^2 / 4``.
+    Cd, Ca, Ct, Cat
+        Normal drag, normal added mass, tangential drag and tangential added-mass coefficients.
+    material
+        ``elastic`` (no compression) or ``viscoelastic`` (standard linear solid, Tuah 2.2.b).
+    EA1
+        Viscoelastic: extra instantaneous stiffness K1*A [force]; instantaneous is EA + EA1.
+    tau
+        Viscoelastic characteristic time [time].
+    slack_stiffness_ratio
+        Fraction of EA a slack element keeps in compression, so the tangent stays usable
+        (Tuah 6.2: "the modulus E for the slack element is set to a very small value").
+    """
+
+    name: str
+    diameter: float
+    mass_per_length: float
+    EA: float
+    displaced_area: float | None = None
+    Cd: float = 1.2
+    Ca: float = 1.0
+    Ct: float = 0.008
+    Cat: float = 0.0
+    material: MaterialKind = "elastic"
+    EA1: float = 0.0
+    tau: float = 0.0
+    slack_stiffness_ratio: float = 1.0e-6
+
+    @property
+    def area_displaced(self) -> float:
+        """Displaced area per unit length [length^2]."""
+        if self.displaced_area is not None:
+            return self.displaced_area
+        return math.pi * self.diameter**2 / 4.0
+
+
+@dataclass(frozen=True)
+class Point:
+    """A node that lines can end at.
+
+    Attributes
+    ----------
+    name
+        Identifier used by lines.
+    kind
+        ``fixed`` (never moves), ``free`` (solved for) or ``prescribed`` (position imposed; its
+        reaction is reported).
+    position
+        Position [length]; for a free point the initial guess.
+    mass
+        Lumped mass [mass] (free points).
+    volume
+        Displaced volume [length^3]; buoyancy is ``rho g volume`` upward.
+    force
+        Constant external force [force] (e.g. a buoyant load ``(0, 0, +P)``).
+    """
+
+    name: str
+    kind: PointKind
+    position: Vector3
+    mass: float = 0.0
+    volume: float = 0.0
+    force: Vector3 = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Line:
+    """A cable between two points, discretized into ``segments`` straight 2-node elements.
+
+    Attributes
+    ----------
+    name
+        Identifier.
+    line_type
+        Name of its :class:`LineType`.
+    length
+        Unstretched length [length].
+    segments
+        Number of elements.
+    end_a, end_b
+        Names of the end points.
+    initial_shape
+        Optional initial node positions, shape ``(segments + 1, 3)``; otherwise the solver
+        chooses (catenary or straight line).
+    """
+
+    name: str
+    line_type: str
+    length: float
+    segments: int
+    end_a: str
+    end_b: str
+    initial_shape: tuple[Vector3, ...] | None = None

@@ -1,0 +1,71 @@
+"""Environment: water depth, fluid, gravity, seabed, current and waves (frozen, no logic)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+
+@dataclass(frozen=True)
+class Seabed:
+    """Flat seabed at ``z = -depth``.
+
+    Attributes
+    ----------
+    stiffness
+        Contact stiffness per unit of contact area [force/length^3] (MoorDyn ``kBot``, Pa/m).
+    damping
+        Contact damping per unit of contact area [force*time/length^3] (MoorDyn ``cBot``).
+    friction
+        Coulomb friction coefficient of the lying part (used by the closed-form catenary and,
+        later, by dynamics).
+    """
+
+    stiffness: float = 3.0e6
+    damping: float = 3.0e5
+    friction: float = 0.0
+
+
+@dataclass(frozen=True)
+class Current:
+    """Uniform current: ``speed`` [length/time] towards ``heading_deg`` (0 = +x, 90 = +y)."""
+
+    speed: float = 0.0
+    heading_deg: float = 0.0
+
+
+@dataclass(frozen=True)
+class Waves:
+    """Regular wave description; ``kind='none'`` for still water."""
+
+    kind: Literal["none", "airy"] = "none"
+    height: float = 0.0
+    period: float = 0.0
+    heading_deg: float = 0.0
+
+
+@dataclass(frozen=True)
+class Environment:
+    """Everything around the cables.
+
+    Attributes
+    ----------
+    depth
+        Water depth [length]; the seabed is at ``z = -depth``. ``inf`` means no seabed.
+    water_density
+        Fluid mass density [mass/length^3].
+    gravity
+        Gravitational acceleration [length/time^2].
+    """
+
+    depth: float = float("inf")
+    water_density: float = 1025.0
+    gravity: float = 9.80665
+    seabed: Seabed = field(default_factory=Seabed)
+    current: Current = field(default_factory=Current)
+    waves: Waves = field(default_factory=Waves)
+
+    @property
+    def has_seabed(self) -> bool:
+        """True when the water has finite depth (a seabed exists)."""
+        return bool(self.depth < float("inf"))
