@@ -81,6 +81,9 @@ class Point:
         Displaced volume [length^3]; buoyancy is ``rho g volume`` upward.
     force
         Constant external force [force] (e.g. a buoyant load ``(0, 0, +P)``).
+    initial_position
+        Prescribed points only: where a load-stepped static solution starts the point from
+        (it moves to ``position`` over the load steps, as the support of Tuah Ex2).
     """
 
     name: str
@@ -89,6 +92,7 @@ class Point:
     mass: float = 0.0
     volume: float = 0.0
     force: Vector3 = (0.0, 0.0, 0.0)
+    initial_position: Vector3 | None = None
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,198 @@
+"""Units of case files: the dimension table, the unit systems and string-with-unit parsing.
+
+A plain number in a case file is in the case's unit system (``SI``: m, kg, s, N; ``US``: ft,
+slug, s, lbf). Any scalar may instead be a string with its own unit (``"20 ft"``,
+``"384.243 MN"``, ``"3e6 Pa/m"``), which is converted to the case's system with pint. Angles
+are in degrees (``"1.5 rad"`` is converted).
+
+This module is the one place that knows, for every physical dimension a case-file field may
+have, its unit in each system (:data:`DIMENSIONS`), and the defaults of dimensional
+quantities, stated once as physical values (:data:`DEFAULTS`). Which field has which dimension
+is declared next to the field, in :mod:`moorline.io.schema`, by naming a key of
+:data:`DIMENSIONS`.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import pint
+
+__all__ = [
+    "DEFAULTS",
+    "DIMENSIONS",
+    "UREG",
+    "Dimension",
+    "UnitParseError",
+    "default_value",
+    "to_system",
+    "unit_of",
+]
+
+System = Literal["SI", "US"]
+
+UREG = pint.UnitRegistry()
+"""The unit registry of moorline (pint's defaults plus ``psf``; ``psi`` is built in)."""
+UREG.define("pound_force_per_square_foot = force_pound / foot ** 2 = psf")
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """A physical dimension and its unit in each unit system.
+
+    Attributes
+    ----------
+    name
+        Human-readable name used in messages (``"a length"``).
+    si, us
+        Unit expressions (pint syntax) of the dimension in the SI and US systems.
+    """
+
+    name: str
+    si: str
+    us: str
+
+    def unit(self, system: System) -> str:
+        """Unit expression of this dimension in ``system``."""
+        return self.si if system == "SI" else self.us
+
+
+DIMENSIONS: dict[str, Dimension] = {
+    "dimensionless": Dimension("dimensionless", "dimensionless", "dimensionless"),
+    "angle": Dimension("angle", "degree", "degree"),
+    "length": Dimension("length", "m", "ft"),
+    "area": Dimension("area", "m**2", "ft**2"),
+    "volume": Dimension("volume", "m**3", "ft**3"),
+    "mass": Dimension("mass", "kg", "slug"),
+    "time": Dimension("time", "s", "s"),
+    "velocity": Dimension("velocity", "m/s", "ft/s"),
+    "acceleration": Dimension("acceleration", "m/s**2", "ft/s**2"),
+    "force": Dimension("force", "N", "lbf"),
+    "pressure": Dimension("pressure", "Pa", "psf"),
+    "mass/length": Dimension("mass per length", "kg/m", "slug/ft"),
+    "mass/length^3": Dimension("mass density", "kg/m**3", "slug/ft**3"),
+    "force/length^3": Dimension("force per length^3", "N/m**3", "lbf/ft**3"),
+    "force*time/length": Dimension("force*time per length", "N*s/m", "lbf*s/ft"),
+    "force*time/length^3": Dimension("force*time per length^3", "N*s/m**3", "lbf*s/ft**3"),
+}
+"""Every dimension a case-file field may have, with its unit in each system."""
+
+DEFAULTS: dict[str, tuple[float, str]] = {
+    "water_density": (1025.0, "kg/m**3"),
+    "gravity": (9.80665, "m/s**2"),
+    "seabed_stiffness": (3.0e6, "Pa/m"),
+    "seabed_damping": (3.0e5, "Pa*s/m"),
+    "relaxation_damping": (1.0e5, "N*s/m"),
+    "pseudo_dt": (1.0, "s"),
+    "output_every": (0.1, "s"),
+}
+"""Defaults of dimensional quantities as physical values; converted to the case's system."""
+
+_NUMBER_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
+
+
+class UnitParseError(ValueError):
+    """A value could not be read as a quantity of the expected dimension."""
+
+
+def unit_of(dimension: str, system: System) -> str:
+    """Unit expression of ``dimension`` (a key of :data:`DIMENSIONS`) in ``system``."""
+    return DIMENSIONS[dimension].unit(system)
+
+
+def default_value(key: str, system: System) -> float:
+    """Default of a dimensional quantity (a key of :data:`DEFAULTS`) in ``system``'s units."""
+    value, unit = DEFAULTS[key]
+    quantity = UREG.Quantity(value, unit)
+    dimension = _dimension_named(quantity)
+    if dimension is None:  # pragma: no cover - the table above is consistent
+        raise KeyError(f"default {key!r} has no dimension in DIMENSIONS")
+    return float(quantity.to(unit_of(dimension, system)).magnitude)
+
+
+def _dimension_named(quantity: pint.Quantity) -> str | None:
+    """Key of :data:`DIMENSIONS` whose dimensionality matches ``quantity`` (angle excluded)."""
+    for key, dim in DIMENSIONS.items():
+        if key == "angle":
+            continue
+        if UREG.Quantity(1.0, dim.si).dimensionality == quantity.dimensionality:
+            return key
+    return None
+
+
+def _describe(quantity: pint.Quantity) -> str:
+    """Name of the dimension of ``quantity`` for messages."""
+    key = _dimension_named(quantity)
+    return DIMENSIONS[key].name if key else str(quantity.dimensionality)
+
+
+def _show(value: Any) -> str:
+    """A value as written in the file, for messages."""
+    return repr(value) if isinstance(value, str) else str(value)
+
+
+def to_system(value: Any, dimension: str, system: System) -> float:
+    """Convert a case-file value to a float in ``system``'s unit of ``dimension``.
+
+    Parameters
+    ----------
+    value
+        A number (already in the case's system; angles in degrees) or a string: a number, or a
+        number with a unit (``"20 ft"``, pint syntax, arithmetic allowed).
+    dimension
+        Key of :data:`DIMENSIONS`.
+    system
+        ``"SI"`` or ``"US"``.
+
+    Returns
+    -------
+    float
+        The magnitude in the system's unit (may be ``inf``; NaN is rejected).
+
+    Raises
+    ------
+    UnitParseError
+        Not a number, unknown unit, unreadable text or wrong dimension (the message names
+        the expected and the given dimension).
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        raise UnitParseError(f"expected a number, got {_show(value)}")
+    if isinstance(value, str):
+        magnitude = _parse_text(value, dimension, system)
+    else:
+        magnitude = float(value)
+    if math.isnan(magnitude):
+        raise UnitParseError(f"expected a number, got {_show(value)}")
+    return magnitude
+
+
+def _parse_text(text: str, dimension: str, system: System) -> float:
+    """Read a string: a bare number (case's system) or a number with a unit."""
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    if not _NUMBER_START.match(text):
+        raise UnitParseError(f"expected a number, got {text!r}")
+    try:
+        quantity = UREG.Quantity(text)
+    except pint.UndefinedUnitError as exc:
+        names = ", ".join(repr(n) for n in exc.unit_names) or "?"
+        raise UnitParseError(f"unknown unit {names} in {text!r}") from None
+    except Exception:  # noqa: BLE001 - pint raises many kinds on malformed text
+        raise UnitParseError(f"cannot read {text!r} as a number with a unit") from None
+    if not isinstance(quantity, pint.Quantity):  # pragma: no cover - pint returns Quantity
+        return float(quantity)
+    expected = DIMENSIONS[dimension]
+    target = UREG.Quantity(1.0, expected.unit(system))
+    if quantity.dimensionality != target.dimensionality:
+        raise UnitParseError(
+            f"expected a {expected.name}, got {text!r} (a {_describe(quantity)})"
+        )
+    try:
+        return float(quantity.to(target.units).magnitude)
+    except Exception:  # noqa: BLE001 - e.g. offset units
+        raise UnitParseError(f"cannot convert {text!r} to {expected.unit(system)}") from None

@@ -1,0 +1,206 @@
+"""Turn a :class:`~moorline.model.System` into arrays: nodes, elements, properties, dofs.
+
+Node numbering: the named points first (in case order), then the interior nodes of each line
+from end A to end B. Every array is 0-based. Fixed and prescribed nodes have no degrees of
+freedom; ``dof_of_node[i, k] == -1`` marks them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .model import System
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+BoolArray = NDArray[np.bool_]
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """A discretized cable system. Plain arrays; nothing here changes after construction.
+
+    Attributes
+    ----------
+    node_position
+        Reference node positions (n_nodes, 3): points at their positions, line interior nodes
+        on the straight chord (solvers replace them with a better initial shape).
+    elements
+        Node indices (n_elements, 2), from end A towards end B of each line.
+    length0
+        Unstretched element lengths (n_elements,).
+    EA, EA1, tau, slack_ratio
+        Axial stiffness [force], viscoelastic extra stiffness and time, slack stiffness ratio.
+    mass_per_length, weight_per_length
+        Dry mass per length and submerged weight per length (weight minus buoyancy, z down).
+    diameter, Cd, Ca, Ct, Cat
+        Hydrodynamic diameter and coefficients per element.
+    element_line
+        Line index of each element.
+    line_names, line_nodes, line_elements
+        Line ids and, per line, its node and element indices from end A to end B.
+    point_names, point_kind, point_node
+        Point ids, kinds and node index.
+    node_mass, node_volume, node_force
+        Lumped point mass [mass], displaced volume and constant external force per node.
+    node_prescribed_start
+        Where each node starts in a load-stepped statics (prescribed points may start elsewhere).
+    dof_of_node
+        Global dof number of each node's x, y, z, or -1 for fixed/prescribed nodes.
+    seabed_z
+        Seabed height (``-depth``; ``-inf`` without seabed).
+    seabed_stiffness_per_area
+        Contact stiffness per area [force/length^3].
+    node_contact_area
+        Diameter times tributary unstretched length of each node (n_nodes,).
+    gravity, water_density
+        Environment constants.
+    """
+
+    node_position: FloatArray
+    elements: IntArray
+    length0: FloatArray
+    EA: FloatArray
+    EA1: FloatArray
+    tau: FloatArray
+    slack_ratio: FloatArray
+    mass_per_length: FloatArray
+    weight_per_length: FloatArray
+    diameter: FloatArray
+    Cd: FloatArray
+    Ca: FloatArray
+    Ct: FloatArray
+    Cat: FloatArray
+    element_line: IntArray
+    line_names: tuple[str, ...]
+    line_nodes: tuple[IntArray, ...]
+    line_elements: tuple[IntArray, ...]
+    point_names: tuple[str, ...]
+    point_kind: tuple[str, ...]
+    point_node: IntArray
+    node_mass: FloatArray
+    node_volume: FloatArray
+    node_force: FloatArray
+    node_prescribed_start: FloatArray
+    dof_of_node: IntArray
+    seabed_z: float
+    seabed_stiffness_per_area: float
+    node_contact_area: FloatArray
+    gravity: float
+    water_density: float
+
+    @property
+    def n_nodes(self) -> int:
+        """Number of nodes."""
+        return len(self.node_position)
+
+    @property
+    def n_elements(self) -> int:
+        """Number of elements."""
+        return len(self.elements)
+
+    @property
+    def n_dofs(self) -> int:
+        """Number of free degrees of freedom."""
+        return int(self.dof_of_node.max(initial=-1)) + 1
+
+    @property
+    def free_nodes(self) -> BoolArray:
+        """Mask of nodes that move freely (n_nodes,)."""
+        return self.dof_of_node[:, 0] >= 0
+
+    def point_index(self, name: str) -> int:
+        """Index of a named point."""
+        return self.point_names.index(name)
+
+    def line_index(self, name: str) -> int:
+        """Index of a named line."""
+        return self.line_names.index(name)
+
+
+def _element_properties(system: System, line_of_element: IntArray) -> dict[str, FloatArray]:
+    env = system.environment
+    lines = list(system.lines.values())
+    props: dict[str, list[float]] = {k: [] for k in (
+        "EA", "EA1", "tau", "slack_ratio", "mass_per_length", "weight_per_length",
+        "diameter", "Cd", "Ca", "Ct", "Cat")}
+    for line in lines:
+        lt = system.line_types[line.line_type]
+        weight = (lt.mass_per_length - env.water_density * lt.area_displaced) * env.gravity
+        values = {"EA": lt.EA, "EA1": lt.EA1, "tau": lt.tau,
+                  "slack_ratio": lt.slack_stiffness_ratio,
+                  "mass_per_length": lt.mass_per_length, "weight_per_length": weight,
+                  "diameter": lt.diameter, "Cd": lt.Cd, "Ca": lt.Ca, "Ct": lt.Ct, "Cat": lt.Cat}
+        for key, value in values.items():
+            props[key].append(value)
+    return {k: np.asarray(v, dtype=float)[line_of_element] for k, v in props.items()}
+
+
+def discretize(system: System) -> Mesh:
+    """Build the :class:`Mesh` of a system (no solving; interior nodes on straight chords)."""
+    point_names = tuple(system.points)
+    point_index = {name: i for i, name in enumerate(point_names)}
+    positions = [np.asarray(p.position, dtype=float) for p in system.points.values()]
+    elements: list[IntArray] = []
+    line_nodes: list[IntArray] = []
+    length0: list[FloatArray] = []
+    line_of_element: list[IntArray] = []
+    next_node = len(point_names)
+    for k, line in enumerate(system.lines.values()):
+        a, b = point_index[line.end_a], point_index[line.end_b]
+        n_seg = line.segments
+        s = np.linspace(0.0, 1.0, n_seg + 1)[1:-1, None]
+        positions.extend(positions[a] + s * (positions[b] - positions[a]))
+        nodes = np.concatenate(([a], np.arange(next_node, next_node + n_seg - 1), [b]))
+        next_node += n_seg - 1
+        line_nodes.append(nodes.astype(np.int64))
+        elements.append(np.column_stack((nodes[:-1], nodes[1:])).astype(np.int64))
+        length0.append(np.full(n_seg, line.length / n_seg))
+        line_of_element.append(np.full(n_seg, k, dtype=np.int64))
+    return _assemble_mesh(system, point_names, np.array(positions).reshape(-1, 3),
+                          elements, line_nodes, length0, line_of_element)
+
+
+def _assemble_mesh(system, point_names, node_position, elements, line_nodes, length0,
+                   line_of_element) -> Mesh:
+    n_nodes = len(node_position)
+    elems = np.concatenate(elements) if elements else np.zeros((0, 2), np.int64)
+    L0 = np.concatenate(length0) if length0 else np.zeros(0)
+    el_line = np.concatenate(line_of_element) if line_of_element else np.zeros(0, np.int64)
+    offsets = np.cumsum([0] + [len(e) for e in elements])
+    line_elements = tuple(np.arange(offsets[i], offsets[i + 1]) for i in range(len(elements)))
+    props = _element_properties(system, el_line)
+
+    points = list(system.points.values())
+    n_points = len(points)
+    node_mass = np.zeros(n_nodes)
+    node_volume = np.zeros(n_nodes)
+    node_force = np.zeros((n_nodes, 3))
+    start = node_position.copy()
+    constrained = np.zeros(n_nodes, dtype=bool)
+    for i, p in enumerate(points):
+        node_mass[i], node_volume[i] = p.mass, p.volume
+        node_force[i] = p.force
+        constrained[i] = p.kind != "free"
+        if p.kind == "prescribed" and p.initial_position is not None:
+            start[i] = p.initial_position
+    dof = np.full((n_nodes, 3), -1, dtype=np.int64)
+    free = np.flatnonzero(~constrained)
+    dof[free] = np.arange(3 * len(free)).reshape(-1, 3)
+
+    tributary = 0.5 * (np.bincount(elems[:, 0], L0 * props["diameter"], n_nodes)
+                       + np.bincount(elems[:, 1], L0 * props["diameter"], n_nodes))
+    env = system.environment
+    return Mesh(
+        node_position=node_position, elements=elems, length0=L0,
+        element_line=el_line, line_names=tuple(system.lines), line_nodes=tuple(line_nodes),
+        line_elements=line_elements, point_names=tuple(point_names),
+        point_kind=tuple(p.kind for p in points),
+        point_node=np.arange(n_points, dtype=np.int64), node_mass=node_mass,
+        node_volume=node_volume, node_force=node_force, node_prescribed_start=start,
+        dof_of_node=dof, seabed_z=-env.depth if env.has_seabed else -np.inf,
+        seabed_stiffness_per_area=env.seabed.stiffness, node_contact_area=tributary,
+        gravity=env.gravity, water_density=env.water_density, **props)

@@ -1,0 +1,1 @@
+"""Pure, vectorized physics kernels: arrays in, arrays out. Imports only numpy."""

@@ -1,0 +1,136 @@
+"""Two-node straight cable element, evaluated over all elements at once.
+
+Tuah (1982) sec. 3.1, eq. 3.1.8a-3.1.12. The element carries an axial force only. Its strain is
+the engineering strain of the chord, ``eps = l / L0 - 1``, with ``L0`` the unstretched length
+(Tuah's pseudo-Hookean material, eq. 2.2.a.1: the traction per unstrained area grows by
+``E d(ds)/d(Is)``, i.e. the tension is linear in the stretch ratio ``lambda = l / L0``).
+An initial stress sigma0 in a reference configuration of length ``l_ref`` is represented by
+``L0 = l_ref / (1 + sigma0 / E)``.
+
+The tangent stiffness is the exact derivative of the nodal forces,
+
+    k = (dT/dl) n n^T + (T / l) (I - n n^T),      K_e = [[k, -k], [-k, k]],
+
+the material part plus the initial-stress (geometric) part. Tuah's printed form, eq. 3.1.8a with
+eq. 3.1.9-3.1.11, reads ``(A sigma / l) I + (A sigma + E A lambda) / l^3 d d^T`` (with
+``d = x2 - x1``); its second term carries ``+T n n^T / l`` where the exact derivative has
+``-T n n^T / l``: the OCR'd form, or the thesis's incremental linearization, does not give the
+consistent tangent, so we derive it here and check it against finite differences in the tests.
+
+Slack elements (eps < 0) keep ``slack_ratio * EA`` in compression, so the tangent stays usable
+(Tuah sec. 6.2: "the modulus E for the slack element is set to a very small value").
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+def element_geometry(
+    positions: FloatArray, elements: IntArray
+) -> tuple[FloatArray, FloatArray]:
+    """Chord length and unit tangent of every element.
+
+    Parameters
+    ----------
+    positions
+        Node positions, shape (n_nodes, 3).
+    elements
+        Node indices of each element, shape (n_elements, 2).
+
+    Returns
+    -------
+    length, unit
+        Current chord length (n_elements,) and unit vector from node 1 to node 2 (n_elements, 3).
+    """
+    chord = positions[elements[:, 1]] - positions[elements[:, 0]]
+    length = np.sqrt(np.einsum("ij,ij->i", chord, chord))
+    unit = chord / np.maximum(length, np.finfo(float).tiny)[:, None]
+    return length, unit
+
+
+def axial_tension(
+    length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Tension of an elastic element that carries (almost) no compression.
+
+    Returns
+    -------
+    tension, dtension_dlength
+        ``T = EA eps`` for ``eps >= 0`` and ``slack_ratio EA eps`` otherwise, and ``dT/dl``.
+    """
+    strain = length / length0 - 1.0
+    stiffness = np.where(strain >= 0.0, EA, slack_ratio * EA)
+    return stiffness * strain, stiffness / length0
+
+
+def nodal_forces(tension: FloatArray, unit: FloatArray) -> FloatArray:
+    """Forces each element exerts on its two nodes, shape (n_elements, 2, 3).
+
+    A tensioned element pulls node 1 towards node 2 and node 2 towards node 1.
+    """
+    f1 = tension[:, None] * unit
+    return np.stack((f1, -f1), axis=1)
+
+
+def tangent_blocks(
+    length: FloatArray, unit: FloatArray, tension: FloatArray, dtension_dlength: FloatArray
+) -> FloatArray:
+    """Exact tangent of the elements' resisting forces, shape (n_elements, 6, 6).
+
+    The resisting force is minus :func:`nodal_forces`; its derivative with respect to the
+    nodal positions ``(x1, x2)`` is ``[[k, -k], [-k, k]]`` with
+    ``k = dT/dl n n^T + T/l (I - n n^T)``.
+    """
+    nn = unit[:, :, None] * unit[:, None, :]
+    geometric = (tension / length)[:, None, None]
+    k = dtension_dlength[:, None, None] * nn + geometric * (np.eye(3) - nn)
+    blocks = np.empty((len(length), 6, 6))
+    blocks[:, :3, :3] = k
+    blocks[:, 3:, 3:] = k
+    blocks[:, :3, 3:] = -k
+    blocks[:, 3:, :3] = -k
+    return blocks
+
+
+def lumped_weight(
+    elements: IntArray, length0: FloatArray, weight_per_length: FloatArray, n_nodes: int
+) -> FloatArray:
+    """Submerged weight lumped to the nodes, shape (n_nodes, 3) (z is up).
+
+    For a uniform load on a 2-node element the consistent load vector equals the lumped one:
+    half of ``w L0`` to each node (Tuah eq. 2.1.b.10 with eq. 3.1.1).
+    """
+    half = 0.5 * weight_per_length * length0
+    fz = np.bincount(elements[:, 0], half, n_nodes) + np.bincount(elements[:, 1], half, n_nodes)
+    out = np.zeros((n_nodes, 3))
+    out[:, 2] = -fz
+    return out
+
+
+def lumped_mass(
+    elements: IntArray, length0: FloatArray, mass_per_length: FloatArray, n_nodes: int
+) -> FloatArray:
+    """Lumped (diagonal) mass per node, shape (n_nodes,): half of each element to each node."""
+    half = 0.5 * mass_per_length * length0
+    return np.bincount(elements[:, 0], half, n_nodes) + np.bincount(elements[:, 1], half, n_nodes)
+
+
+def consistent_mass_blocks(length0: FloatArray, mass_per_length: FloatArray) -> FloatArray:
+    """Consistent element mass matrices, shape (n_elements, 6, 6).
+
+    Tuah (1982) eq. 3.1.12: ``m L0 [[I/3, I/6], [I/6, I/3]]`` (mass per unstretched length, so
+    the ``rho A / lambda`` factor of eq. 3.1.8a times the current length is ``m L0``).
+    """
+    m = (mass_per_length * length0)[:, None, None]
+    eye = np.eye(3)
+    blocks = np.empty((len(length0), 6, 6))
+    blocks[:, :3, :3] = m * eye / 3.0
+    blocks[:, 3:, 3:] = m * eye / 3.0
+    blocks[:, :3, 3:] = m * eye / 6.0
+    blocks[:, 3:, :3] = m * eye / 6.0
+    return blocks

@@ -1,0 +1,139 @@
+"""Result objects of the analyses and their conversion to xarray datasets."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from . import __version__
+from .mesh import Mesh
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class StaticResult:
+    """Outcome of a static analysis.
+
+    Attributes
+    ----------
+    success, message
+        Whether the solver converged, and how it ended.
+    method
+        ``newton``, ``incremental`` or ``relaxation``.
+    iterations
+        Total iterations (Newton iterations, load increments or relaxation steps).
+    load_steps
+        Number of load increments.
+    residual_history
+        Max-norm of the out-of-balance force after each iteration [force].
+    n_residual, n_tangent, n_factorizations
+        Counters of residual evaluations, tangent assemblies and sparse factorizations.
+    positions
+        Node positions (n_nodes, 3).
+    tension
+        Element tensions (n_elements,).
+    element_forces
+        Force of each element on its two nodes (n_elements, 2, 3).
+    mesh
+        The mesh solved.
+    case, units
+        Case name and unit system (for output).
+    """
+
+    success: bool
+    message: str
+    method: str
+    iterations: int
+    load_steps: int
+    residual_history: FloatArray
+    n_residual: int
+    n_tangent: int
+    n_factorizations: int
+    positions: FloatArray
+    tension: FloatArray
+    element_forces: FloatArray
+    mesh: Mesh
+    case: str = ""
+    units: str = "SI"
+    extras: dict = field(default_factory=dict)
+
+    @property
+    def residual(self) -> float:
+        """Final max-norm of the out-of-balance force."""
+        return float(self.residual_history[-1]) if len(self.residual_history) else np.nan
+
+    def line_positions(self, line: str) -> FloatArray:
+        """Node positions along a line from end A to end B, (segments + 1, 3)."""
+        return self.positions[self.mesh.line_nodes[self.mesh.line_index(line)]]
+
+    def line_tension(self, line: str) -> FloatArray:
+        """Element tensions along a line from end A to end B, (segments,)."""
+        return self.tension[self.mesh.line_elements[self.mesh.line_index(line)]]
+
+    def end_force(self, line: str, end: str) -> FloatArray:
+        """Force the line exerts on its end point ``end`` (``"a"`` or ``"b"``), shape (3,)."""
+        elements = self.mesh.line_elements[self.mesh.line_index(line)]
+        if end == "a":
+            return self.element_forces[elements[0], 0].copy()
+        if end == "b":
+            return self.element_forces[elements[-1], 1].copy()
+        raise ValueError(f"end must be 'a' or 'b', got {end!r}")
+
+    def point_position(self, point: str) -> FloatArray:
+        """Position of a named point, (3,)."""
+        return self.positions[self.mesh.point_node[self.mesh.point_index(point)]].copy()
+
+    def seabed_length(self, line: str) -> float:
+        """Unstretched length of the line resting on the seabed: the tributary lengths of its
+        nodes below the seabed plane (resolution: one element)."""
+        m = self.mesh
+        k = m.line_index(line)
+        nodes, elements = m.line_nodes[k], m.line_elements[k]
+        if not np.isfinite(m.seabed_z):
+            return 0.0
+        tributary = np.zeros(len(nodes))
+        tributary[:-1] += 0.5 * m.length0[elements]
+        tributary[1:] += 0.5 * m.length0[elements]
+        touching = self.positions[nodes, 2] < m.seabed_z
+        return float(tributary[touching].sum())
+
+    def to_xarray(self) -> xr.Dataset:
+        """The result as an :class:`xarray.Dataset` (dims node, element, xyz, line, end, point)."""
+        m = self.mesh
+        ends = np.array([[self.end_force(n, e) for e in "ab"] for n in m.line_names])
+        ends = ends.reshape(len(m.line_names), 2, 3)
+        ds = xr.Dataset(
+            {
+                "position": (("node", "xyz"), self.positions),
+                "tension": (("element",), self.tension),
+                "end_force": (("line", "end", "xyz"), ends),
+                "end_tension": (("line", "end"), np.linalg.norm(ends, axis=2)),
+                "max_tension": (("line",), [self.line_tension(n).max() for n in m.line_names]),
+                "seabed_length": (("line",), [self.seabed_length(n) for n in m.line_names]),
+                "point_position": (("point", "xyz"),
+                                   self.positions[m.point_node].reshape(-1, 3)),
+                "residual_history": (("iteration",), self.residual_history),
+                "element_nodes": (("element", "pair"), m.elements),
+                "unstretched_length": (("element",), m.length0),
+            },
+            coords={
+                "xyz": ["x", "y", "z"], "end": ["a", "b"], "line": list(m.line_names),
+                "point": list(m.point_names),
+                "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
+            },
+            attrs={
+                "analysis": "statics", "case": self.case, "units": self.units,
+                "moorline_version": __version__, "method": self.method,
+                "converged": int(self.success), "message": self.message,
+                "iterations": self.iterations, "load_steps": self.load_steps,
+                "n_residual": self.n_residual, "n_tangent": self.n_tangent,
+                "n_factorizations": self.n_factorizations,
+            },
+        )
+        ds["position"].attrs["units"] = "length"
+        ds["tension"].attrs["units"] = "force"
+        return ds

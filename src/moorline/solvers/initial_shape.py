@@ -1,0 +1,61 @@
+"""Starting configuration for statics: catenary profiles where the ends are known."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..mesh import Mesh
+from ..model import System
+
+FloatArray = NDArray[np.float64]
+logger = logging.getLogger(__name__)
+
+
+def initial_positions(system: System, mesh: Mesh) -> FloatArray:
+    """Node positions to start a static solution from, (n_nodes, 3).
+
+    Lines with a user-given ``initial_shape`` take it. Lines whose two ends are fixed or
+    prescribed start on the closed-form elastic catenary between them (with seabed contact when
+    an end lies on the seabed). Lines with a free end start straight.
+    """
+    x = mesh.node_prescribed_start.copy()
+    for k, line in enumerate(system.lines.values()):
+        nodes = mesh.line_nodes[k]
+        a, b = x[nodes[0]], x[nodes[-1]]
+        if line.initial_shape is not None:
+            x[nodes[1:-1]] = np.asarray(line.initial_shape, dtype=float)[1:-1]
+            continue
+        ends_known = (system.points[line.end_a].kind != "free"
+                      and system.points[line.end_b].kind != "free")
+        s = np.linspace(0.0, line.length, line.segments + 1)
+        shape = (_catenary_shape(system, line.line_type, line.length, a, b, s, mesh.seabed_z)
+                 if ends_known else None)
+        if shape is not None:
+            x[nodes[1:-1]] = shape[1:-1]
+        else:
+            x[nodes[1:-1]] = a + (s[1:-1, None] / line.length) * (b - a)
+    return x
+
+
+def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray,
+                    b: FloatArray, s: FloatArray, seabed_z: float) -> FloatArray | None:
+    from ..catenary import CatenaryError, catenary_3d, profile_3d
+
+    lt = system.line_types[type_name]
+    env = system.environment
+    w = (lt.mass_per_length - env.water_density * lt.area_displaced) * env.gravity
+    tol = 1e-6 * max(1.0, abs(seabed_z)) if np.isfinite(seabed_z) else 0.0
+    flip = bool(np.isfinite(seabed_z) and b[2] <= seabed_z + tol < a[2])
+    pa, pb = (b, a) if flip else (a, b)
+    on_seabed = bool(np.isfinite(seabed_z) and pa[2] <= seabed_z + tol)
+    try:
+        _, _, sol = catenary_3d(pa, pb, length, lt.EA, w, seabed_contact=on_seabed,
+                                seabed_friction=0.0)
+        shape = profile_3d(sol, pa, pb, length - s[::-1] if flip else s)
+    except CatenaryError as err:
+        logger.info("catenary start not available (%s); starting straight", err)
+        return None
+    return shape[::-1] if flip else shape

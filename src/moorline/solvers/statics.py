@@ -1,0 +1,239 @@
+"""Static equilibrium of a cable system (Tuah 1982, sec. 4.1).
+
+Three methods, as the source compares them:
+
+- ``newton``: residual feedback (eq. 4.1.2) with equilibrium iterations in each load increment
+  and a backtracking line search; with one increment it is Newton-Raphson. The tangent is
+  refreshed every ``stiffness_update`` iterations (modified Newton in between).
+- ``incremental``: purely incremental loading (eq. 4.1.1), ``K_n dU = dF_e``, no equilibrium
+  correction; the final residual shows the drift.
+- ``relaxation``: viscous relaxation (eq. 4.1.5-4.1.8), ``(C/dt + K) dU = R`` with the
+  artificial damping decreasing as ``C(t) = mu C(t - dt)`` (eq. 6.1.1).
+
+Loads (weights, buoyancy, point forces) are scaled by the load factor ``lam`` and prescribed
+points move from their start to their target position linearly in ``lam``.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from ..mesh import Mesh, discretize
+from ..model import StaticsSettings, System
+from ..results import StaticResult
+from .assembly import BlockPattern, scatter_free
+from .equilibrium import ForceState, StaticModel
+from .initial_shape import initial_positions
+
+FloatArray = NDArray[np.float64]
+logger = logging.getLogger(__name__)
+
+
+@dataclass
+class _Counters:
+    residuals: int = 0
+    tangents: int = 0
+    factorizations: int = 0
+    history: list[float] = field(default_factory=list)
+
+
+def solve_statics(
+    system: System,
+    settings: StaticsSettings | None = None,
+    initial: FloatArray | None = None,
+    mesh: Mesh | None = None,
+) -> StaticResult:
+    """Find the static equilibrium of ``system``.
+
+    Parameters
+    ----------
+    system
+        The problem.
+    settings
+        Method and tolerances; default: the first statics analysis of the system, else Newton.
+    initial
+        Starting node positions (n_nodes, 3); default: catenary/straight start
+        (:func:`~moorline.solvers.initial_shape.initial_positions`).
+    mesh
+        A mesh of ``system`` if already built.
+
+    Returns
+    -------
+    StaticResult
+        ``success`` is False when the method did not reach the tolerance; the message says where
+        the largest residual is.
+    """
+    settings = settings or _default_settings(system)
+    mesh = mesh or discretize(system)
+    model = StaticModel(mesh)
+    x = initial_positions(system, mesh) if initial is None else np.array(initial, dtype=float)
+    start = x[~mesh.free_nodes].copy()
+    target = mesh.node_position[~mesh.free_nodes]
+    solver = {"newton": _newton, "incremental": _incremental, "relaxation": _relaxation}
+    counters = _Counters()
+    ok, message, iterations, state, x = solver[settings.method](
+        model, x, start, target, settings, counters)
+    return StaticResult(
+        success=ok, message=message, method=settings.method, iterations=iterations,
+        load_steps=settings.load_steps, residual_history=np.array(counters.history),
+        n_residual=counters.residuals, n_tangent=counters.tangents,
+        n_factorizations=counters.factorizations, positions=x, tension=state.tension,
+        element_forces=state.element_forces, mesh=mesh, case=system.name, units=system.units)
+
+
+def _default_settings(system: System) -> StaticsSettings:
+    for analysis in system.analyses:
+        if isinstance(analysis, StaticsSettings):
+            return analysis
+    return StaticsSettings()
+
+
+def _move_supports(model: StaticModel, x: FloatArray, start: FloatArray, target: FloatArray,
+                   lam: float) -> None:
+    x[~model.mesh.free_nodes] = start + lam * (target - start)
+
+
+def _residual(model: StaticModel, x: FloatArray, lam: float,
+              counters: _Counters) -> tuple[FloatArray, ForceState]:
+    counters.residuals += 1
+    return model.residual(x, lam)
+
+
+def _factorize(model: StaticModel, x: FloatArray, counters: _Counters,
+               shift: float = 0.0) -> spla.SuperLU:
+    K = model.tangent(x)
+    counters.tangents += 1
+    counters.factorizations += 1
+    if shift:
+        K = K + sp.identity(K.shape[0], format="csr") * shift
+    return spla.splu(K.tocsc())
+
+
+def _line_search(model: StaticModel, x: FloatArray, dx: FloatArray, lam: float, r0: float,
+                 counters: _Counters, max_halvings: int = 8) -> tuple[FloatArray, float]:
+    """Backtracking on the residual norm; returns the accepted step and its residual norm."""
+    best, best_norm, alpha = dx, np.inf, 1.0
+    for _ in range(max_halvings + 1):
+        R, _ = _residual(model, x + alpha * dx, lam, counters)
+        norm = float(np.linalg.norm(R))
+        if norm < best_norm:
+            best, best_norm = alpha * dx, norm
+        if norm <= (1.0 - 1e-4 * alpha) * r0:
+            break
+        alpha *= 0.5
+    return best, best_norm
+
+
+def _newton(model, x, start, target, settings, counters):
+    """Residual feedback with equilibrium iterations per load increment (Tuah eq. 4.1.2)."""
+    tol = settings.tolerance * model.load_scale()
+    dof = model.mesh.dof_of_node
+    total, lu, state = 0, None, None
+    for step in range(1, settings.load_steps + 1):
+        lam = step / settings.load_steps
+        _move_supports(model, x, start, target, lam)
+        for it in range(settings.max_iterations + 1):
+            R, state = _residual(model, x, lam, counters)
+            counters.history.append(float(np.abs(R).max(initial=0.0)))
+            if counters.history[-1] <= tol:
+                break
+            if it == settings.max_iterations:
+                return False, _failure(model, R, state, step, settings), total, state, x
+            if lu is None or it % settings.stiffness_update == 0:
+                lu = _factorize(model, x, counters)
+            dx, _ = _line_search(model, x, scatter_free(lu.solve(R), dof), lam,
+                                 float(np.linalg.norm(R)), counters)
+            x = x + dx
+            total += 1
+        lu = None
+    return True, f"converged in {total} iterations", total, state, x
+
+
+def _incremental(model, x, start, target, settings, counters):
+    """Purely incremental loading, Tuah eq. 4.1.1: no equilibrium correction."""
+    mesh = model.mesh
+    pattern_all = BlockPattern(mesh.elements, np.arange(mesh.n_nodes * 3).reshape(-1, 3))
+    free = (mesh.dof_of_node >= 0).ravel()
+    n = settings.load_steps
+    for step in range(1, n + 1):
+        K = model.tangent(x, pattern_all).tocsr()
+        counters.tangents += 1
+        d_prescribed = np.zeros((mesh.n_nodes, 3))
+        d_prescribed[~mesh.free_nodes] = (target - start) / n
+        rhs = (model.external / n).ravel()[free] - K[free][:, ~free] @ d_prescribed.ravel()[~free]
+        counters.factorizations += 1
+        du = spla.spsolve(K[free][:, free].tocsc(), rhs)
+        x = x + d_prescribed + scatter_free(du, mesh.dof_of_node)
+        R, state = _residual(model, x, step / n, counters)
+        counters.history.append(float(np.abs(R).max(initial=0.0)))
+    ok = counters.history[-1] <= settings.tolerance * model.load_scale()
+    msg = (f"{n} load increments; final out-of-balance force {counters.history[-1]:.3e} "
+           "(purely incremental: no equilibrium correction)")
+    return ok, msg, n, state, x
+
+
+def _relaxation(model, x, start, target, settings, counters):
+    """Viscous relaxation, Tuah eq. 4.1.5-4.1.8, damping C(t) = mu C(t - dt) (eq. 6.1.1).
+
+    Tuah (sec. 4.1) leaves the damping schedule to judgement ("adjustment of the damping
+    constant is recommended"). Our rule: a step that raises the out-of-balance force by more
+    than half is rejected, the damping goes back up by 1/mu^2 and the stiffness is refreshed;
+    otherwise the damping decays by ``mu`` each step and the stiffness is refreshed every
+    ``stiffness_update`` steps.
+    """
+    tol = settings.tolerance * model.load_scale()
+    dof = model.mesh.dof_of_node
+    damping, K, K_age = settings.damping, None, 0
+    lam = min(1.0, 1.0 / settings.load_steps)
+    _move_supports(model, x, start, target, lam)
+    R, state = _residual(model, x, lam, counters)
+    counters.history.append(float(np.abs(R).max(initial=0.0)))
+    for it in range(1, settings.max_iterations + 1):
+        if K is None or K_age >= settings.stiffness_update:
+            K, K_age = model.tangent(x), 0
+            counters.tangents += 1
+        shift = sp.identity(K.shape[0], format="csr") * (damping / settings.pseudo_dt)
+        counters.factorizations += 1
+        x_trial = x + scatter_free(spla.splu((K + shift).tocsc()).solve(R), dof)
+        K_age += 1
+        lam = min(1.0, (it + 1) / settings.load_steps)
+        _move_supports(model, x_trial, start, target, lam)
+        R_trial, state_trial = _residual(model, x_trial, lam, counters)
+        norm = float(np.abs(R_trial).max(initial=0.0))
+        if lam >= 1.0 and norm > 1.5 * counters.history[-1]:
+            damping, K = damping / settings.damping_decrement**2, None
+            counters.history.append(counters.history[-1])
+            continue
+        x, R, state = x_trial, R_trial, state_trial
+        counters.history.append(norm)
+        if lam >= 1.0 and norm <= tol:
+            return True, f"converged in {it} relaxation steps", it, state, x
+        damping *= settings.damping_decrement
+    return False, _failure(model, R, state, None, settings), settings.max_iterations, state, x
+
+
+def _failure(model: StaticModel, R: FloatArray, state: ForceState, step: int | None,
+             settings: StaticsSettings) -> str:
+    where = describe_dof(model.mesh, int(np.argmax(np.abs(R))))
+    at = f" in load step {step}/{settings.load_steps}" if step else ""
+    return (f"{settings.method} did not converge{at} within {settings.max_iterations} "
+            f"iterations: largest out-of-balance force {np.abs(R).max():.3e} at {where}")
+
+
+def describe_dof(mesh: Mesh, dof: int) -> str:
+    """Human description of a global dof: the point or the line and node it belongs to."""
+    node, comp = np.argwhere(mesh.dof_of_node == dof)[0]
+    axis = "xyz"[comp]
+    if node < len(mesh.point_names):
+        return f"point {mesh.point_names[node]} ({axis})"
+    for k, nodes in enumerate(mesh.line_nodes):
+        hit = np.flatnonzero(nodes == node)
+        if hit.size:
+            return f"line {mesh.line_names[k]}, node {int(hit[0])} ({axis})"
+    return f"node {node} ({axis})"

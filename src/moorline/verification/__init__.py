@@ -1,0 +1,1 @@
+"""Verification cases and independent exact reference solutions for moorline."""
