@@ -75,13 +75,25 @@ class StaticResult:
         return self.tension[self.mesh.line_elements[self.mesh.line_index(line)]]
 
     def end_force(self, line: str, end: str) -> FloatArray:
-        """Force the line exerts on its end point ``end`` (``"a"`` or ``"b"``), shape (3,)."""
-        elements = self.mesh.line_elements[self.mesh.line_index(line)]
-        if end == "a":
-            return self.element_forces[elements[0], 0].copy()
-        if end == "b":
-            return self.element_forces[elements[-1], 1].copy()
-        raise ValueError(f"end must be 'a' or 'b', got {end!r}")
+        """Force the line exerts on its end point ``end`` (``"a"`` or ``"b"``), shape (3,).
+
+        The end element's axial force plus the share of the line's distributed loads lumped at
+        the end node (half the end element's submerged weight, less the seabed's support of
+        that half when the node rests on the seabed): the nodal reaction of the finite element
+        model, which converges as O(h^2) to the continuous line's end force.
+        """
+        m = self.mesh
+        elements = m.line_elements[m.line_index(line)]
+        if end not in ("a", "b"):
+            raise ValueError(f"end must be 'a' or 'b', got {end!r}")
+        e, side = (elements[0], 0) if end == "a" else (elements[-1], 1)
+        force = self.element_forces[e, side].copy()
+        force[2] -= 0.5 * m.weight_per_length[e] * m.length0[e]
+        penetration = m.seabed_z - self.positions[m.elements[e, side], 2]
+        if np.isfinite(m.seabed_z) and penetration > 0:
+            area = 0.5 * m.length0[e] * m.diameter[e]
+            force[2] += m.seabed_stiffness_per_area * area * penetration
+        return force
 
     def point_position(self, point: str) -> FloatArray:
         """Position of a named point, (3,)."""

@@ -46,7 +46,7 @@ class Dimension:
     Attributes
     ----------
     name
-        Human-readable name used in messages (``"a length"``).
+        Human-readable name used in messages (``"length"``).
     si, us
         Unit expressions (pint syntax) of the dimension in the SI and US systems.
     """
@@ -61,7 +61,7 @@ class Dimension:
 
 
 DIMENSIONS: dict[str, Dimension] = {
-    "dimensionless": Dimension("dimensionless", "dimensionless", "dimensionless"),
+    "dimensionless": Dimension("dimensionless number", "dimensionless", "dimensionless"),
     "angle": Dimension("angle", "degree", "degree"),
     "length": Dimension("length", "m", "ft"),
     "area": Dimension("area", "m**2", "ft**2"),
@@ -124,9 +124,14 @@ def _dimension_named(quantity: pint.Quantity) -> str | None:
 
 
 def _describe(quantity: pint.Quantity) -> str:
-    """Name of the dimension of ``quantity`` for messages."""
+    """The dimension of ``quantity`` for messages: ``"a mass"``, ``"dimension [length] ** 5"``."""
     key = _dimension_named(quantity)
-    return DIMENSIONS[key].name if key else str(quantity.dimensionality)
+    return _a(DIMENSIONS[key].name) if key else f"dimension {quantity.dimensionality}"
+
+
+def _a(noun: str) -> str:
+    """``"length"`` -> ``"a length"``, ``"area"`` -> ``"an area"``."""
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun
 
 
 def _show(value: Any) -> str:
@@ -190,7 +195,7 @@ def _parse_text(text: str, dimension: str, system: System) -> float:
     target = UREG.Quantity(1.0, expected.unit(system))
     if quantity.dimensionality != target.dimensionality:
         raise UnitParseError(
-            f"expected a {expected.name}, got {text!r} (a {_describe(quantity)})"
+            f"expected {_a(expected.name)}, got {text!r} ({_describe(quantity)})"
         )
     try:
         return float(quantity.to(target.units).magnitude)

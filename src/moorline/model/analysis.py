@@ -30,6 +30,12 @@ class StaticsSettings:
     damping, damping_decrement, pseudo_dt
         Viscous relaxation: initial damping ``C0`` [force*time/length], ``mu`` and the pseudo
         time step [time].
+    start
+        Initial shape of the lines: ``catenary`` (closed form between the end positions) or
+        ``straight`` (the chord).
+    max_step
+        Newton: largest node displacement per iteration, as a fraction of the mean element
+        length (steps are scaled down to it; keeps slack starts from flying apart).
     """
 
     kind: Literal["statics"] = "statics"
@@ -41,6 +47,8 @@ class StaticsSettings:
     damping: float = 1.0e5
     damping_decrement: float = 0.5
     pseudo_dt: float = 1.0
+    start: Literal["catenary", "straight"] = "catenary"
+    max_step: float = 0.5
 
 
 @dataclass(frozen=True)

@@ -68,6 +68,16 @@ def axial_tension(
     return stiffness * strain, stiffness / length0
 
 
+def strain_energy(
+    length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray
+) -> FloatArray:
+    """Elastic energy stored in each element, ``EA eps^2 L0 / 2`` (slack: times the ratio);
+    its derivative with respect to ``l`` is :func:`axial_tension`."""
+    strain = length / length0 - 1.0
+    stiffness = np.where(strain >= 0.0, EA, slack_ratio * EA)
+    return 0.5 * stiffness * strain**2 * length0
+
+
 def nodal_forces(tension: FloatArray, unit: FloatArray) -> FloatArray:
     """Forces each element exerts on its two nodes, shape (n_elements, 2, 3).
 

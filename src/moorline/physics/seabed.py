@@ -34,3 +34,9 @@ def contact_forces(
     force = np.zeros_like(positions)
     force[:, 2] = np.where(touching, stiffness * penetration, 0.0)
     return force, np.where(touching, stiffness, 0.0)
+
+
+def contact_energy(positions: FloatArray, seabed_z: float, stiffness: FloatArray) -> float:
+    """Energy stored in the seabed springs, ``sum k p^2 / 2`` over penetrating nodes."""
+    penetration = np.maximum(seabed_z - positions[:, 2], 0.0)
+    return float(0.5 * np.sum(stiffness * penetration**2))

@@ -73,10 +73,32 @@ class StaticModel:
             node_blocks[:, 2, 2] = k_sb
         return (pattern or self.pattern).assemble(blocks, node_blocks)
 
+    def potential_energy(self, x: FloatArray, lam: float = 1.0) -> float:
+        """Total potential energy: strain and seabed energy minus the work of the loads.
+
+        All static forces here are conservative, so ``R = -dPi/dx``; the Newton line search
+        uses ``Pi`` as its merit function.
+        """
+        m = self.mesh
+        length, _ = element.element_geometry(x, m.elements)
+        energy = float(element.strain_energy(length, m.length0, m.EA, m.slack_ratio).sum())
+        if np.isfinite(m.seabed_z):
+            energy += seabed.contact_energy(x, m.seabed_z, self.node_seabed_stiffness)
+        return energy - lam * float(np.sum(self.external * x))
+
     def load_scale(self) -> float:
         """Force scale for relative tolerances: the largest nodal load (or a tension scale)."""
         scale = float(np.abs(self.external).max(initial=0.0))
         return scale if scale > 0 else 1e-6 * float(np.max(self.mesh.EA, initial=1.0))
+
+    def roundoff_floor(self, x: FloatArray) -> float:
+        """Smallest out-of-balance force resolvable in double precision at positions ``x``:
+        chords are differences of coordinates, so ``dT ~ EA eps |x| / L0``."""
+        m = self.mesh
+        if m.n_elements == 0:
+            return 0.0
+        reach = float(np.abs(x).max(initial=1.0))
+        return 64 * np.finfo(float).eps * float(np.max(m.EA / m.length0)) * reach
 
 
 def _sum_to_nodes(el_forces: FloatArray, elements: NDArray[np.int64], n_nodes: int) -> FloatArray:

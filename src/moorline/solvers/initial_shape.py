@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import logging
+from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -14,12 +15,15 @@ FloatArray = NDArray[np.float64]
 logger = logging.getLogger(__name__)
 
 
-def initial_positions(system: System, mesh: Mesh) -> FloatArray:
+def initial_positions(system: System, mesh: Mesh,
+                      start: Literal["catenary", "straight"] = "catenary") -> FloatArray:
     """Node positions to start a static solution from, (n_nodes, 3).
 
-    Lines with a user-given ``initial_shape`` take it. Lines whose two ends are fixed or
-    prescribed start on the closed-form elastic catenary between them (with seabed contact when
-    an end lies on the seabed). Lines with a free end start straight.
+    Lines with a user-given ``initial_shape`` take it. With ``start='catenary'`` every other
+    line starts on the closed-form elastic catenary between its end positions (for a free end,
+    the point's initial guess), with seabed contact when an end lies on the seabed; where no
+    catenary exists (or with ``start='straight'``) the line starts on its straight chord, as in
+    Tuah (1982) Ex. 2.
     """
     x = mesh.node_prescribed_start.copy()
     for k, line in enumerate(system.lines.values()):
@@ -28,11 +32,9 @@ def initial_positions(system: System, mesh: Mesh) -> FloatArray:
         if line.initial_shape is not None:
             x[nodes[1:-1]] = np.asarray(line.initial_shape, dtype=float)[1:-1]
             continue
-        ends_known = (system.points[line.end_a].kind != "free"
-                      and system.points[line.end_b].kind != "free")
         s = np.linspace(0.0, line.length, line.segments + 1)
         shape = (_catenary_shape(system, line.line_type, line.length, a, b, s, mesh.seabed_z)
-                 if ends_known else None)
+                 if start == "catenary" else None)
         if shape is not None:
             x[nodes[1:-1]] = shape[1:-1]
         else:

@@ -27,7 +27,7 @@ from numpy.typing import NDArray
 from ..mesh import Mesh, discretize
 from ..model import StaticsSettings, System
 from ..results import StaticResult
-from .assembly import BlockPattern, scatter_free
+from .assembly import BlockPattern, gather_free, scatter_free
 from .equilibrium import ForceState, StaticModel
 from .initial_shape import initial_positions
 
@@ -72,7 +72,8 @@ def solve_statics(
     settings = settings or _default_settings(system)
     mesh = mesh or discretize(system)
     model = StaticModel(mesh)
-    x = initial_positions(system, mesh) if initial is None else np.array(initial, dtype=float)
+    x = (initial_positions(system, mesh, settings.start) if initial is None
+         else np.array(initial, dtype=float))
     start = x[~mesh.free_nodes].copy()
     target = mesh.node_position[~mesh.free_nodes]
     solver = {"newton": _newton, "incremental": _incremental, "relaxation": _relaxation}
@@ -115,25 +116,36 @@ def _factorize(model: StaticModel, x: FloatArray, counters: _Counters,
     return spla.splu(K.tocsc())
 
 
-def _line_search(model: StaticModel, x: FloatArray, dx: FloatArray, lam: float, r0: float,
-                 counters: _Counters, max_halvings: int = 8) -> tuple[FloatArray, float]:
-    """Backtracking on the residual norm; returns the accepted step and its residual norm."""
-    best, best_norm, alpha = dx, np.inf, 1.0
-    for _ in range(max_halvings + 1):
-        R, _ = _residual(model, x + alpha * dx, lam, counters)
-        norm = float(np.linalg.norm(R))
-        if norm < best_norm:
-            best, best_norm = alpha * dx, norm
-        if norm <= (1.0 - 1e-4 * alpha) * r0:
-            break
+def _line_search(model: StaticModel, x: FloatArray, dx: FloatArray, lam: float,
+                 R0: FloatArray, counters: _Counters, max_halvings: int = 12) -> FloatArray:
+    """Backtracking line search on the potential energy (Armijo), accepting at once any step
+    that lowers the residual norm. All static loads are conservative (``R = -dPi/dx``)."""
+    r0 = float(np.linalg.norm(R0))
+    slope = -float(np.sum(gather_free(dx, model.mesh.dof_of_node) * R0))
+    energy0 = model.potential_energy(x, lam)
+    alpha = 1.0
+    for _ in range(max_halvings):
+        trial = x + alpha * dx
+        R, _ = _residual(model, trial, lam, counters)
+        if np.linalg.norm(R) < r0:
+            return alpha * dx
+        if slope < 0 and model.potential_energy(trial, lam) <= energy0 + 1e-4 * alpha * slope:
+            return alpha * dx
         alpha *= 0.5
-    return best, best_norm
+    return alpha * dx
+
+
+def _limit_step(dx: FloatArray, max_step: float) -> FloatArray:
+    """Scale a displacement step so that no node moves farther than ``max_step``."""
+    largest = float(np.sqrt((dx * dx).sum(axis=1)).max(initial=0.0))
+    return dx * (max_step / largest) if largest > max_step else dx
 
 
 def _newton(model, x, start, target, settings, counters):
     """Residual feedback with equilibrium iterations per load increment (Tuah eq. 4.1.2)."""
-    tol = settings.tolerance * model.load_scale()
+    tol = max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
     dof = model.mesh.dof_of_node
+    max_step = settings.max_step * float(np.mean(model.mesh.length0))
     total, lu, state = 0, None, None
     for step in range(1, settings.load_steps + 1):
         lam = step / settings.load_steps
@@ -147,8 +159,8 @@ def _newton(model, x, start, target, settings, counters):
                 return False, _failure(model, R, state, step, settings), total, state, x
             if lu is None or it % settings.stiffness_update == 0:
                 lu = _factorize(model, x, counters)
-            dx, _ = _line_search(model, x, scatter_free(lu.solve(R), dof), lam,
-                                 float(np.linalg.norm(R)), counters)
+            dx = _limit_step(scatter_free(lu.solve(R), dof), max_step)
+            dx = _line_search(model, x, dx, lam, R, counters)
             x = x + dx
             total += 1
         lu = None
@@ -187,7 +199,7 @@ def _relaxation(model, x, start, target, settings, counters):
     otherwise the damping decays by ``mu`` each step and the stiffness is refreshed every
     ``stiffness_update`` steps.
     """
-    tol = settings.tolerance * model.load_scale()
+    tol = max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
     dof = model.mesh.dof_of_node
     damping, K, K_age = settings.damping, None, 0
     lam = min(1.0, 1.0 / settings.load_steps)

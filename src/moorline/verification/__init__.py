@@ -1,1 +1,13 @@
-"""Verification cases and independent exact reference solutions for moorline."""
+"""Verification suite: the worked examples of the sources as checked cases.
+
+Each case module builds its model, runs it and returns rows of (quantity, reference, computed,
+tolerance); :func:`moorline.verification.core.run_cases` runs them, ``moorline verify`` prints
+them.
+"""
+
+from .core import CASES, Row, register, run_cases
+
+register("tuah-ex1", "tuah_ex1:run")
+register("tuah-ex2", "tuah_ex2:run")
+
+__all__ = ["CASES", "Row", "register", "run_cases"]

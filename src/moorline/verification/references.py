@@ -51,7 +51,8 @@ def _check_string_data(span: float, EA: float, pretension: float) -> None:
         raise ValueError(f"EA must be positive and finite, got {EA!r}")
     if not (pretension >= 0.0 and math.isfinite(pretension)):
         raise ValueError(
-            f"pretension must be >= 0 (a slack string has no unique equilibrium), got {pretension!r}"
+            "pretension must be >= 0 (a slack string has no unique equilibrium), "
+            f"got {pretension!r}"
         )
 
 
@@ -66,7 +67,7 @@ def pin_jointed_string_tension(
 ) -> float:
     """Axial tension in either half of the string at a given midspan deflection.
 
-    ``T = T0 + EA * (1 - 1/sqrt(1 + (d/a)**2))`` with ``a = span/2``; see
+    ``T = (T0 + EA) sqrt(1 + (d/a)**2) - EA`` with ``a = span/2``; see
     :func:`pin_jointed_string_load` for the derivation.
 
     Parameters
@@ -87,7 +88,8 @@ def pin_jointed_string_tension(
     """
     _check_string_data(span, EA, pretension)
     u = deflection / (0.5 * span)
-    return pretension + EA * _one_minus_inv_sqrt(u)
+    r = math.sqrt(1.0 + u * u)
+    return pretension * r + EA * u * u / (1.0 + r)
 
 
 def pin_jointed_string_load(deflection: float, span: float, EA: float, pretension: float) -> float:
@@ -95,8 +97,8 @@ def pin_jointed_string_load(deflection: float, span: float, EA: float, pretensio
 
     Exact large-deflection statics of Tuah (1982) sec. 6.1 (Example 1, after Webster 1974).
 
-    Derivation
-    ----------
+    Notes
+    -----
     A weightless, linearly elastic string (``T = EA * strain``, strain on the unstretched
     length) is fixed at two points at the same height, ``span`` apart, and carries the
     tension ``T0`` when straight. Its unstretched length is therefore
@@ -105,12 +107,15 @@ def pin_jointed_string_load(deflection: float, span: float, EA: float, pretensio
     ``a = span/2`` and midspan deflection ``d``, stretched length ``l = sqrt(a**2 + d**2)``::
 
         T = EA * (l / (L0/2) - 1) = (EA + T0) * l/a - EA
-          = T0 + EA * (1 - 1/sqrt(1 + u**2)) * sqrt(1 + u**2)  ... written per unit a:
-        T = T0 * sqrt(1+u**2) + EA * (sqrt(1+u**2) - 1),      u = d/a.
+          = T0 sqrt(1 + u**2) + EA (sqrt(1 + u**2) - 1),        u = d/a.
 
-    Vertical equilibrium of the loaded node: ``P = 2 T sin(theta) = 2 T d / l``, so::
+    Vertical equilibrium of the loaded node, ``P = 2 T sin(theta) = 2 T d / l`` with
+    ``d/l = u / sqrt(1 + u**2)``, gives::
 
         P = 2 u [T0 + EA (1 - 1/sqrt(1 + u**2))].
+
+    (:func:`pin_jointed_string_tension` returns ``T``; ``1 - 1/sqrt(1+u**2)`` is evaluated
+    as ``u**2 / (r (1 + r))``, ``r = sqrt(1+u**2)``, to keep full precision at small ``u``.)
 
     Limits: for ``|u| << 1``, ``P ~ 2 T0 u + EA u**3`` (small-strain form). With
     ``T0 > 0`` and a small load it is the linear taut string ``d = P a / (2 T0)``; with
@@ -150,10 +155,10 @@ def pin_jointed_string_deflection(load: float, span: float, EA: float, pretensio
     ``u = d/(span/2)`` with :func:`scipy.optimize.brentq` to machine precision
     (``rtol = 4 eps``; in practice a relative error of about 1e-15).
 
-    The load is strictly increasing in ``d`` (for ``T0 >= 0``), so the root is unique and
-    the bracket ``[0, u_hi]`` is found by starting from the smaller of the linear
-    (``P/(2 T0)``) and cubic (``(P/EA)**(1/3)``) estimates, both upper bounds, and
-    doubling if rounding ever made it fall short.
+    The load is strictly increasing in ``d`` (for ``T0 >= 0``), so the root is unique; the
+    bracket ``[0, u_hi]`` starts from the smaller of the linear (``P/(2 T0)``, an upper
+    bound since ``P >= 2 T0 u``) and cubic (``(P/EA)**(1/3)``) estimates and doubles
+    ``u_hi`` until the load there exceeds ``P``.
 
     Slack case: with ``T0 = 0`` and ``P = 0`` the string is exactly taut and straight and
     the answer is ``d = 0``, unique but with zero tangent stiffness (``dP/dd = 0``): a
@@ -188,16 +193,16 @@ def pin_jointed_string_deflection(load: float, span: float, EA: float, pretensio
     def residual(u: float) -> float:
         return 2.0 * u * (pretension + EA * _one_minus_inv_sqrt(u)) - p
 
-    # P(u) >= 2 T0 u and, for u <= 1, P(u) >= EA u**3 (1 - 1/sqrt(2)) * 2 ... keep it simple:
-    # start from the smaller of the two asymptotic estimates and double until bracketed.
+    # start from the smaller of the two asymptotic estimates and double until bracketed
     u_hi = (p / EA) ** (1.0 / 3.0)
     if pretension > 0.0:
         u_hi = min(u_hi, p / (2.0 * pretension))
     u_hi = max(u_hi, 1e-300)
     while residual(u_hi) < 0.0:
         u_hi *= 2.0
-    u = scipy.optimize.brentq(residual, 0.0, u_hi, xtol=1e-300, rtol=4.0 * np.finfo(float).eps,
-                              maxiter=500)
+    u = scipy.optimize.brentq(
+        residual, 0.0, u_hi, xtol=1e-300, rtol=4.0 * np.finfo(float).eps, maxiter=500
+    )
     return math.copysign(u * a, load)
 
 
@@ -222,11 +227,7 @@ def _seg_jac(H: float, V1: float, length: float, w: float, EA: float) -> np.ndar
     V2 = V1 + w * length
     T1 = math.hypot(H, V1)
     T2 = math.hypot(H, V2)
-    dx_dH = (
-        length / EA
-        + (math.asinh(V2 / H) - math.asinh(V1 / H)) / w
-        - (V2 / T2 - V1 / T1) / w
-    )
+    dx_dH = length / EA + (math.asinh(V2 / H) - math.asinh(V1 / H)) / w - (V2 / T2 - V1 / T1) / w
     dx_dV = (H / w) * (1.0 / T2 - 1.0 / T1)
     dz_dH = (H / w) * (1.0 / T2 - 1.0 / T1)
     dz_dV = length / EA + (V2 / T2 - V1 / T1) / w
@@ -371,13 +372,23 @@ def _solve_va_for_h(
         lo *= 2.0
     while f(hi) < 0.0:
         hi *= 2.0
-    return scipy.optimize.brentq(f, lo, hi, xtol=1e-14 * scale, rtol=4.0 * np.finfo(float).eps,
-                                 maxiter=500)
+    return scipy.optimize.brentq(
+        f, lo, hi, xtol=1e-14 * scale, rtol=4.0 * np.finfo(float).eps, maxiter=500
+    )
 
 
 def _newton(
-    H: float, Va: float, xb: float, zb: float, L1: float, L2: float, w: float, P: float,
-    EA: float, ref: float, max_iter: int = 100,
+    H: float,
+    Va: float,
+    xb: float,
+    zb: float,
+    L1: float,
+    L2: float,
+    w: float,
+    P: float,
+    EA: float,
+    ref: float,
+    max_iter: int = 100,
 ) -> tuple[float, float, bool]:
     """Damped Newton on (ln H, V_a); returns (H, V_a, converged)."""
     target = np.array([xb, zb])
@@ -426,8 +437,9 @@ def two_segment_catenary(
     Reference for Tuah (1982) sec. 6.2 (Example 2), where the thesis compares its finite
     elements with "the catenary equation in which the cable is assumed inextensible".
 
-    Model and sign conventions
-    --------------------------
+    Notes
+    -----
+    Model and sign conventions.
     The cable lies in the vertical ``(x, z)`` plane, ``z`` up, from ``A`` to ``B`` with
     ``x_B > x_A``. ``s`` is unstretched arc length from A; segment 1 is ``0 <= s <= L1``,
     segment 2 is ``L1 < s <= L1 + L2``; both have submerged weight ``w`` per unstretched
@@ -519,8 +531,7 @@ def two_segment_catenary(
     chord = math.hypot(xb, zb)
     if math.isinf(EA) and chord >= L:
         raise ValueError(
-            f"inextensible cable of length {L} cannot span a chord of {chord}: "
-            "no catenary solution"
+            f"inextensible cable of length {L} cannot span a chord of {chord}: no catenary solution"
         )
 
     # --- starting point (Peyrot & Goulois 1979 single-catenary estimate, net weight) ---
@@ -546,8 +557,9 @@ def two_segment_catenary(
         h_hi = max(H0, w * L)
         while span_error(h_hi) < 0.0:
             h_hi *= 2.0
-        H = scipy.optimize.brentq(span_error, h_lo, h_hi, xtol=1e-300,
-                                  rtol=4.0 * np.finfo(float).eps, maxiter=500)
+        H = scipy.optimize.brentq(
+            span_error, h_lo, h_hi, xtol=1e-300, rtol=4.0 * np.finfo(float).eps, maxiter=500
+        )
         Va = _solve_va_for_h(H, zb, L1, L2, w, P, EA)
         H, Va, ok = _newton(H, Va, xb, zb, L1, L2, w, P, EA, ref=chord)
         if not ok:
@@ -555,6 +567,7 @@ def two_segment_catenary(
             if float(np.linalg.norm(r)) > 1e-10 * chord:
                 raise RuntimeError("two_segment_catenary did not converge")
 
+    H, Va = float(H), float(Va)
     xj, zj = _seg_xz(H, Va, L1, w, EA)
     return TwoSegmentSolution(
         point_a=(xa, za),
@@ -583,9 +596,18 @@ def tuah_ex2_reference(EA: float = math.inf) -> TwoSegmentSolution:
     initial stress 0.5 psf (strain 6e-8, 9e-5 ft over the cable) is ignored: the lengths
     are taken as unstretched.
 
-    Values (computed by this module, inextensible): ``H = 367.04`` lbf,
-    ``V_a = 210.80`` lbf, ``V_b = 731.20`` lbf, junction at ``(283.11, 385.12)`` ft; the
-    elastic variant moves the junction by about 1.2 ft (see the tests for exact figures).
+    Values computed by this module (``w = 0.946882`` lbf/ft):
+
+    ============  =========  ========  ========  ==================  =================
+    variant       H (lbf)    V_a       V_b       junction (ft)       low point (ft)
+    ============  =========  ========  ========  ==================  =================
+    inextensible  363.6406   72.6578   592.9812  (382.978, 301.268)  (714.14, 149.42)
+    EA = 177016   359.3659   70.7856   591.1090  (383.200, 302.807)  (715.78, 147.90)
+    ============  =========  ========  ========  ==================  =================
+
+    The buoy makes the junction a kink at a local top: ``V`` is +546 lbf just below it and
+    -354 lbf just above, so segment 2 runs down to a sag at ``s = 873.8`` ft and rises to B.
+    Elasticity moves the junction by 1.55 ft (0.22 ft right, 1.54 ft up).
 
     Parameters
     ----------

@@ -1,0 +1,377 @@
+"""Read a YAML case file into a :class:`moorline.model.System`.
+
+Steps: parse YAML (duplicate keys are errors), check the unit system, validate keys, types,
+units and bounds with the pydantic schema (:mod:`moorline.io.schema`), cross-check references
+and geometry, then build the frozen model. Every failure is a
+:class:`moorline.errors.CaseError` naming the file and the dotted key path.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import os
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+import yaml
+from pydantic import BaseModel, ValidationError
+
+from moorline.errors import CaseError
+from moorline.model import (
+    Current,
+    Environment,
+    Line,
+    LineType,
+    OutputSettings,
+    Point,
+    Seabed,
+    StaticsSettings,
+    System,
+    Waves,
+)
+
+from .schema import CaseSpec, LineSpec, PointSpec, StaticsSpec, describe_errors
+from .units import default_value
+
+__all__ = ["MAX_STRAIN", "SEABED_TOLERANCE", "load_case", "load_case_text"]
+
+logger = logging.getLogger(__name__)
+
+MAX_STRAIN = 0.5
+"""Largest strain a line may need to reach between two fixed/prescribed ends.
+
+A line is rejected when the distance between its ends exceeds ``length * (1 + MAX_STRAIN)``.
+50 % is beyond the elastic range of any mooring material (steel chain and wire < 1 %,
+polyester ~ 10-15 % and nylon ~ 20-30 % at break), so only data errors trip it, while an
+elastic line may legitimately be a little shorter than its span (a pretensioned string).
+"""
+
+SEABED_TOLERANCE = 1.0e-6
+"""A fixed or prescribed point may lie up to ``SEABED_TOLERANCE * depth`` below the seabed."""
+
+UNIT_SYSTEMS = ("SI", "US")
+
+
+def load_case(path: str | os.PathLike[str]) -> System:
+    """Read and validate a YAML case file.
+
+    Parameters
+    ----------
+    path
+        The case file.
+
+    Returns
+    -------
+    System
+        The problem, in the case's unit system; ``System.source`` is ``str(path)``.
+
+    Raises
+    ------
+    CaseError
+        The file cannot be read or its content is invalid (names file and key path).
+    """
+    file = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise CaseError(f"cannot read the case file: {reason}", file=file) from None
+    return _load(text, file, source=file)
+
+
+def load_case_text(text: str, file: str = "<string>") -> System:
+    """Read and validate a case given as YAML text.
+
+    Parameters
+    ----------
+    text
+        The YAML content.
+    file
+        Name used in error messages (and as ``System.source`` unless it is ``"<string>"``).
+
+    Returns
+    -------
+    System
+        The problem, in the case's unit system.
+
+    Raises
+    ------
+    CaseError
+        The content is invalid (names ``file`` and the key path).
+    """
+    return _load(text, file, source=None if file == "<string>" else file)
+
+
+def _load(text: str, file: str, source: str | None) -> System:
+    data = _parse_yaml(text, file)
+    if not isinstance(data, dict):
+        got = "an empty file" if data is None else f"a {type(data).__name__}"
+        raise CaseError(
+            f"the top level must be a mapping of keys (name, units, environment, line_types, "
+            f"points, lines, analyses, output), got {got}",
+            file=file,
+        )
+    units = data.get("units", "SI")
+    if units not in UNIT_SYSTEMS:
+        raise CaseError(
+            f"unknown unit system {units!r}; allowed: {', '.join(UNIT_SYSTEMS)}",
+            file=file,
+            field="units",
+        )
+    try:
+        spec = CaseSpec.model_validate(data, context={"units": units})
+    except ValidationError as exc:
+        field, reason = describe_errors(exc)
+        raise CaseError(reason, file=file, field=field) from None
+    _cross_check(spec, file)
+    system = _build(spec, source)
+    logger.debug("loaded case %r from %s", system.name, file)
+    return system
+
+
+# --------------------------------------------------------------------------------------------
+# YAML
+
+
+class _Loader(yaml.SafeLoader):
+    """Safe loader that rejects duplicate keys (YAML would silently keep the last one)."""
+
+
+def _construct_mapping(loader: _Loader, node: yaml.MappingNode, deep: bool = False) -> Any:
+    loader.flatten_mapping(node)
+    seen: set[Any] = set()
+    for key_node, _ in node.value:
+        key = loader.construct_object(key_node, deep=deep)
+        try:
+            duplicate = key in seen
+        except TypeError:
+            continue  # unhashable key: construct_mapping reports it
+        if duplicate:
+            raise yaml.constructor.ConstructorError(
+                None, None, f"duplicate key {key!r}", key_node.start_mark
+            )
+        seen.add(key)
+    return loader.construct_mapping(node, deep=deep)
+
+
+_Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _construct_mapping)
+
+
+def _parse_yaml(text: str, file: str) -> Any:
+    try:
+        return yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        raise CaseError(f"malformed YAML{where}: {problem}", file=file) from None
+
+
+# --------------------------------------------------------------------------------------------
+# cross-checks
+
+
+def _cross_check(spec: CaseSpec, file: str) -> None:
+    """References, geometry and combinations that single fields cannot check."""
+
+    def fail(reason: str, field: str) -> None:
+        raise CaseError(reason, file=file, field=field)
+
+    env = spec.environment
+    if env.waves.kind == "airy":
+        for key in ("height", "period"):
+            if getattr(env.waves, key) <= 0.0:
+                fail(f"an airy wave needs {key} > 0", f"environment.waves.{key}")
+    for name, lt in spec.line_types.items():
+        if lt.material == "viscoelastic" and lt.tau <= 0.0:
+            fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
+    depth = env.depth if env.depth is not None else math.inf
+    for name, point in spec.points.items():
+        _check_point(name, point, depth, fail)
+    for name, line in spec.lines.items():
+        _check_line(spec, name, line, fail)
+    attached = {p for line in spec.lines.values() for p in (line.end_a, line.end_b)}
+    for name, point in spec.points.items():
+        if point.kind == "free" and name not in attached:
+            fail(f"free point {name!r} is not attached to any line", f"points.{name}")
+
+
+def _check_point(
+    name: str, point: PointSpec, depth: float, fail: Callable[[str, str], None]
+) -> None:
+    if point.initial_position is not None and point.kind != "prescribed":
+        fail(
+            f"only prescribed points take an initial_position; this point is {point.kind}",
+            f"points.{name}.initial_position",
+        )
+    if point.kind == "free" or not math.isfinite(depth):
+        return
+    for key in ("position", "initial_position"):
+        xyz = getattr(point, key)
+        if xyz is not None and xyz[2] < -depth * (1 + SEABED_TOLERANCE):
+            fail(
+                f"{point.kind} point is below the seabed: z = {xyz[2]:g} < -depth = {-depth:g}",
+                f"points.{name}.{key}[2]",
+            )
+
+
+def _start(point: PointSpec) -> Sequence[float]:
+    """Where statics starts a point from."""
+    return point.initial_position if point.initial_position is not None else point.position
+
+
+def _known(names: Sequence[str]) -> str:
+    return ", ".join(names) if names else "(none)"
+
+
+def _check_line(
+    spec: CaseSpec, name: str, line: LineSpec, fail: Callable[[str, str], None]
+) -> None:
+    where = f"lines.{name}"
+    if line.type not in spec.line_types:
+        fail(
+            f"unknown line type {line.type!r}; known line types: {_known(list(spec.line_types))}",
+            f"{where}.type",
+        )
+    for end in ("end_a", "end_b"):
+        point = getattr(line, end)
+        if point not in spec.points:
+            fail(
+                f"unknown point {point!r}; known points: {_known(list(spec.points))}",
+                f"{where}.{end}",
+            )
+    if line.end_a == line.end_b:
+        fail(
+            f"both ends are the point {line.end_a!r}; a line needs two different points",
+            f"{where}.end_b",
+        )
+    a, b = spec.points[line.end_a], spec.points[line.end_b]
+    span = math.dist(a.position, b.position)
+    if a.kind != "free" and b.kind != "free" and span > line.length * (1 + MAX_STRAIN):
+        fail(
+            f"too short to span its ends: {line.end_a!r} and {line.end_b!r} are {span:.6g} "
+            f"apart, more than length*(1 + MAX_STRAIN) = {line.length * (1 + MAX_STRAIN):.6g} "
+            f"(length {line.length:g}, MAX_STRAIN = {MAX_STRAIN})",
+            f"{where}.length",
+        )
+    if line.initial_shape is not None:
+        _check_shape(line, _start(a), _start(b), where, fail)
+
+
+def _check_shape(
+    line: LineSpec,
+    start: Sequence[float],
+    end: Sequence[float],
+    where: str,
+    fail: Callable[[str, str], None],
+) -> None:
+    shape = line.initial_shape or []
+    rows = line.segments + 1
+    if len(shape) != rows:
+        fail(
+            f"must have segments + 1 = {rows} rows, got {len(shape)}",
+            f"{where}.initial_shape",
+        )
+    tolerance = 1.0e-6 * max(line.length, 1.0)
+    for index, point, end_key in ((0, start, "end_a"), (rows - 1, end, "end_b")):
+        if math.dist(shape[index], point) > tolerance:
+            fail(
+                f"must be at {end_key} {getattr(line, end_key)!r} {_xyz(point)}, "
+                f"got {_xyz(shape[index])}",
+                f"{where}.initial_shape[{index}]",
+            )
+
+
+def _xyz(v: Sequence[float]) -> str:
+    return "(" + ", ".join(f"{c:g}" for c in v) + ")"
+
+
+# --------------------------------------------------------------------------------------------
+# spec -> model
+
+
+def _build(spec: CaseSpec, source: str | None) -> System:
+    units = spec.units
+
+    def default(value: float | None, key: str) -> float:
+        return value if value is not None else default_value(key, units)
+
+    env = spec.environment
+    environment = Environment(
+        depth=env.depth if env.depth is not None else math.inf,
+        water_density=default(env.water_density, "water_density"),
+        gravity=default(env.gravity, "gravity"),
+        seabed=Seabed(
+            stiffness=default(env.seabed.stiffness, "seabed_stiffness"),
+            damping=default(env.seabed.damping, "seabed_damping"),
+            friction=env.seabed.friction,
+        ),
+        current=Current(speed=env.current.speed, heading_deg=env.current.heading),
+        waves=Waves(
+            kind=env.waves.kind,
+            height=env.waves.height,
+            period=env.waves.period,
+            heading_deg=env.waves.heading,
+        ),
+    )
+    line_types = {
+        name: LineType(name=name, **lt.model_dump()) for name, lt in spec.line_types.items()
+    }
+    points = {
+        name: Point(
+            name=name,
+            kind=p.kind,
+            position=tuple(p.position),
+            mass=p.mass,
+            volume=p.volume,
+            force=tuple(p.force),
+            initial_position=None if p.initial_position is None else tuple(p.initial_position),
+        )
+        for name, p in spec.points.items()
+    }
+    lines = {name: _line(name, line) for name, line in spec.lines.items()}
+    if spec.analyses is None:
+        analyses: tuple[Any, ...] = (_statics(StaticsSpec(kind="statics"), units),)
+    else:
+        analyses = tuple(_ANALYSES[type(a)](a, units) for a in spec.analyses)
+    return System(
+        name=spec.name,
+        units=units,
+        environment=environment,
+        line_types=line_types,
+        points=points,
+        lines=lines,
+        analyses=analyses,
+        output=OutputSettings(every=default(spec.output.every, "output_every")),
+        source=source,
+    )
+
+
+def _line(name: str, line: LineSpec) -> Line:
+    shape = None
+    if line.initial_shape is not None:
+        shape = tuple(tuple(row) for row in line.initial_shape)
+    return Line(
+        name=name,
+        line_type=line.type,
+        length=line.length,
+        segments=line.segments,
+        end_a=line.end_a,
+        end_b=line.end_b,
+        initial_shape=shape,
+    )
+
+
+def _statics(spec: StaticsSpec, units: str) -> StaticsSettings:
+    values = spec.model_dump()
+    if values["damping"] is None:
+        values["damping"] = default_value("relaxation_damping", units)  # type: ignore[arg-type]
+    if values["pseudo_dt"] is None:
+        values["pseudo_dt"] = default_value("pseudo_dt", units)  # type: ignore[arg-type]
+    return StaticsSettings(**values)
+
+
+_ANALYSES: dict[type[BaseModel], Callable[[Any, str], Any]] = {StaticsSpec: _statics}
+"""How each analysis spec becomes its settings object; extend with new analysis kinds."""

@@ -1,0 +1,402 @@
+"""Pydantic schema of case files: keys, types, dimensions and per-field bounds.
+
+Every dimensional field is declared with :func:`quantity`, naming a key of
+:data:`moorline.io.units.DIMENSIONS`; the unit system comes from the validation context
+(``context={"units": "SI"}``). Values come out converted to floats in that system. Defaults of
+dimensional quantities that depend on the unit system are ``None`` here and filled in by
+:mod:`moorline.io.case`. Cross-references (line types, end points) and geometry are checked
+there too.
+
+:func:`describe_errors` turns a pydantic ``ValidationError`` into a dotted key path and a
+one-line message.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import types
+from typing import Annotated, Any, Literal, Union, get_args, get_origin
+
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    PlainValidator,
+    ValidationError,
+    ValidationInfo,
+    field_validator,
+)
+from pydantic_core import PydanticCustomError
+
+from .units import UnitParseError, to_system
+
+__all__ = ["AnalysisSpec", "CaseSpec", "LineSpec", "LineTypeSpec", "PointSpec", "StaticsSpec",
+           "describe_errors", "quantity"]
+
+
+def _show(value: Any) -> str:
+    """A value as written in the file, short, for messages."""
+    text = repr(value) if isinstance(value, str) and not _numeric(value) else str(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _numeric(text: str) -> bool:
+    """True for strings YAML 1.1 leaves unparsed but that are numbers (``1.0e8``, ``1e-8``)."""
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _fail(reason: str) -> PydanticCustomError:
+    return PydanticCustomError("case_value", "{reason}", {"reason": reason})
+
+
+def quantity(
+    dimension: str,
+    *,
+    gt: float | None = None,
+    ge: float | None = None,
+    le: float | None = None,
+    allow_inf: bool = False,
+) -> Any:
+    """Annotated float type of a case-file field with a physical dimension and bounds.
+
+    Parameters
+    ----------
+    dimension
+        Key of :data:`moorline.io.units.DIMENSIONS`.
+    gt, ge, le
+        Bounds on the converted value (unit independent: only 0 and 1 are used).
+    allow_inf
+        Accept ``inf`` (e.g. an infinite depth).
+    """
+
+    def validate(value: Any, info: ValidationInfo) -> float:
+        system = (info.context or {}).get("units", "SI")
+        try:
+            x = to_system(value, dimension, system)
+        except UnitParseError as exc:
+            raise _fail(str(exc)) from None
+        if math.isinf(x) and not allow_inf:
+            raise _fail(f"must be finite, got {_show(value)}")
+        if gt is not None and not x > gt:
+            raise _fail(f"must be > {gt:g}, got {_show(value)}")
+        if ge is not None and not x >= ge:
+            raise _fail(f"must be >= {ge:g}, got {_show(value)}")
+        if le is not None and not x <= le:
+            raise _fail(f"must be <= {le:g}, got {_show(value)}")
+        return x
+
+    return Annotated[float, PlainValidator(validate)]
+
+
+def _positive_int(value: Any) -> int:
+    """A positive integer (``20``, ``20.0`` or ``"20"``)."""
+    n: int | None = None
+    if isinstance(value, int) and not isinstance(value, bool):
+        n = value
+    elif isinstance(value, float) and value.is_integer():
+        n = int(value)
+    elif isinstance(value, str) and re.fullmatch(r"\s*\+?\d+\s*", value):
+        n = int(value)
+    if n is None or n < 1:
+        raise _fail(f"must be a positive integer, got {_show(value)}")
+    return n
+
+
+def _three(values: list[float]) -> tuple[float, float, float]:
+    if len(values) != 3:
+        raise _fail(f"must be 3 numbers [x, y, z], got {len(values)}")
+    return (values[0], values[1], values[2])
+
+
+PositiveInt = Annotated[int, PlainValidator(_positive_int)]
+Length = quantity("length")
+Vector3 = Annotated[list[Length], AfterValidator(_three)]
+Force3 = Annotated[list[quantity("force")], AfterValidator(_three)]
+Coefficient = quantity("dimensionless", ge=0.0)
+
+
+class _Spec(BaseModel):
+    """Base of all case-file sections: unknown keys are errors."""
+
+    model_config = ConfigDict(extra="forbid")
+
+
+class SeabedSpec(_Spec):
+    """``environment.seabed``; ``None`` means the unit-system default."""
+
+    stiffness: quantity("force/length^3", ge=0.0) | None = None
+    damping: quantity("force*time/length^3", ge=0.0) | None = None
+    friction: Coefficient = 0.0
+
+
+class CurrentSpec(_Spec):
+    """``environment.current``: uniform current towards ``heading`` [deg]."""
+
+    speed: quantity("velocity", ge=0.0) = 0.0
+    heading: quantity("angle") = 0.0
+
+
+class WavesSpec(_Spec):
+    """``environment.waves``: ``kind: none`` or a regular ``airy`` wave."""
+
+    kind: Literal["none", "airy"] = "none"
+    height: quantity("length", ge=0.0) = 0.0
+    period: quantity("time", ge=0.0) = 0.0
+    heading: quantity("angle") = 0.0
+
+
+class EnvironmentSpec(_Spec):
+    """``environment``; an omitted ``depth`` means deep water without a seabed."""
+
+    depth: quantity("length", gt=0.0, allow_inf=True) | None = None
+    water_density: quantity("mass/length^3", gt=0.0) | None = None
+    gravity: quantity("acceleration", gt=0.0) | None = None
+    seabed: SeabedSpec = Field(default_factory=SeabedSpec)
+    current: CurrentSpec = Field(default_factory=CurrentSpec)
+    waves: WavesSpec = Field(default_factory=WavesSpec)
+
+
+class LineTypeSpec(_Spec):
+    """``line_types.<name>``: cross-section properties."""
+
+    diameter: quantity("length", gt=0.0)
+    mass_per_length: quantity("mass/length", gt=0.0)
+    EA: quantity("force", gt=0.0)
+    displaced_area: quantity("area", gt=0.0) | None = None
+    Cd: Coefficient = 1.2
+    Ca: Coefficient = 1.0
+    Ct: Coefficient = 0.008
+    Cat: Coefficient = 0.0
+    material: Literal["elastic", "viscoelastic"] = "elastic"
+    EA1: quantity("force", ge=0.0) = 0.0
+    tau: quantity("time", ge=0.0) = 0.0
+    slack_stiffness_ratio: quantity("dimensionless", gt=0.0, le=1.0) = 1.0e-6
+
+
+class PointSpec(_Spec):
+    """``points.<name>``: a fixed, free or prescribed node.
+
+    ``initial_position`` (prescribed points only): where load-stepped statics starts the point
+    from; it moves to ``position`` over the load steps.
+    """
+
+    kind: Literal["fixed", "free", "prescribed"]
+    position: Vector3
+    mass: quantity("mass", ge=0.0) = 0.0
+    volume: quantity("volume", ge=0.0) = 0.0
+    force: Force3 = (0.0, 0.0, 0.0)
+    initial_position: Vector3 | None = None
+
+
+class LineSpec(_Spec):
+    """``lines.<name>``: a cable between two points."""
+
+    type: str
+    length: quantity("length", gt=0.0)
+    segments: PositiveInt
+    end_a: str
+    end_b: str
+    initial_shape: list[Vector3] | None = None
+
+
+class StaticsSpec(_Spec):
+    """``analyses[i]`` with ``kind: statics`` (see :class:`moorline.model.StaticsSettings`)."""
+
+    kind: Literal["statics"]
+    method: Literal["newton", "incremental", "relaxation"] = "newton"
+    load_steps: PositiveInt = 1
+    tolerance: quantity("dimensionless", gt=0.0) = 1.0e-8
+    max_iterations: PositiveInt = 50
+    stiffness_update: PositiveInt = 1
+    damping: quantity("force*time/length", ge=0.0) | None = None
+    damping_decrement: quantity("dimensionless", gt=0.0, le=1.0) = 0.5
+    pseudo_dt: quantity("time", gt=0.0) | None = None
+    start: Literal["catenary", "straight"] = "catenary"
+    max_step: quantity("dimensionless", gt=0.0) = 0.5
+
+
+# Add new analyses (dynamics, modal, ...) as further members of this union.
+AnalysisSpec = Annotated[Union[StaticsSpec], Field(discriminator="kind")]  # noqa: UP007
+
+
+class OutputSpec(_Spec):
+    """``output``: interval of written time histories (``None``: unit-system default)."""
+
+    every: quantity("time", gt=0.0) | None = None
+
+
+class CaseSpec(_Spec):
+    """A whole case file."""
+
+    name: str
+    units: Literal["SI", "US"] = "SI"
+    environment: EnvironmentSpec = Field(default_factory=EnvironmentSpec)
+    line_types: dict[str, LineTypeSpec]
+    points: dict[str, PointSpec]
+    lines: dict[str, LineSpec]
+    bodies: dict[str, Any] | None = None
+    analyses: list[AnalysisSpec] | None = None
+    output: OutputSpec = Field(default_factory=OutputSpec)
+
+    @field_validator("name")
+    @classmethod
+    def _name_not_empty(cls, value: str) -> str:
+        if not value.strip():
+            raise _fail("must not be empty")
+        return value
+
+    @field_validator("lines")
+    @classmethod
+    def _some_lines(cls, value: dict[str, LineSpec]) -> dict[str, LineSpec]:
+        if not value:
+            raise _fail("must define at least one line")
+        return value
+
+    @field_validator("bodies")
+    @classmethod
+    def _no_bodies(cls, value: dict[str, Any] | None) -> dict[str, Any] | None:
+        if value:
+            raise _fail("bodies are not supported yet; leave 'bodies' empty or omit it")
+        return value
+
+
+# ---- pydantic errors -> (dotted key path, one-line message) -------------------------------
+
+def _strip(tp: Any) -> Any:
+    """Remove ``Annotated`` and ``| None`` wrappers from a type."""
+    while True:
+        origin = get_origin(tp)
+        if origin is Annotated:
+            tp = get_args(tp)[0]
+        elif origin in (Union, types.UnionType):
+            members = [a for a in get_args(tp) if a is not type(None)]
+            if len(members) != 1:
+                return tp
+            tp = members[0]
+        else:
+            return tp
+
+
+def _tagged(tp: Any) -> dict[str, type[BaseModel]]:
+    """Members of a discriminated union ``Annotated[A | B, Field(discriminator=...)]`` by tag."""
+    if get_origin(tp) is not Annotated:
+        return {}
+    inner, *metadata = get_args(tp)
+    if not any(getattr(m, "discriminator", None) for m in metadata):
+        return {}
+    members = get_args(inner) if get_origin(inner) in (Union, types.UnionType) else (inner,)
+    tags: dict[str, type[BaseModel]] = {}
+    for member in members:
+        if _is_model(member) and "kind" in member.model_fields:
+            for tag in get_args(member.model_fields["kind"].annotation):
+                tags[tag] = member
+    return tags
+
+
+def _is_model(tp: Any) -> bool:
+    return isinstance(tp, type) and issubclass(tp, BaseModel)
+
+
+def _locate(loc: tuple[Any, ...]) -> tuple[list[str | int], type[BaseModel] | None]:
+    """Follow a pydantic ``loc`` through the schema.
+
+    Returns the key path without union tags and the spec class holding its last key.
+    """
+    tp: Any = CaseSpec
+    parts: list[str | int] = []
+    parent: type[BaseModel] | None = None
+    for item in loc:
+        tags = _tagged(tp)
+        tp = _strip(tp)
+        if item == "[key]":
+            continue
+        if isinstance(item, str) and item in tags:
+            tp = tags[item]
+            continue
+        parts.append(item)
+        parent = None
+        if _is_model(tp):
+            parent = tp
+            field = tp.model_fields.get(item) if isinstance(item, str) else None
+            tp = field.annotation if field is not None else None
+        elif get_origin(tp) is dict:
+            tp = get_args(tp)[1]
+        elif get_origin(tp) in (list, tuple):
+            tp = get_args(tp)[0]
+        else:
+            tp = None
+    return parts, parent
+
+
+def dotted(parts: list[str | int]) -> str:
+    """``["points", "a", "position", 2]`` -> ``points.a.position[2]``."""
+    out = ""
+    for part in parts:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        else:
+            out += f".{part}" if out else str(part)
+    return out
+
+
+def _unknown_key(key: Any, parent: type[BaseModel] | None) -> str:
+    valid = list(parent.model_fields) if parent is not None else []
+    close = difflib.get_close_matches(str(key), valid, n=1, cutoff=0.6)
+    if close:
+        return f"unknown key {str(key)!r} (did you mean {close[0]!r}?)"
+    return f"unknown key {str(key)!r}; valid keys: {', '.join(valid)}"
+
+
+def _message(err: Any, parts: list[str | int], parent: type[BaseModel] | None) -> str:
+    kind, value, ctx = err["type"], err.get("input"), err.get("ctx") or {}
+    last = parts[-1] if parts else ""
+    if kind == "case_value":
+        return str(ctx.get("reason", err["msg"]))
+    if kind == "missing":
+        return f"missing required key {str(last)!r}"
+    if kind == "extra_forbidden":
+        return _unknown_key(last, parent)
+    if kind == "string_type":
+        return f"expected a string, got {_show(value)}"
+    if kind in ("model_type", "model_attributes_type", "dict_type"):
+        return f"expected a mapping of keys, got {_show(value)}"
+    if kind in ("list_type", "tuple_type"):
+        return f"expected a list, got {_show(value)}"
+    if kind == "literal_error":
+        return f"must be one of {ctx.get('expected')}, got {_show(value)}"
+    if kind == "union_tag_invalid":
+        allowed = ctx.get("expected_tags")
+        return f"unknown kind {ctx.get('tag')!r}; allowed kinds: {allowed}"
+    if kind == "union_tag_not_found":
+        return "missing required key 'kind'"
+    return str(err["msg"])
+
+
+def describe_errors(exc: ValidationError, limit: int = 4) -> tuple[str, str]:
+    """Turn a pydantic ``ValidationError`` into ``(field, reason)`` on one line.
+
+    The first error (unknown keys first) gives the field; up to ``limit - 1`` further errors
+    are appended to the reason as ``also: <field>: <reason>``.
+    """
+    described: list[tuple[str, str]] = []
+    # an unknown key first: a misspelt key also makes the right one "missing"
+    errors = sorted(exc.errors(), key=lambda e: e["type"] != "extra_forbidden")
+    for err in errors:
+        parts, parent = _locate(tuple(err["loc"]))
+        if err["type"] in ("union_tag_invalid", "union_tag_not_found"):
+            parts = [*parts, "kind"]
+        described.append((dotted(parts), _message(err, parts, parent)))
+    field, reason = described[0]
+    extra = [f"{f}: {r}" for f, r in described[1:limit]]
+    if len(described) > limit:
+        extra.append(f"and {len(described) - limit} more")
+    if extra:
+        reason += " (also: " + "; ".join(extra) + ")"
+    return field, reason

@@ -1,0 +1,191 @@
+"""Plots of results (matplotlib, Agg canvas; never opens a window).
+
+Figures are built with the object-oriented API (:class:`matplotlib.figure.Figure` on a
+:class:`~matplotlib.backends.backend_agg.FigureCanvasAgg`), so importing this module changes no
+global matplotlib state and works without a display.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.cm import ScalarMappable
+from matplotlib.collections import LineCollection
+from matplotlib.colors import Normalize
+from matplotlib.figure import Figure
+from mpl_toolkits.mplot3d.art3d import Line3DCollection
+from numpy.typing import NDArray
+
+__all__ = ["plot_configuration"]
+
+CMAP = "viridis"
+_MARKERS = {"fixed": ("s", "black"), "prescribed": ("^", "tab:red"), "free": ("o", "tab:blue")}
+_UNITS = {"SI": {"force": "N", "length": "m"}, "US": {"force": "lbf", "length": "ft"}}
+
+
+def plot_configuration(dataset: xr.Dataset, path_xz: str | Path, path_3d: str | Path) -> None:
+    """Plot a static configuration: an x-z elevation and a 3D view, elements coloured by tension.
+
+    Parameters
+    ----------
+    dataset
+        A statics dataset (:meth:`moorline.results.StaticResult.to_xarray` or a ``statics.nc``
+        read back) with variables ``position(node, xyz)``, ``element_nodes(element, pair)``,
+        ``tension(element)``, optionally ``point_position(point, xyz)`` and the coordinates
+        ``element_line`` and ``point_kind``; attributes ``units`` (``SI`` or ``US``), ``case`` and
+        optionally ``seabed_z`` (drawn when finite).
+    path_xz, path_3d
+        PNG files to write (parent directories are created).
+    """
+    segments, tension = _segments(dataset)
+    units = _UNITS.get(str(dataset.attrs.get("units", "SI")), _UNITS["SI"])
+    norm = _norm(tension)
+    _plot_xz(dataset, segments, tension, norm, units, Path(path_xz))
+    _plot_3d(dataset, segments, tension, norm, units, Path(path_3d))
+
+
+def _segments(dataset: xr.Dataset) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    position = np.asarray(dataset["position"].values, dtype=float)
+    if position.ndim == 3:  # a time history: plot the last instant
+        position = position[-1]
+    connectivity = np.asarray(dataset["element_nodes"].values, dtype=int)
+    tension = np.asarray(dataset["tension"].values, dtype=float)
+    if tension.ndim == 2:
+        tension = tension[-1]
+    return position[connectivity], tension
+
+
+def _norm(tension: NDArray[np.float64]) -> Normalize:
+    finite = tension[np.isfinite(tension)]
+    low, high = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+    if high <= low:
+        pad = max(abs(high) * 0.01, 1.0)
+        low, high = low - pad, high + pad
+    return Normalize(vmin=low, vmax=high)
+
+
+def _seabed_z(dataset: xr.Dataset) -> float | None:
+    value = dataset.attrs.get("seabed_z")
+    if value is None:
+        return None
+    z = float(np.asarray(value).ravel()[0])
+    return z if math.isfinite(z) else None
+
+
+def _points(dataset: xr.Dataset) -> list[tuple[str, str, NDArray[np.float64]]]:
+    """(name, kind, position) of each named point, when the dataset has them."""
+    if "point_position" not in dataset:
+        return []
+    positions = np.asarray(dataset["point_position"].values, dtype=float)
+    if positions.ndim == 3:
+        positions = positions[-1]
+    names = [str(n) for n in dataset["point"].values]
+    kinds = ([str(k) for k in dataset["point_kind"].values] if "point_kind" in dataset.coords
+             else [""] * len(names))
+    return list(zip(names, kinds, positions, strict=True))
+
+
+def _title(dataset: xr.Dataset, view: str) -> str:
+    case = str(dataset.attrs.get("case", "")).strip()
+    return f"{case}: static configuration, {view}" if case else f"Static configuration, {view}"
+
+
+def _save(fig: Figure, path: Path) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    FigureCanvasAgg(fig)
+    fig.savefig(path, dpi=150)
+
+
+def _plot_xz(dataset: xr.Dataset, segments: NDArray[np.float64], tension: NDArray[np.float64],
+             norm: Normalize, units: dict[str, str], path: Path) -> None:
+    fig = Figure(figsize=(9.0, 5.0), layout="constrained")
+    ax = fig.add_subplot()
+    collection = LineCollection(segments[:, :, [0, 2]], cmap=CMAP, norm=norm, linewidths=2.0)
+    collection.set_array(tension)
+    ax.add_collection(collection)
+    seabed = _seabed_z(dataset)
+    if seabed is not None:
+        ax.axhline(seabed, color="saddlebrown", linewidth=1.2, label="seabed")
+    for name, kind, xyz in _points(dataset):
+        marker, colour = _MARKERS.get(kind, ("o", "tab:gray"))
+        ax.plot(xyz[0], xyz[2], marker=marker, color=colour, markersize=6, linestyle="none")
+        ax.annotate(name, (xyz[0], xyz[2]), textcoords="offset points", xytext=(5, 5),
+                    fontsize=8)
+    _label_lines(ax, dataset, segments)
+    ax.autoscale_view()
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"x [{units['length']}]")
+    ax.set_ylabel(f"z [{units['length']}]")
+    ax.set_title(_title(dataset, "x-z elevation"))
+    ax.grid(True, linewidth=0.3)
+    if seabed is not None:
+        ax.legend(loc="best", fontsize=8)
+    fig.colorbar(ScalarMappable(norm=norm, cmap=CMAP), ax=ax,
+                 label=f"tension [{units['force']}]")
+    _save(fig, path)
+
+
+def _label_lines(ax, dataset: xr.Dataset, segments: NDArray[np.float64]) -> None:
+    """Write each line's id next to its middle element (only when there are several lines)."""
+    if "element_line" not in dataset.coords:
+        return
+    owners = np.array([str(v) for v in dataset["element_line"].values])
+    names = list(dict.fromkeys(owners))
+    if len(names) < 2:
+        return
+    for name in names:
+        elements = np.flatnonzero(owners == name)
+        mid = segments[elements[len(elements) // 2]].mean(axis=0)
+        ax.annotate(name, (mid[0], mid[2]), textcoords="offset points", xytext=(0, -12),
+                    fontsize=7, color="dimgray", style="italic", ha="center")
+
+
+def _plot_3d(dataset: xr.Dataset, segments: NDArray[np.float64], tension: NDArray[np.float64],
+             norm: Normalize, units: dict[str, str], path: Path) -> None:
+    fig = Figure(figsize=(8.0, 6.5), layout="constrained")
+    ax = fig.add_subplot(projection="3d")
+    collection = Line3DCollection(segments, cmap=CMAP, norm=norm, linewidths=2.0)
+    collection.set_array(tension)
+    ax.add_collection3d(collection)
+    points = _points(dataset)
+    for name, kind, xyz in points:
+        marker, colour = _MARKERS.get(kind, ("o", "tab:gray"))
+        ax.scatter(*xyz, marker=marker, color=colour, s=25, depthshade=False)
+        ax.text(*xyz, f" {name}", fontsize=8)
+    low, high = _bounds(segments, points)
+    seabed = _seabed_z(dataset)
+    if seabed is not None:
+        xx, yy = np.meshgrid([low[0], high[0]], [low[1], high[1]])
+        ax.plot_surface(xx, yy, np.full_like(xx, seabed), color="saddlebrown", alpha=0.15)
+        low[2], high[2] = min(low[2], seabed), max(high[2], seabed)
+    ax.set_xlim(low[0], high[0])
+    ax.set_ylim(low[1], high[1])
+    ax.set_zlim(low[2], high[2])
+    ax.set_box_aspect(tuple(np.maximum(high - low, 0.05 * np.max(high - low))))
+    for axis, setter in zip("xyz", (ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), strict=True):
+        setter(f"{axis} [{units['length']}]")
+    ax.set_title(_title(dataset, "3D view"))
+    fig.colorbar(ScalarMappable(norm=norm, cmap=CMAP), ax=ax, shrink=0.6,
+                 label=f"tension [{units['force']}]")
+    _save(fig, path)
+
+
+def _bounds(segments: NDArray[np.float64],
+            points: list[tuple[str, str, NDArray[np.float64]]]) -> tuple[NDArray, NDArray]:
+    """Padded axis limits around all nodes and points (no axis of zero extent)."""
+    xyz = segments.reshape(-1, 3)
+    if points:
+        xyz = np.vstack([xyz, [p for _, _, p in points]])
+    xyz = xyz[np.all(np.isfinite(xyz), axis=1)]
+    if not len(xyz):
+        return np.zeros(3) - 1.0, np.zeros(3) + 1.0
+    low, high = xyz.min(axis=0), xyz.max(axis=0)
+    pad = np.maximum(0.05 * np.max(high - low), 1e-9)
+    half = np.maximum((high - low) / 2, 0.0)
+    centre = (high + low) / 2
+    half = np.maximum(half, pad)
+    return centre - half - pad, centre + half + pad

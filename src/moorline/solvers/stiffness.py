@@ -1,0 +1,86 @@
+"""Linearized restoring stiffness of the moored system at points, by static condensation.
+
+At a static equilibrium the tangent ``K`` (exact, :mod:`moorline.solvers.equilibrium`) relates
+small displacements to out-of-balance forces. Keeping the dofs ``r`` of the chosen point(s),
+holding the other fixed and prescribed nodes still and letting every other free dof
+re-equilibrate gives ``K_r = K_rr - K_rc K_cc^-1 K_cr``: the force needed to hold the point(s)
+displaced, per unit displacement. MoorDyn gives no such matrix; MoorPy estimates it by finite
+differences. Here it is exact, and tests check it against finite differences of re-solved
+equilibria.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from ..results import StaticResult
+from .assembly import BlockPattern
+from .equilibrium import StaticModel
+
+FloatArray = NDArray[np.float64]
+
+
+def condensed_stiffness(result: StaticResult, nodes: list[int]) -> FloatArray:
+    """Stiffness (3n x 3n) at the given nodes, all other free dofs condensed out.
+
+    Parameters
+    ----------
+    result
+        A converged static result.
+    nodes
+        Node indices to keep (free or prescribed; fixed nodes are allowed but rarely useful).
+    """
+    mesh = result.mesh
+    model = StaticModel(mesh)
+    pattern = BlockPattern(mesh.elements, np.arange(3 * mesh.n_nodes).reshape(-1, 3))
+    K = model.tangent(result.positions, pattern).tocsr()
+    kept = (3 * np.asarray(nodes)[:, None] + np.arange(3)).ravel()
+    free = mesh.dof_of_node >= 0
+    free_flat = np.flatnonzero(free.ravel())
+    condensed = np.setdiff1d(free_flat, kept)
+    K_rr = K[kept][:, kept].toarray()
+    if condensed.size == 0:
+        return K_rr
+    K_rc = K[kept][:, condensed].toarray()
+    lu = spla.splu(K[condensed][:, condensed].tocsc())
+    return K_rr - K_rc @ lu.solve(np.ascontiguousarray(K_rc.T))
+
+
+def point_stiffness(result: StaticResult, point: str) -> FloatArray:
+    """3x3 restoring stiffness of the moored system at a free or prescribed point.
+
+    ``K[i, j]`` is the extra force in direction ``i`` needed to hold the point displaced by a
+    unit amount in direction ``j`` while the rest of the system re-equilibrates.
+    """
+    mesh = result.mesh
+    return condensed_stiffness(result, [int(mesh.point_node[mesh.point_index(point)])])
+
+
+def _skew(v: FloatArray) -> FloatArray:
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def group_stiffness(result: StaticResult, points: list[str], reference: FloatArray) -> FloatArray:
+    """6x6 stiffness of a group of points rigidly tied to a reference point.
+
+    Generalized displacement ``q = (dx, dy, dz, rx, ry, rz)`` of the rigid group (small rotation
+    vector about ``reference``); generalized force: the total force and moment about the
+    reference needed to hold the group displaced. With arms ``a_i = x_i - reference``,
+    ``T_i = [I, -[a_i x]]`` and ``f_i`` the total force on point ``i`` from its lines, the
+    seabed and its own loads:
+
+        K6 = sum_ij T_i^T K_ij T_j - blockdiag(0, sum_i [f_i x][a_i x])
+
+    the second term being the moment change from rotating the arms under fixed forces.
+    """
+    mesh = result.mesh
+    nodes = [int(mesh.point_node[mesh.point_index(p)]) for p in points]
+    Kc = condensed_stiffness(result, nodes)
+    arms = result.positions[nodes] - np.asarray(reference, dtype=float)
+    T = np.vstack([np.hstack((np.eye(3), -_skew(a))) for a in arms])
+    K6 = T.T @ Kc @ T
+    forces = StaticModel(mesh).forces(result.positions).nodal[nodes]
+    K6[3:, 3:] -= sum(_skew(f) @ _skew(a) for f, a in zip(forces, arms, strict=True))
+    return K6
