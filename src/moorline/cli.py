@@ -24,6 +24,7 @@ from typing import Any, TypeVar
 import click
 import numpy as np
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from . import __version__
@@ -166,9 +167,11 @@ def statics_summary(result: Any, with_stiffness: bool = True) -> dict[str, Any]:
         entry: dict[str, Any] = {}
         for end in ("a", "b"):
             force = np.asarray(result.end_force(name, end), dtype=float)
-            entry[f"end_{end}"] = {"force": force.tolist(),
+            entry[f"end_{end}"] = {"force": (force + 0.0).tolist(),  # no -0.0
                                    "tension": float(np.linalg.norm(force))}
-        entry["max_tension"] = float(np.max(result.line_tension(name)))
+        # the largest tension is often at an end (the fairlead), not at an element midpoint
+        ends = [entry["end_a"]["tension"], entry["end_b"]["tension"]]
+        entry["max_tension"] = float(np.nanmax([*result.line_tension(name), *ends]))
         entry["seabed_length"] = float(result.seabed_length(name))
         lines[name] = entry
     points: dict[str, Any] = {}
@@ -229,8 +232,7 @@ def run_statics(system: Any, settings: Any, directory: Path, label: str,
                       directory / f"{prefix}configuration_3d.png")
         update("plotting ...")
         plot_configuration(ds, xz, view3d)
-    return Outcome("statics", bool(result.success), result.message,
-                   {"kind": "statics", **summary}, [nc, xz, view3d])
+    return Outcome("statics", bool(result.success), result.message, summary, [nc, xz, view3d])
 
 
 #: Runner of each analysis kind a case may list: (system, settings, dir, label, quiet).
@@ -304,7 +306,8 @@ def run(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> Non
     outcomes = [RUNNERS[kind](system, analysis, directory, label, quiet)
                 for kind, analysis, label in zip(kinds, analyses, _labels(kinds), strict=True)]
     summary = {"case": system.name, "converged": all(o.success for o in outcomes),
-               "units": system.units, "analyses": [o.summary for o in outcomes]}
+               "units": system.units,
+               "analyses": [{"kind": o.kind, **o.summary} for o in outcomes]}
     _finish(case, directory, summary, outcomes, as_json, quiet)
 
 
@@ -382,9 +385,9 @@ def _verify_table(rows: list[dict[str, Any]]) -> Table:
         unit = f" {row['unit']}" if row.get("unit") else ""
         kind = " (rel)" if row.get("relative") else unit
         table.add_row(
-            row["case"], row["quantity"], _g(row["reference"]) + unit,
-            _g(row["computed"]) + unit, _g(row.get("error")) + kind,
-            _g(row.get("tolerance")) + kind,
+            escape(str(row["case"])), escape(str(row["quantity"])),
+            escape(_g(row["reference"]) + unit), escape(_g(row["computed"]) + unit),
+            escape(_g(row.get("error")) + kind), escape(_g(row.get("tolerance")) + kind),
             "[green]pass[/green]" if row["passed"] else "[bold red]FAIL[/bold red]")
     return table
 

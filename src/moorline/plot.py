@@ -165,7 +165,8 @@ def _plot_3d(dataset: xr.Dataset, segments: NDArray[np.float64], tension: NDArra
     ax.set_xlim(low[0], high[0])
     ax.set_ylim(low[1], high[1])
     ax.set_zlim(low[2], high[2])
-    ax.set_box_aspect(tuple(np.maximum(high - low, 0.05 * np.max(high - low))))
+    ax.set_box_aspect(tuple(high - low))
+    ax.view_init(elev=20.0, azim=-60.0)
     for axis, setter in zip("xyz", (ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), strict=True):
         setter(f"{axis} [{units['length']}]")
     ax.set_title(_title(dataset, "3D view"))
@@ -176,16 +177,16 @@ def _plot_3d(dataset: xr.Dataset, segments: NDArray[np.float64], tension: NDArra
 
 def _bounds(segments: NDArray[np.float64],
             points: list[tuple[str, str, NDArray[np.float64]]]) -> tuple[NDArray, NDArray]:
-    """Padded axis limits around all nodes and points (no axis of zero extent)."""
+    """Padded axis limits around all nodes and points; no axis shorter than a fifth of the
+    longest, so that planar configurations still get a readable box."""
     xyz = segments.reshape(-1, 3)
     if points:
         xyz = np.vstack([xyz, [p for _, _, p in points]])
     xyz = xyz[np.all(np.isfinite(xyz), axis=1)]
     if not len(xyz):
-        return np.zeros(3) - 1.0, np.zeros(3) + 1.0
+        return np.full(3, -1.0), np.full(3, 1.0)
     low, high = xyz.min(axis=0), xyz.max(axis=0)
-    pad = np.maximum(0.05 * np.max(high - low), 1e-9)
-    half = np.maximum((high - low) / 2, 0.0)
+    longest = max(float(np.max(high - low)), 1e-9)
+    half = np.maximum((high - low) / 2, 0.1 * longest) + 0.05 * longest
     centre = (high + low) / 2
-    half = np.maximum(half, pad)
-    return centre - half - pad, centre + half + pad
+    return centre - half, centre + half

@@ -2,13 +2,10 @@
 
 Every dimensional field is declared with :func:`quantity`, naming a key of
 :data:`moorline.io.units.DIMENSIONS`; the unit system comes from the validation context
-(``context={"units": "SI"}``). Values come out converted to floats in that system. Defaults of
-dimensional quantities that depend on the unit system are ``None`` here and filled in by
-:mod:`moorline.io.case`. Cross-references (line types, end points) and geometry are checked
-there too.
-
-:func:`describe_errors` turns a pydantic ``ValidationError`` into a dotted key path and a
-one-line message.
+(``context={"units": "SI"}``); values come out as floats in that system. Defaults that depend
+on the unit system are ``None`` here and filled in by :mod:`moorline.io.case`, which also
+checks cross-references and geometry. :func:`describe_errors` turns a pydantic
+``ValidationError`` into a dotted key path and a one-line message.
 """
 
 from __future__ import annotations

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 from rich.console import Console, RenderableType
+from rich.markup import escape
 from rich.table import Table
 from rich.text import Text
 
@@ -137,7 +138,7 @@ def _render_analysis(summary: dict, units: str) -> list[RenderableType]:
     head = (f"{summary.get('case', '')} statics ({summary.get('method', '')}): "
             f"{_status(summary.get('converged'))} after {summary.get('iterations')} iterations")
     out: list[RenderableType] = [Text(head, style="bold")]
-    if summary.get("message"):
+    if summary.get("message") and not summary.get("converged"):
         out.append(Text(str(summary["message"])))
     out.append(_lines_table(summary.get("lines", {}), force, length))
     out.append(_points_table(summary.get("points", {}), force, length))
@@ -145,15 +146,16 @@ def _render_analysis(summary: dict, units: str) -> list[RenderableType]:
 
 
 def _lines_table(lines: dict, force: str, length: str) -> Table:
-    table = Table(title=f"Lines (force of the line on its end point, [{force}])")
+    table = Table(title=escape(f"Lines (force of the line on its end point [{force}])"))
     for name in ("line", "end", "Fx", "Fy", "Fz", "tension", "max tension",
                  f"on seabed [{length}]"):
-        table.add_column(name, justify="left" if name in ("line", "end") else "right")
+        table.add_column(escape(name), justify="left" if name in ("line", "end") else "right")
     for name, line in lines.items():
         for end in ("a", "b"):
             data = line.get(f"end_{end}", {})
             first = end == "a"
-            table.add_row(name if first else "", end, *_fmt(data.get("force", [None] * 3)),
+            table.add_row(escape(name) if first else "", end,
+                          *_fmt(data.get("force", [None] * 3)),
                           _num(data.get("tension")),
                           _num(line.get("max_tension")) if first else "",
                           _num(line.get("seabed_length")) if first else "")
@@ -161,7 +163,7 @@ def _lines_table(lines: dict, force: str, length: str) -> Table:
 
 
 def _points_table(points: dict, force: str, length: str) -> Table:
-    table = Table(title=f"Points (position [{length}], stiffness [{force}/{length}])")
+    table = Table(title=escape(f"Points (position [{length}], stiffness [{force}/{length}])"))
     for name in ("point", "kind", "x", "y", "z", "stiffness"):
         table.add_column(name, justify="left" if name in ("point", "kind") else "right")
     for name, point in points.items():
@@ -169,8 +171,8 @@ def _points_table(points: dict, force: str, length: str) -> Table:
         matrix = "-" if stiffness is None else "\n".join(
             "  ".join(f"{v:>11.4g}" if v is not None else f"{'nan':>11}" for v in row)
             for row in stiffness)
-        table.add_row(name, point.get("kind", ""), *_fmt(point.get("position", [None] * 3)),
-                      matrix)
+        table.add_row(escape(name), point.get("kind", ""),
+                      *_fmt(point.get("position", [None] * 3)), matrix)
     return table
 
 

@@ -34,8 +34,8 @@ class StaticsSettings:
         Initial shape of the lines: ``catenary`` (closed form between the end positions) or
         ``straight`` (the chord).
     max_step
-        Newton: largest node displacement per iteration, as a fraction of the mean element
-        length (steps are scaled down to it; keeps slack starts from flying apart).
+        Newton: largest node displacement per iteration, as a fraction of the longest line's
+        unstretched length (longer steps are scaled down; a guard against slack starts).
     """
 
     kind: Literal["statics"] = "statics"

@@ -135,6 +135,10 @@ def _line_search(model: StaticModel, x: FloatArray, dx: FloatArray, lam: float,
     return alpha * dx
 
 
+def _longest_line(mesh: Mesh) -> float:
+    return max((float(mesh.length0[e].sum()) for e in mesh.line_elements), default=1.0)
+
+
 def _limit_step(dx: FloatArray, max_step: float) -> FloatArray:
     """Scale a displacement step so that no node moves farther than ``max_step``."""
     largest = float(np.sqrt((dx * dx).sum(axis=1)).max(initial=0.0))
@@ -145,7 +149,7 @@ def _newton(model, x, start, target, settings, counters):
     """Residual feedback with equilibrium iterations per load increment (Tuah eq. 4.1.2)."""
     tol = max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
     dof = model.mesh.dof_of_node
-    max_step = settings.max_step * float(np.mean(model.mesh.length0))
+    max_step = settings.max_step * _longest_line(model.mesh)
     total, lu, state = 0, None, None
     for step in range(1, settings.load_steps + 1):
         lam = step / settings.load_steps

@@ -9,5 +9,7 @@ from .core import CASES, Row, register, run_cases
 
 register("tuah-ex1", "tuah_ex1:run")
 register("tuah-ex2", "tuah_ex2:run")
+register("tcheou-t1", "tcheou_t1:run")
+register("oc3-line", "oc3_line:run")
 
 __all__ = ["CASES", "Row", "register", "run_cases"]

@@ -1,0 +1,62 @@
+"""Bad case files through the command line: one line on stderr, exit code 2, no traceback."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from moorline.cli import cli
+
+BAD = Path(__file__).resolve().parent / "data" / "bad"
+BAD_FILES = sorted(BAD.glob("*.yaml"))
+
+# a few with the key path the message must name (the full list is in test_io.py)
+WITH_FIELD = [
+    ("negative_length", "lines.line1.length"),
+    ("unknown_key_typo", "lines.line1.lenght"),
+    ("position_component_text", "points.anchor.position[2]"),
+    ("unknown_analysis_kind", "analyses[0].kind"),
+    ("unknown_units_system", "units"),
+]
+
+
+def _invoke(command: str, case: Path, tmp_path: Path):
+    return CliRunner().invoke(cli, [command, str(case), "--out", str(tmp_path), "--quiet"])
+
+
+@pytest.mark.parametrize("case", BAD_FILES, ids=[p.stem for p in BAD_FILES])
+def test_bad_file_exits_2_with_one_line(case: Path, tmp_path: Path) -> None:
+    result = _invoke("statics", case, tmp_path)
+    assert result.exit_code == 2, result.output
+    assert result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith(f"error: {case}: ")
+    assert "Traceback" not in result.stderr
+    assert not any(tmp_path.iterdir())  # nothing written
+
+
+@pytest.mark.parametrize(("name", "field"), WITH_FIELD)
+@pytest.mark.parametrize("command", ["statics", "run"])
+def test_message_names_file_and_key_path(command: str, name: str, field: str,
+                                         tmp_path: Path) -> None:
+    case = BAD / f"{name}.yaml"
+    result = _invoke(command, case, tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"error: {case}: {field}: ")
+
+
+def test_json_mode_keeps_stdout_clean(tmp_path: Path) -> None:
+    case = BAD / "zero_EA.yaml"
+    result = CliRunner().invoke(cli, ["statics", str(case), "--json", "--out", str(tmp_path)])
+    assert result.exit_code == 2 and result.stdout == ""
+    assert "line_types.chain.EA: must be > 0" in result.stderr
+
+
+def test_missing_case_file_exits_2(tmp_path: Path) -> None:
+    case = tmp_path / "nope.yaml"
+    result = _invoke("run", case, tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"error: {case}: ")
