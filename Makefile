@@ -4,6 +4,8 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
+COMPARE := $(VENV)/.compare
+
 .PHONY: demo test verify bench lint clean
 
 $(STAMP): pyproject.toml
@@ -12,6 +14,10 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e ".[test]"
 	touch $(STAMP)
 
+$(COMPARE): $(STAMP)
+	$(BIN)/python -m pip install --quiet -e ".[test,compare]"
+	touch $(COMPARE)
+
 demo: $(STAMP)
 	$(BIN)/moorline run cases/oc3_line.yaml --out out
 	@echo "results and plots written under out/oc3-line/"
@@ -19,11 +25,11 @@ demo: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
-verify: $(STAMP)
+verify: $(COMPARE)
 	$(BIN)/python -m pytest -q -m "slow or not slow"
 	$(BIN)/moorline verify
 
-bench: $(STAMP)
+bench: $(COMPARE)
 	$(BIN)/python benchmarks/bench_statics.py
 
 lint: $(STAMP)

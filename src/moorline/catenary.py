@@ -246,15 +246,29 @@ def _check(X, Z, L, EA, w, mu, max_strain) -> None:
 
 
 def _guess(X, Z, L, w, inv_ea):
-    """Initial fairlead tension (Peyrot & Goulois lambda0 as used by Jonkman 2007)."""
+    """Initial fairlead tension ``(H, V_b)``, ``X > 0``, ``w > 0``.
+
+    Jonkman's (2007) ``lambda0`` estimate, ``H = w X / (2 lambda0)`` and
+    ``V = w/2 (Z / tanh(lambda0) + L)``, where ``lambda0`` comes from the shallow-sag
+    (parabolic) length of the chord, here with the elastic stretch added so that taut and
+    stretched lines start close: ``L (1 + T/EA) = d + (w X / d)^2 d^3 / (24 T^2)`` with the
+    chord tension ``T = H d / X``. For ``EA = inf`` this is exactly Jonkman's
+    ``lambda0 = sqrt(3 ((L^2 - Z^2) / X^2 - 1))`` to first order in ``L - d``.
+    """
     d = math.hypot(X, Z)
-    lam = 0.2 if d >= L else max(math.sqrt(3.0 * ((L * L - Z * Z) / (X * X) - 1.0)), 1e-6)
-    lam = min(lam, 700.0)
-    H, V = max(w * X / (2.0 * lam), 1e-12 * w * L), 0.5 * w * (Z / math.tanh(lam) + L)
-    if inv_ea > 0.0 and d > L:  # stretched: tension from the chord strain
-        t = (d / L - 1.0) / inv_ea
-        H, V = max(H, t * X / d), max(V, t * Z / d + 0.5 * w * L)
-    return H, V
+    a, b, c = L * inv_ea, d - L, (w * X) ** 2 * d / 24.0  # a T^3 - b T^2 - c = 0
+    if a == 0.0:
+        t = math.sqrt(c / -b)
+    else:  # Newton from an upper bound, monotone (convex beyond the root)
+        t = max((2.0 * c / a) ** (1.0 / 3.0), 2.0 * b / a) if b > 0.0 else min(
+            (c / a) ** (1.0 / 3.0), math.sqrt(c / -b) if b < 0.0 else math.inf)
+        for _ in range(30):
+            step = (a * t**3 - b * t * t - c) / (3.0 * a * t * t - 2.0 * b * t)
+            t -= step
+            if step <= 1e-3 * t:
+                break
+    lam = min(max(w * d / (2.0 * t), 1e-9), 700.0)
+    return w * X / (2.0 * lam), 0.5 * w * (Z / math.tanh(lam) + L)
 
 
 def _newton(X, Z, args, H, V, tol_abs, max_iter):
@@ -264,13 +278,18 @@ def _newton(X, Z, args, H, V, tol_abs, max_iter):
     rx, rz = x - X, z - Z
     norm = math.hypot(rx, rz)
     for it in range(max_iter + 1):
-        if max(abs(rx), abs(rz)) <= tol_abs:
-            return H, V, it, True
+        done = max(abs(rx), abs(rz)) <= tol_abs
         a11, a12, a21, a22 = jac
         det = a11 * a22 - a12 * a21
-        if not (math.isfinite(det) and det != 0.0) or it == max_iter:
-            break
+        if not (math.isfinite(det) and det != 0.0) or (it == max_iter and not done):
+            return H, V, it, done
         dh, dv = -(a22 * rx - a12 * rz) / det, -(a11 * rz - a21 * rx) / det
+        if done:  # one more full step: quadratic convergence takes it to round-off
+            hn, vn = H + dh, V + dv
+            xn, zn, _ = _ends(hn, vn, *args) if hn > 0.0 and vn >= 0.0 else (X, Z, 0)
+            if hn > 0.0 and math.hypot(xn - X, zn - Z) <= norm and (vn >= 0.0 or not contact):
+                return hn, vn, it + 1, True
+            return H, V, it, True
         alpha = 1.0
         if dh < -0.9 * H:  # keep H > 0 (at most a tenfold drop per step)
             alpha = -0.9 * H / dh

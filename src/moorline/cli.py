@@ -118,7 +118,9 @@ def _note(message: str, quiet: bool) -> None:
 
 
 def _stdout() -> Console:
-    return Console(file=sys.stdout, width=max(100, Console(file=sys.stdout).width))
+    """Console for tables on stdout: the terminal's width, or 160 columns into a pipe/file."""
+    console = Console(file=sys.stdout)
+    return console if console.is_terminal else Console(file=sys.stdout, width=160)
 
 
 def _safe_name(name: str, fallback: str) -> str:
@@ -408,13 +410,14 @@ def plot(results: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
 
     from .plot import plot_configuration
 
+    if not results.is_file():
+        raise CaseError("no such file", str(results))
     try:
         with xr.open_dataset(results, engine="netcdf4") as opened:
             ds = opened.load()
     except (OSError, ValueError) as exc:
-        if isinstance(exc, FileNotFoundError):
-            raise
-        raise CaseError(f"cannot read as NetCDF ({exc})", str(results)) from exc
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise CaseError(f"cannot read as a NetCDF results file ({reason})", str(results)) from exc
     missing = [v for v in ("position", "element_nodes", "tension") if v not in ds.variables]
     if missing or ds.attrs.get("analysis", "statics") != "statics":
         raise CaseError(f"not a statics result (missing {', '.join(missing) or 'statics'})",
