@@ -28,14 +28,8 @@ from scipy.optimize import brentq
 
 from moorline.errors import MoorlineError
 
-__all__ = [
-    "CatenaryError",
-    "CatenarySolution",
-    "catenary_3d",
-    "hanging_from_forces",
-    "profile_3d",
-    "solve_catenary",
-]
+__all__ = ["CatenaryError", "CatenarySolution", "catenary_3d", "hanging_from_forces",
+           "profile_3d", "solve_catenary"]
 
 
 class CatenaryError(MoorlineError):
@@ -219,18 +213,16 @@ class CatenarySolution:
 
 # ----------------------------------------------------------------------------- solver
 def _check(X, Z, L, EA, w, mu, max_strain) -> None:
-    vals = {"horizontal_span": X, "vertical_span": Z, "length": L, "weight": w}
-    for name, v in vals.items():
-        if not math.isfinite(v):
-            raise CatenaryError(f"{name} must be finite, got {v}")
-    if L <= 0.0:
-        raise CatenaryError(f"line length must be positive, got {L}")
-    if not EA > 0.0:
-        raise CatenaryError(f"axial stiffness EA must be positive, got {EA}")
-    if X < 0.0:
-        raise CatenaryError(f"horizontal span must be >= 0, got {X}")
-    if not mu >= 0.0:
-        raise CatenaryError(f"seabed friction coefficient must be >= 0, got {mu}")
+    bad = [
+        (not all(map(math.isfinite, (X, Z, L, w))), f"X, Z, L, w must be finite: {X, Z, L, w}"),
+        (not L > 0.0, f"line length must be positive, got {L}"),
+        (not EA > 0.0, f"axial stiffness EA must be positive, got {EA}"),
+        (not X >= 0.0, f"horizontal span must be >= 0, got {X}"),
+        (not mu >= 0.0, f"seabed friction coefficient must be >= 0, got {mu}"),
+    ]
+    for failed, msg in bad:
+        if failed:
+            raise CatenaryError(msg)
     d = math.hypot(X, Z)
     if math.isinf(EA) and d >= L:
         raise CatenaryError(
@@ -257,6 +249,8 @@ def _guess(X, Z, L, w, inv_ea):
     """
     d = math.hypot(X, Z)
     a, b, c = L * inv_ea, d - L, (w * X) ** 2 * d / 24.0  # a T^3 - b T^2 - c = 0
+    if not c > 0.0:
+        return max(w * X / 1400.0, 1e-300), w * (Z + L) / 2.0
     if a == 0.0:
         t = math.sqrt(c / -b)
     else:  # Newton from an upper bound, monotone (convex beyond the root)
@@ -286,9 +280,10 @@ def _newton(X, Z, args, H, V, tol_abs, max_iter):
         dh, dv = -(a22 * rx - a12 * rz) / det, -(a11 * rz - a21 * rx) / det
         if done:  # one more full step: quadratic convergence takes it to round-off
             hn, vn = H + dh, V + dv
-            xn, zn, _ = _ends(hn, vn, *args) if hn > 0.0 and vn >= 0.0 else (X, Z, 0)
-            if hn > 0.0 and math.hypot(xn - X, zn - Z) <= norm and (vn >= 0.0 or not contact):
-                return hn, vn, it + 1, True
+            if hn > 0.0 and (vn >= 0.0 or not contact):
+                xn, zn, _ = _ends(hn, vn, *args)
+                if math.hypot(xn - X, zn - Z) <= norm:
+                    return hn, vn, it + 1, True
             return H, V, it, True
         alpha = 1.0
         if dh < -0.9 * H:  # keep H > 0 (at most a tenfold drop per step)
@@ -308,7 +303,7 @@ def _newton(X, Z, args, H, V, tol_abs, max_iter):
     return H, V, max_iter, False
 
 
-def _bracketed(X, Z, args, tol_abs):
+def _bracketed(X, Z, args):
     """Robust fallback: nested bracketed roots, V_b(H) from Z, then H from X."""
     L, w, contact = args[0], args[1], args[-1]
     v_floor = 0.0 if contact else 0.5 * w * L  # Z(H, v_floor) <= 0 <= Z
@@ -336,14 +331,14 @@ def _bracketed(X, Z, args, tol_abs):
 
 
 def _special(X, Z, L, w, inv_ea, mu, contact):
-    """Closed-form cases: weightless, slack on the seabed, flat on the seabed, vertical.
+    """Closed forms: weightless or stretched far beyond sag, slack or flat on seabed, vertical.
 
     Returns ``(H, V_b)`` or ``None`` when the general solver is needed.
     """
-    if w == 0.0:  # straight line; zero tension when slack
-        d = math.hypot(X, Z)
-        t = (d / L - 1.0) / inv_ea if d > L else 0.0
-        return (t * X / d, t * Z / d) if t > 0.0 else (0.0, 0.0)
+    d = math.hypot(X, Z)
+    t = (d / L - 1.0) / inv_ea if d > L else 0.0  # chord tension of a straight line
+    if w == 0.0 or w * L < 1e-13 * t:  # weight negligible: straight; no tension when slack
+        return (t * X / d, t * Z / d + 0.5 * w * L) if t > 0.0 else (0.0, 0.0)
     if contact:
         ls = 2.0 * Z / (1.0 + math.sqrt(1.0 + 2.0 * w * Z * inv_ea))  # vertical hanging length
         if ls <= L and X <= L - ls:
@@ -353,7 +348,7 @@ def _special(X, Z, L, w, inv_ea, mu, contact):
             if e >= 0.5 * mu * w * L * L:
                 return (e + 0.5 * mu * w * L * L) / L, 0.0
             return math.sqrt(2.0 * mu * w * e), 0.0
-    if X == 0.0:  # folded (V crosses 0) or taut vertical line
+    if X <= 1e-13 * L:  # folded (V crosses 0) or taut vertical line; H ~ w X is negligible
         stretch = 1.0 + 0.5 * w * L * inv_ea
         if Z <= L * stretch:
             return 0.0, w * L - 0.5 * w * (L - Z / stretch)
@@ -362,49 +357,40 @@ def _special(X, Z, L, w, inv_ea, mu, contact):
 
 
 def _solve_canonical(X, Z, L, EA, w, mu, contact, tol, max_iter):
-    """Solve with ``w >= 0``, ``Z >= 0``: returns ``(H, V_b, iterations)``."""
+    """Solve with ``w >= 0``, ``Z >= 0``: returns ``(H, V_b, iterations)``.
+
+    The iteration runs on the problem scaled to ``L = 1`` and ``w L = 1``.
+    """
     inv_ea = _inv(EA)
     special = _special(X, Z, L, w, inv_ea, mu, contact)
     if special is not None:
         return (*special, 0)
-    args = (L, w, inv_ea, mu, contact)
-    tol_abs = tol * max(L, math.hypot(X, Z))
-    H, V = _guess(X, Z, L, w, inv_ea)
-    H, V, it, ok = _newton(X, Z, args, H, V, tol_abs, max_iter)
-    if ok:
-        return H, V, it
+    xs, zs, ie = X / L, Z / L, inv_ea * w * L
+    if ie == 0.0 and inv_ea > 0.0 and math.hypot(xs, zs) >= 1.0:  # weight below round-off
+        return (*_special(X, Z, L, 0.0, inv_ea, mu, False), 0)
+    args, tol_abs = (1.0, 1.0, ie, mu, contact), tol * max(1.0, math.hypot(xs, zs))
+    what = f"catenary did not converge for X = {X:.6g}, Z = {Z:.6g}, L = {L:.6g}, " \
+        f"EA = {EA:.6g}, w = {w:.6g}"
     try:
-        H, V = _bracketed(X, Z, args, tol_abs)
+        H, V, it, ok = _newton(xs, zs, args, *_guess(xs, zs, 1.0, 1.0, ie), tol_abs, max_iter)
+        if not ok:
+            H, V = _bracketed(xs, zs, args)
+            H2, V2, it2, ok = _newton(xs, zs, args, H, V, tol_abs, 10)  # polish
+            H, V, it = (H2, V2, it + it2) if ok else (H, V, it)
     except (ValueError, ZeroDivisionError, OverflowError) as exc:
-        raise CatenaryError(
-            f"catenary did not converge for X = {X:.6g}, Z = {Z:.6g}, L = {L:.6g}, "
-            f"EA = {EA:.6g}, w = {w:.6g}: {exc}"
-        ) from exc
-    H2, V2, it2, ok = _newton(X, Z, args, H, V, tol_abs, 10)
+        raise CatenaryError(f"{what}: {exc}") from exc
     x, z, _ = _ends(H, V, *args)
-    res = max(abs(x - X), abs(z - Z))
-    if ok:
-        return H2, V2, it + it2
-    if res <= 1e3 * tol_abs:
-        return H, V, it
-    raise CatenaryError(
-        f"catenary did not converge for X = {X:.6g}, Z = {Z:.6g}, L = {L:.6g}, EA = {EA:.6g}, "
-        f"w = {w:.6g}: end-position residual {res:.3e} > tolerance {tol_abs:.3e}"
-    )
+    res = max(abs(x - xs), abs(z - zs))
+    if not ok and res > 1e3 * tol_abs:
+        raise CatenaryError(f"{what}: end-position residual {res * L:.3e} > tolerance "
+                            f"{tol_abs * L:.3e}")
+    return H * w * L, V * w * L, it
 
 
 def solve_catenary(
-    horizontal_span: float,
-    vertical_span: float,
-    length: float,
-    EA: float,
-    weight: float,
-    *,
-    seabed_friction: float = 0.0,
-    seabed_contact: bool = True,
-    max_strain: float = 0.5,
-    tol: float = 1e-10,
-    max_iter: int = 100,
+    horizontal_span: float, vertical_span: float, length: float, EA: float, weight: float, *,
+    seabed_friction: float = 0.0, seabed_contact: bool = True, max_strain: float = 0.5,
+    tol: float = 1e-10, max_iter: int = 100,
 ) -> CatenarySolution:
     """Solve the elastic catenary between ends A and B (Jonkman 2007; Tcheou 1997 eq. 3.27).
 
@@ -435,6 +421,16 @@ def solve_catenary(
     CatenaryError
         Invalid input, infeasible geometry (over-stretched, or ``EA = inf`` and
         ``|AB| >= L``) or non-convergence.
+
+    Notes
+    -----
+    Damped Newton on ``(H, V_b)`` with the analytic Jacobian from Jonkman's initial guess;
+    nested Brent root finding as the fallback. Closed forms (``iterations == 0``): a slack
+    line on the seabed (``H = 0``, surplus length piled up under the span), a line flat on
+    the seabed (``Z = 0``), a vertical line (``X <= 1e-13 L`` is taken as ``X = 0``: ``H = 0``
+    and ``V`` may change sign, a fold) and a straight line when the weight is zero or
+    negligible (``w L < 1e-13 EA (|AB| / L - 1)``); a slack weightless line has no tension.
+    B below A (after mirroring a buoyant line) is solved from B, without seabed contact.
     """
     X, Z, L, w = (float(v) for v in (horizontal_span, vertical_span, length, weight))
     EA, mu = float(EA), float(seabed_friction)
@@ -494,15 +490,8 @@ def _unit_h(point_a, point_b) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def catenary_3d(
-    point_a,
-    point_b,
-    length: float,
-    EA: float,
-    weight: float,
-    *,
-    seabed_friction: float = 0.0,
-    seabed_contact: bool = True,
-    **kwargs,
+    point_a, point_b, length: float, EA: float, weight: float, *,
+    seabed_friction: float = 0.0, seabed_contact: bool = True, **kwargs,
 ) -> tuple[np.ndarray, np.ndarray, CatenarySolution]:
     """Catenary between 3-D points (z up); extra keywords go to :func:`solve_catenary`.
 

@@ -67,17 +67,28 @@ def _describe_os_error(exc: OSError) -> str:
     return str(exc) or exc.__class__.__name__
 
 
+class _StderrHandler(logging.StreamHandler):
+    """Writes to whatever ``sys.stderr`` is at the time of the record (test runners swap it)."""
+
+    @property  # type: ignore[override]
+    def stream(self) -> Any:
+        return sys.stderr
+
+    @stream.setter
+    def stream(self, value: Any) -> None:
+        pass
+
+
 def _configure_logging(verbose: bool) -> None:
-    """Send moorline's log records to stderr: WARNING by default, INFO with ``--verbose``."""
-    root = logging.getLogger("moorline")
-    for handler in [h for h in root.handlers if getattr(h, "_moorline_cli", False)]:
-        root.removeHandler(handler)
-    handler = logging.StreamHandler(sys.stderr)
+    """Send moorline's log records to stderr: WARNING and above, INFO too with ``--verbose``."""
+    logger_ = logging.getLogger("moorline")
+    for handler in [h for h in logger_.handlers if isinstance(h, _StderrHandler)]:
+        logger_.removeHandler(handler)
+    handler = _StderrHandler()
     handler.setFormatter(logging.Formatter("%(levelname)s: %(name)s: %(message)s"))
-    handler._moorline_cli = True  # type: ignore[attr-defined]
-    root.addHandler(handler)
-    root.setLevel(logging.INFO if verbose else logging.WARNING)
-    root.propagate = False
+    handler.setLevel(logging.INFO if verbose else logging.WARNING)
+    logger_.addHandler(handler)
+    logger_.setLevel(logging.INFO if verbose else logging.NOTSET)
 
 
 def _common_options(func: F) -> F:

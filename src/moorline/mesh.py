@@ -34,6 +34,11 @@ class Mesh:
         Unstretched element lengths (n_elements,).
     EA, EA1, tau, slack_ratio
         Axial stiffness [force], viscoelastic extra stiffness and time, slack stiffness ratio.
+    BA
+        Internal axial damping [force*time] (a negative line-type value, a damping ratio, is
+        resolved here: ``BA = zeta L0 sqrt(EA m)``).
+    viscoelastic
+        Mask of elements made of the standard linear solid (n_elements,).
     mass_per_length, weight_per_length
         Dry mass per length and submerged weight per length (weight minus buoyancy, z down).
     diameter, Cd, Ca, Ct, Cat
@@ -46,14 +51,16 @@ class Mesh:
         Point ids, kinds and node index.
     node_mass, node_volume, node_force
         Lumped point mass [mass], displaced volume and constant external force per node.
+    node_drag_area, node_Cd, node_Ca
+        Point drag area, drag and added-mass coefficients per node (0 on line nodes).
     node_prescribed_start
         Where each node starts in a load-stepped statics (prescribed points may start elsewhere).
     dof_of_node
         Global dof number of each node's x, y, z, or -1 for fixed/prescribed nodes.
     seabed_z
         Seabed height (``-depth``; ``-inf`` without seabed).
-    seabed_stiffness_per_area
-        Contact stiffness per area [force/length^3].
+    seabed_stiffness_per_area, seabed_damping_per_area
+        Contact stiffness [force/length^3] and damping [force*time/length^3] per area.
     node_contact_area
         Diameter times tributary unstretched length of each node (n_nodes,).
     gravity, water_density
@@ -67,6 +74,8 @@ class Mesh:
     EA1: FloatArray
     tau: FloatArray
     slack_ratio: FloatArray
+    BA: FloatArray
+    viscoelastic: BoolArray
     mass_per_length: FloatArray
     weight_per_length: FloatArray
     diameter: FloatArray
@@ -84,10 +93,14 @@ class Mesh:
     node_mass: FloatArray
     node_volume: FloatArray
     node_force: FloatArray
+    node_drag_area: FloatArray
+    node_Cd: FloatArray
+    node_Ca: FloatArray
     node_prescribed_start: FloatArray
     dof_of_node: IntArray
     seabed_z: float
     seabed_stiffness_per_area: float
+    seabed_damping_per_area: float
     node_contact_area: FloatArray
     gravity: float
     water_density: float
@@ -125,18 +138,21 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
     env = system.environment
     lines = list(system.lines.values())
     props: dict[str, list[float]] = {k: [] for k in (
-        "EA", "EA1", "tau", "slack_ratio", "mass_per_length", "weight_per_length",
-        "diameter", "Cd", "Ca", "Ct", "Cat")}
+        "EA", "EA1", "tau", "slack_ratio", "BA", "viscoelastic", "mass_per_length",
+        "weight_per_length", "diameter", "Cd", "Ca", "Ct", "Cat")}
     for line in lines:
         lt = system.line_types[line.line_type]
         weight = (lt.mass_per_length - env.water_density * lt.area_displaced) * env.gravity
         values = {"EA": lt.EA, "EA1": lt.EA1, "tau": lt.tau,
-                  "slack_ratio": lt.slack_stiffness_ratio,
+                  "slack_ratio": lt.slack_stiffness_ratio, "BA": lt.BA,
+                  "viscoelastic": float(lt.material == "viscoelastic"),
                   "mass_per_length": lt.mass_per_length, "weight_per_length": weight,
                   "diameter": lt.diameter, "Cd": lt.Cd, "Ca": lt.Ca, "Ct": lt.Ct, "Cat": lt.Cat}
         for key, value in values.items():
             props[key].append(value)
-    return {k: np.asarray(v, dtype=float)[line_of_element] for k, v in props.items()}
+    out = {k: np.asarray(v, dtype=float)[line_of_element] for k, v in props.items()}
+    out["viscoelastic"] = out["viscoelastic"] > 0.5
+    return out
 
 
 def discretize(system: System) -> Mesh:
@@ -173,17 +189,23 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
     offsets = np.cumsum([0] + [len(e) for e in elements])
     line_elements = tuple(np.arange(offsets[i], offsets[i + 1]) for i in range(len(elements)))
     props = _element_properties(system, el_line)
+    ratio = props["BA"] < 0  # MoorDyn's -zeta: a damping ratio of each segment's axial mode
+    props["BA"] = np.where(ratio, -props["BA"] * L0 * np.sqrt(props["EA"]
+                                                              * props["mass_per_length"]),
+                           props["BA"])
 
     points = list(system.points.values())
     n_points = len(points)
     node_mass = np.zeros(n_nodes)
     node_volume = np.zeros(n_nodes)
     node_force = np.zeros((n_nodes, 3))
+    node_hydro = np.zeros((3, n_nodes))
     start = node_position.copy()
     constrained = np.zeros(n_nodes, dtype=bool)
     for i, p in enumerate(points):
         node_mass[i], node_volume[i] = p.mass, p.volume
         node_force[i] = p.force
+        node_hydro[:, i] = (p.drag_area, p.Cd, p.Ca)
         constrained[i] = p.kind != "free"
         if p.kind == "prescribed" and p.initial_position is not None:
             start[i] = p.initial_position
@@ -200,7 +222,9 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         line_elements=line_elements, point_names=tuple(point_names),
         point_kind=tuple(p.kind for p in points),
         point_node=np.arange(n_points, dtype=np.int64), node_mass=node_mass,
-        node_volume=node_volume, node_force=node_force, node_prescribed_start=start,
+        node_volume=node_volume, node_force=node_force, node_drag_area=node_hydro[0],
+        node_Cd=node_hydro[1], node_Ca=node_hydro[2], node_prescribed_start=start,
         dof_of_node=dof, seabed_z=-env.depth if env.has_seabed else -np.inf,
-        seabed_stiffness_per_area=env.seabed.stiffness, node_contact_area=tributary,
+        seabed_stiffness_per_area=env.seabed.stiffness,
+        seabed_damping_per_area=env.seabed.damping, node_contact_area=tributary,
         gravity=env.gravity, water_density=env.water_density, **props)

@@ -149,3 +149,79 @@ class StaticResult:
         ds["position"].attrs["units"] = "length"
         ds["tension"].attrs["units"] = "force"
         return ds
+
+
+@dataclass(frozen=True)
+class DynamicResult:
+    """Outcome of a time-domain analysis.
+
+    Attributes
+    ----------
+    success, message
+        Whether the run reached its end, and how it ended.
+    time
+        Output times (n_t,).
+    positions, velocities
+        Node positions and velocities (n_t, n_nodes, 3).
+    tension
+        Element tensions (n_t, n_elements).
+    end_force
+        Force each line exerts on its end points (n_t, n_lines, 2, 3).
+    counters
+        ``steps``, ``iterations``, ``residuals``, ``tangents``, ``factorizations``,
+        ``step_cuts``.
+    mesh, case, units, settings
+        What was solved, for output.
+    """
+
+    success: bool
+    message: str
+    time: FloatArray
+    positions: FloatArray
+    velocities: FloatArray
+    tension: FloatArray
+    end_force: FloatArray
+    counters: dict
+    mesh: Mesh
+    case: str = ""
+    units: str = "SI"
+    settings: dict = field(default_factory=dict)
+
+    def end_tension(self, line: str, end: str = "b") -> FloatArray:
+        """Tension history at one end of a line (n_t,)."""
+        k = self.mesh.line_index(line)
+        return np.linalg.norm(self.end_force[:, k, "ab".index(end)], axis=-1)
+
+    def point_history(self, point: str) -> FloatArray:
+        """Position history of a named point (n_t, 3)."""
+        return self.positions[:, self.mesh.point_node[self.mesh.point_index(point)]]
+
+    def to_xarray(self) -> xr.Dataset:
+        """The histories as an :class:`xarray.Dataset` (dims time, node, element, xyz, line,
+        end)."""
+        m = self.mesh
+        end_tension = np.linalg.norm(self.end_force, axis=-1)
+        ds = xr.Dataset(
+            {
+                "position": (("time", "node", "xyz"), self.positions),
+                "velocity": (("time", "node", "xyz"), self.velocities),
+                "tension": (("time", "element"), self.tension),
+                "end_force": (("time", "line", "end", "xyz"), self.end_force),
+                "end_tension": (("time", "line", "end"), end_tension),
+                "fairlead_tension": (("time", "line"), end_tension[:, :, 1]),
+                "element_nodes": (("element", "pair"), m.elements),
+            },
+            coords={
+                "time": self.time, "xyz": ["x", "y", "z"], "end": ["a", "b"],
+                "line": list(m.line_names), "point": list(m.point_names),
+                "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
+            },
+            attrs={
+                "analysis": "dynamics", "case": self.case, "units": self.units,
+                "moorline_version": __version__, "success": int(self.success),
+                "message": self.message,
+                **{k: v for k, v in self.counters.items()},
+                **{f"setting_{k}": v for k, v in self.settings.items()},
+            },
+        )
+        return ds

@@ -56,3 +56,50 @@ class OutputSettings:
     """What to write: output interval of time histories [time]."""
 
     every: float = 0.1
+
+
+DynamicScheme = Literal["newmark", "hht"]
+DynamicVariant = Literal["iterative", "residual_feedback", "incremental"]
+
+
+@dataclass(frozen=True)
+class DynamicsSettings:
+    """Time-domain analysis settings (Tuah 1982, sec. 4.2).
+
+    Attributes
+    ----------
+    duration, dt
+        Simulated time and time step [time].
+    scheme
+        ``newmark`` (beta = 1/4, gamma = 1/2, Tuah eq. 4.2.7) or ``hht`` (Hilber-Hughes-Taylor
+        with ``alpha`` in [-1/3, 0]: numerical damping of the highest frequencies).
+    alpha
+        HHT parameter (ignored by ``newmark``).
+    variant
+        ``iterative``: equilibrium (Newton) iterations every step until the effective residual
+        (eq. 4.2.10) is below tolerance; ``residual_feedback``: one solve per step, the
+        residual carried into the next; ``incremental``: one solve per step, no correction.
+    tolerance
+        Residual tolerance relative to the largest nodal load.
+    max_iterations
+        Newton iterations per step before the step is cut.
+    stiffness_update
+        Refresh the effective tangent at least every this many steps (also whenever Newton
+        slows down); the factorization is reused meanwhile.
+    max_step_cuts
+        How many times a failing step may be halved before giving up.
+    ramp_time
+        Start-up ramp of waves and current [time].
+    """
+
+    kind: Literal["dynamics"] = "dynamics"
+    duration: float = 10.0
+    dt: float = 0.05
+    scheme: DynamicScheme = "newmark"
+    alpha: float = -0.05
+    variant: DynamicVariant = "iterative"
+    tolerance: float = 1.0e-6
+    max_iterations: int = 20
+    stiffness_update: int = 20
+    max_step_cuts: int = 6
+    ramp_time: float = 0.0

@@ -53,6 +53,7 @@ class LineType:
     EA1: float = 0.0
     tau: float = 0.0
     slack_stiffness_ratio: float = 1.0e-6
+    BA: float = 0.0
 
     @property
     def area_displaced(self) -> float:
@@ -60,6 +61,36 @@ class LineType:
         if self.displaced_area is not None:
             return self.displaced_area
         return math.pi * self.diameter**2 / 4.0
+
+
+MotionKind = Literal["harmonic", "table"]
+
+
+@dataclass(frozen=True)
+class Motion:
+    """A time history added to a point's position (prescribed points) or force (free points).
+
+    Attributes
+    ----------
+    kind
+        ``harmonic``: ``amplitude * sin(2 pi t / period + phase)``; ``table``: linear
+        interpolation of ``values`` over ``times`` (held constant outside).
+    amplitude, period, phase_deg
+        Harmonic amplitude per direction [length or force], period [time], phase [deg].
+    times, values
+        Time table [time] and the 3-vectors at those times.
+    ramp_time
+        Smooth start-up: the history is multiplied by ``(1 - cos(pi t / ramp_time)) / 2`` for
+        ``t < ramp_time``.
+    """
+
+    kind: MotionKind
+    amplitude: Vector3 = (0.0, 0.0, 0.0)
+    period: float = 0.0
+    phase_deg: float = 0.0
+    times: tuple[float, ...] = ()
+    values: tuple[Vector3, ...] = ()
+    ramp_time: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -84,6 +115,13 @@ class Point:
     initial_position
         Prescribed points only: where a load-stepped static solution starts the point from
         (it moves to ``position`` over the load steps, as the support of Tuah Ex2).
+    motion
+        Prescribed points: displacement history added to ``position`` in dynamics.
+    force_history
+        Free points: force history added to ``force`` in dynamics.
+    Cd, drag_area, Ca
+        Free points: drag coefficient and area (``0.5 rho Cd A |u| u``) and added-mass
+        coefficient on the displaced volume.
     """
 
     name: str
@@ -93,6 +131,11 @@ class Point:
     volume: float = 0.0
     force: Vector3 = (0.0, 0.0, 0.0)
     initial_position: Vector3 | None = None
+    motion: Motion | None = None
+    force_history: Motion | None = None
+    Cd: float = 0.0
+    drag_area: float = 0.0
+    Ca: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Literal
 
-from .analysis import OutputSettings, StaticsSettings
+from .analysis import DynamicsSettings, OutputSettings, StaticsSettings
 from .components import Line, LineType, Point
 from .environment import Environment
 
@@ -26,6 +26,6 @@ class System:
     line_types: dict[str, LineType] = field(default_factory=dict)
     points: dict[str, Point] = field(default_factory=dict)
     lines: dict[str, Line] = field(default_factory=dict)
-    analyses: tuple[StaticsSettings, ...] = (StaticsSettings(),)
+    analyses: tuple[StaticsSettings | DynamicsSettings, ...] = (StaticsSettings(),)
     output: OutputSettings = field(default_factory=OutputSettings)
     source: str | None = None

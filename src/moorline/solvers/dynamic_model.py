@@ -1,0 +1,213 @@
+"""Forces of the moving cable system and their exact derivatives (the dynamic residual).
+
+The equation of motion at the free dofs is ``M_s a = F(x, v, a, t)`` (Tuah eq. 4.2.1-4.2.6):
+``F`` holds the constant loads (submerged weight, point loads), point force histories, the
+axial element forces (elastic or standard linear solid, plus Kelvin-Voigt damping ``BA``),
+seabed contact, Morison drag on relative velocity, fluid inertia and minus the added-mass
+force ``M_a(x) a`` (Tuah eq. 3.2.a.6, 4.2.3). ``M_s`` is the lumped structural mass. The
+derivatives are returned as element (6x6) and node (3x3) blocks: ``K = -dF/dx``,
+``C = -dF/dv``, ``M_a = -dF/da``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..mesh import Mesh
+from ..physics import element, hydro, material
+from .equilibrium import StaticModel
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class MaterialState:
+    """Internal variables of the elements at the end of the last completed step.
+
+    ``strain`` is each element's strain and ``maxwell`` the force in the Maxwell branch of
+    the standard linear solid (zero for elastic elements).
+    """
+
+    strain: FloatArray
+    maxwell: FloatArray
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """Forces (and optionally tangents) at one trial state."""
+
+    nodal: FloatArray                 # (n_nodes, 3) F without structural inertia
+    inertial: FloatArray              # (n_nodes, 3) the added-mass part of ``nodal``
+    tension: FloatArray               # (n_el,)
+    material: MaterialState           # internal variables if this state is accepted
+    element_forces: FloatArray        # (n_el, 2, 3) axial force of each element on its nodes
+    K: FloatArray | None = None       # (n_el, 6, 6) -dF/dx, element part
+    C: FloatArray | None = None       # (n_el, 6, 6) -dF/dv, element part
+    Ma: FloatArray | None = None      # (n_el, 6, 6) -dF/da, element part (added mass)
+    node_K: FloatArray | None = None  # (n_nodes, 3, 3)
+    node_C: FloatArray | None = None
+    node_M: FloatArray | None = None  # point added mass
+
+
+class DynamicModel:
+    """Residual pieces of the dynamic balance of a mesh in a fluid field.
+
+    Parameters
+    ----------
+    mesh
+        The discretized system.
+    fluid
+        Any object with ``kinematics(points, t) -> (velocity, acceleration, elevation)``.
+    """
+
+    def __init__(self, mesh: Mesh, fluid) -> None:
+        self.mesh = mesh
+        self.fluid = fluid
+        static = StaticModel(mesh)
+        self.external = static.external
+        self.k_seabed = static.node_seabed_stiffness
+        m = mesh
+        self.c_seabed = m.seabed_damping_per_area * m.node_contact_area
+        self.rho = m.water_density
+        self.node_mass = element.lumped_mass(m.elements, m.length0, m.mass_per_length,
+                                             m.n_nodes) + m.node_mass
+        self.has_drag = bool(np.any(m.Cd > 0) or np.any(m.Ct > 0)) and self.rho > 0
+        self.has_added_mass = bool(np.any(m.Ca > 0) or np.any(m.Cat > 0)) and self.rho > 0
+        self.has_point_hydro = bool(np.any(m.node_Cd * m.node_drag_area > 0)
+                                    or np.any(m.node_Ca * m.node_volume > 0))
+        self.any_viscoelastic = bool(np.any(m.viscoelastic))
+
+    def initial_material(self, x: FloatArray) -> MaterialState:
+        """Material state in equilibrium at positions ``x`` (relaxed Maxwell branch)."""
+        length, _ = element.element_geometry(x, self.mesh.elements)
+        strain = length / self.mesh.length0 - 1.0
+        return MaterialState(strain, np.zeros_like(strain))
+
+    def evaluate(self, x: FloatArray, v: FloatArray, a: FloatArray, t: float,
+                 previous: MaterialState, dt: float, tangent: bool,
+                 point_forces: FloatArray | None = None) -> Evaluation:
+        """Forces at a trial state ``(x, v, a)`` at time ``t``; tangents if ``tangent``."""
+        m = self.mesh
+        el = m.elements
+        length, unit = element.element_geometry(x, el)
+        dv = v[el[:, 1]] - v[el[:, 0]]
+        T, dT_dl, state, taut = self._axial_tension(length, unit, dv, previous, dt)
+        el_forces = element.nodal_forces(T, unit)
+        forces = el_forces.copy()
+        out = {}
+        if tangent:
+            out["K"] = self._axial_tangent(length, unit, dv, T, dT_dl, taut)
+            out["C"] = _axial_damping_blocks(unit, np.where(taut, m.BA / m.length0, 0.0))
+        mid = 0.5 * (x[el[:, 0]] + x[el[:, 1]])
+        if self.has_drag or self.has_added_mass:
+            u_f, a_f, _ = self.fluid.kinematics(mid, t)
+            forces, out = self._morison(x, v, a, u_f, a_f, forces, out, tangent)
+        inertial = np.zeros((m.n_nodes, 3))
+        if "f_am" in out:
+            inertial = hydro.sum_to_nodes(out.pop("f_am"), el, m.n_nodes)
+        nodal = hydro.sum_to_nodes(forces, el, m.n_nodes) + self.external
+        if point_forces is not None:
+            nodal += point_forces
+        nodal, inertial, out = self._nodes(x, v, a, t, nodal, inertial, out, tangent)
+        return Evaluation(nodal, inertial, T, state, el_forces, **out)
+
+    def _axial_tension(self, length, unit, dv, previous, dt):
+        m = self.mesh
+        strain = length / m.length0 - 1.0
+        T, dT_deps = element.axial_tension(length, m.length0, m.EA, m.slack_ratio)
+        dT_deps = dT_deps * m.length0
+        maxwell = previous.maxwell
+        if self.any_viscoelastic:
+            ve = m.viscoelastic
+            T_ve, maxwell_ve, k_ve = material.sls_update_exponential(
+                strain[ve], previous.strain[ve], previous.maxwell[ve], dt, m.EA[ve],
+                m.EA1[ve], m.tau[ve])
+            T_ve, k_ve = material.slack(T_ve, k_ve, strain[ve], m.EA[ve], m.slack_ratio[ve])
+            T, dT_deps = T.copy(), dT_deps.copy()
+            T[ve], dT_deps[ve] = T_ve, k_ve
+            maxwell = previous.maxwell.copy()
+            maxwell[ve] = maxwell_ve
+        taut = strain > 0
+        strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0
+        T = T + np.where(taut, m.BA * strain_rate, 0.0)
+        return T, dT_deps / m.length0, MaterialState(strain, maxwell), taut
+
+    def _axial_tangent(self, length, unit, dv, T, dT_dl, taut):
+        m = self.mesh
+        blocks = element.tangent_blocks(length, unit, T, dT_dl)
+        damping = np.where(taut, m.BA / (m.length0 * length), 0.0)
+        if np.any(damping):
+            transverse = dv - np.einsum("ij,ij->i", dv, unit)[:, None] * unit
+            k = damping[:, None, None] * unit[:, :, None] * transverse[:, None, :]
+            blocks[:, :3, :3] += k
+            blocks[:, 3:, 3:] += k
+            blocks[:, :3, 3:] -= k
+            blocks[:, 3:, :3] -= k
+        return blocks
+
+    def _morison(self, x, v, a, u_f, a_f, forces, out, tangent):
+        m = self.mesh
+        el = m.elements
+        if self.has_drag:
+            f, dF_dv, dF_dx = hydro.drag_forces(x, v, u_f, el, m.length0, m.diameter, m.Cd,
+                                                m.Ct, self.rho)
+            forces = forces + f
+            if tangent:
+                out["K"] = out["K"] - dF_dx
+                out["C"] = out["C"] - dF_dv
+        if self.has_added_mass:
+            f_in, dFin_dx = hydro.fluid_inertia_forces(x, a_f, el, m.length0, m.diameter, m.Ca,
+                                                       m.Cat, self.rho)
+            Ma = hydro.added_mass_blocks(x, el, m.length0, m.diameter, m.Ca, m.Cat, self.rho)
+            a_el = np.concatenate((a[el[:, 0]], a[el[:, 1]]), axis=1)
+            f_am = -np.einsum("eij,ej->ei", Ma, a_el).reshape(-1, 2, 3)
+            forces = forces + f_in + f_am
+            out["f_am"] = f_am
+            if tangent:
+                dMa_dx = hydro.added_mass_position_derivative(x, a, el, m.length0, m.diameter,
+                                                              m.Ca, m.Cat, self.rho)
+                out["K"] = out["K"] - dFin_dx - dMa_dx
+                out["Ma"] = Ma
+        return forces, out
+
+    def _nodes(self, x, v, a, t, nodal, inertial, out, tangent):
+        m = self.mesh
+        n = m.n_nodes
+        node_K = np.zeros((n, 3, 3)) if tangent else None
+        node_C = np.zeros((n, 3, 3)) if tangent else None
+        node_M = None
+        if np.isfinite(m.seabed_z):
+            penetration = m.seabed_z - x[:, 2]
+            touching = penetration > 0
+            fz = np.where(touching, self.k_seabed * penetration - self.c_seabed * v[:, 2], 0.0)
+            nodal[:, 2] += fz
+            if tangent:
+                node_K[:, 2, 2] = np.where(touching, self.k_seabed, 0.0)
+                node_C[:, 2, 2] = np.where(touching, self.c_seabed, 0.0)
+        if self.has_point_hydro:
+            u_f, a_f, _ = self.fluid.kinematics(x, t)
+            area = m.node_drag_area * m.node_Cd
+            f, dF_dv = hydro.point_drag(u_f - v, area, np.ones(n), self.rho)
+            added = self.rho * m.node_Ca * m.node_volume
+            nodal += f + (self.rho * m.node_volume + added)[:, None] * a_f - added[:, None] * a
+            inertial = inertial - added[:, None] * a
+            if tangent:
+                node_C += dF_dv  # d(drag)/d(u_rel) = -d(drag)/dv
+                node_M = added[:, None, None] * np.eye(3)
+        if tangent:
+            out.update(node_K=node_K, node_C=node_C, node_M=node_M)
+        return nodal, inertial, out
+
+
+def _axial_damping_blocks(unit: FloatArray, c: FloatArray) -> FloatArray:
+    """Damping blocks ``c n n^T [[1, -1], [-1, 1]]`` of the Kelvin-Voigt axial dashpots."""
+    nn = c[:, None, None] * unit[:, :, None] * unit[:, None, :]
+    blocks = np.empty((len(c), 6, 6))
+    blocks[:, :3, :3] = nn
+    blocks[:, 3:, 3:] = nn
+    blocks[:, :3, 3:] = -nn
+    blocks[:, 3:, :3] = -nn
+    return blocks

@@ -1,0 +1,207 @@
+"""Time-domain simulation of a cable system (Tuah 1982, sec. 4.2).
+
+:func:`simulate` starts from a static equilibrium (solved here unless given), then advances
+with :class:`~moorline.solvers.newmark.Stepper`. A step that fails to converge is cut in half
+(recursively, ``max_step_cuts`` times) with a fresh tangent; if that fails too, a
+:class:`~moorline.errors.ConvergenceError` names the time and the line and node with the
+largest residual. Output records are kept in memory and, when a writer is given, streamed to
+NetCDF as they are produced.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from dataclasses import asdict
+
+import numpy as np
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from ..errors import ConvergenceError
+from ..mesh import Mesh, discretize
+from ..model import DynamicsSettings, StaticsSettings, System
+from ..results import DynamicResult, StaticResult
+from .assembly import gather_free, scatter_free
+from .dynamic_model import DynamicModel
+from .equilibrium import StaticModel
+from .excitation import Excitation
+from .newmark import Coefficients, Stepper, StepState
+from .statics import describe_dof, solve_statics
+
+FloatArray = NDArray[np.float64]
+logger = logging.getLogger(__name__)
+
+
+def simulate(
+    system: System,
+    settings: DynamicsSettings,
+    initial: StaticResult | FloatArray | None = None,
+    fluid=None,
+    output_every: float | None = None,
+    writer=None,
+    progress: Callable[[float], None] | None = None,
+) -> DynamicResult:
+    """Run a time-domain analysis.
+
+    Parameters
+    ----------
+    system
+        The problem.
+    settings
+        Time step, duration, scheme and tolerances.
+    initial
+        Static equilibrium to start from (solved with the system's statics settings if None),
+        or node positions (n_nodes, 3) to start from at rest (e.g. a displaced string).
+    fluid
+        Fluid kinematics (``kinematics(points, t)``); default: built from the environment.
+    output_every
+        Output interval [time]; default ``system.output.every`` (at least one step).
+    writer
+        Optional :class:`~moorline.io.stream.HistoryWriter` receiving every record.
+    progress
+        Called with the current time after every step.
+    """
+    mesh = initial.mesh if isinstance(initial, StaticResult) else discretize(system)
+    if initial is None:
+        initial = solve_statics(system, _statics_settings(system), mesh=mesh)
+        if not initial.success:
+            raise ConvergenceError(f"static equilibrium before dynamics failed: "
+                                   f"{initial.message}", time=0.0)
+    x0 = initial.positions if isinstance(initial, StaticResult) else np.asarray(initial, float)
+    fluid = fluid if fluid is not None else _fluid(system, settings)
+    model = DynamicModel(mesh, fluid)
+    excitation = Excitation(system, mesh, x0)
+    state = _initial_state(model, excitation, x0, settings.dt)
+    scale = max(float(np.abs(model.external).max(initial=0.0)),
+                float(np.abs(state.evaluation.tension).max(initial=0.0)) * 1e-3, 1e-12)
+    tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
+    stepper = Stepper(model, Coefficients.for_scheme(settings.scheme, settings.alpha),
+                      settings.variant, tolerance, settings.max_iterations,
+                      settings.stiffness_update)
+    every = max(output_every or system.output.every, settings.dt)
+    recorder = _Recorder(mesh, writer)
+    recorder.add(state)
+    n_steps = int(round(settings.duration / settings.dt))
+    next_output, cuts = every, 0
+    for k in range(1, n_steps + 1):
+        target = k * settings.dt
+        state, used_cuts = _advance(stepper, excitation, state, target - state.t,
+                                    settings.max_step_cuts, mesh)
+        cuts += used_cuts
+        if state.t >= next_output - 1e-9 * settings.dt or k == n_steps:
+            recorder.add(state)
+            next_output += every
+        if progress is not None:
+            progress(state.t)
+    counters = dict(stepper.counters, steps=n_steps, step_cuts=cuts)
+    return recorder.result(True, f"completed {n_steps} steps", counters, system,
+                           asdict(settings))
+
+
+def _statics_settings(system: System) -> StaticsSettings:
+    for analysis in system.analyses:
+        if isinstance(analysis, StaticsSettings):
+            return analysis
+    return StaticsSettings()
+
+
+def _fluid(system: System, settings: DynamicsSettings):
+    from ..waves import fluid_field_from_environment
+
+    return fluid_field_from_environment(system.environment, ramp_time=settings.ramp_time)
+
+
+def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
+                   dt: float) -> StepState:
+    """Start at rest at the static state, with the acceleration the loads give at t = 0."""
+    mesh = model.mesh
+    x = x0.copy()
+    x_c, v_c, a_c = excitation.constrained_state(0.0)
+    x[~mesh.free_nodes] = x_c
+    v = np.zeros_like(x)
+    v[~mesh.free_nodes] = v_c
+    a = np.zeros_like(x)
+    a[~mesh.free_nodes] = a_c
+    material = model.initial_material(x)
+    forces = excitation.point_forces(0.0, mesh.n_nodes)
+    ev = model.evaluate(x, v, a, 0.0, material, dt, True, forces)
+    mass = ev.node_M if ev.node_M is not None else np.zeros((mesh.n_nodes, 3, 3))
+    mass = mass + model.node_mass[:, None, None] * np.eye(3)
+    if mesh.n_dofs:
+        from .assembly import BlockPattern
+
+        M = BlockPattern(mesh.elements, mesh.dof_of_node).assemble(ev.Ma, mass)
+        a_free = spla.splu(M.tocsc()).solve(gather_free(ev.nodal, mesh.dof_of_node))
+        a = a + scatter_free(a_free, mesh.dof_of_node)
+        ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
+    return StepState(0.0, x, v, a, ev.material, ev)
+
+
+def _advance(stepper: Stepper, excitation: Excitation, state: StepState, h: float,
+             cuts_left: int, mesh: Mesh) -> tuple[StepState, int]:
+    """One step of size ``h``, halving it recursively when Newton fails."""
+    t1 = state.t + h
+    constrained = excitation.constrained_state(t1)
+    forces = excitation.point_forces(t1, mesh.n_nodes)
+    new, ok, norm = stepper.step(state, h, constrained, forces)
+    if ok:
+        return new, 0
+    if cuts_left == 0:
+        raise ConvergenceError("Newton iterations did not converge", time=t1,
+                               where=_worst(stepper, state, h, constrained, forces),
+                               residual=norm)
+    stepper.lu = None
+    half, used1 = _advance(stepper, excitation, state, h / 2, cuts_left - 1, mesh)
+    full, used2 = _advance(stepper, excitation, half, h / 2, cuts_left - 1, mesh)
+    stepper.lu = None
+    return full, 1 + used1 + used2
+
+
+def _worst(stepper: Stepper, state: StepState, h: float, constrained, forces) -> str:
+    x1 = state.x + h * state.v + 0.5 * h * h * state.a
+    x1[~stepper.free] = constrained[0]
+    v1, a1 = stepper._kinematics(state, x1, h)
+    ev = stepper.model.evaluate(x1, v1, a1, state.t + h, state.material, h, False, forces)
+    r = stepper._residual(state, ev, a1)
+    return describe_dof(stepper.model.mesh, int(np.argmax(np.abs(r))))
+
+
+class _Recorder:
+    """Collects output records (and streams them when a writer is given)."""
+
+    def __init__(self, mesh: Mesh, writer) -> None:
+        self.mesh = mesh
+        self.writer = writer
+        self.records: dict[str, list] = {k: [] for k in
+                                         ("time", "position", "velocity", "tension",
+                                          "end_force")}
+
+    def add(self, state: StepState) -> None:
+        record = {"position": state.x.copy(), "velocity": state.v.copy(),
+                  "tension": state.evaluation.tension.copy(),
+                  "end_force": _end_forces(self.mesh, state)}
+        self.records["time"].append(state.t)
+        for key, value in record.items():
+            self.records[key].append(value)
+        if self.writer is not None:
+            self.writer.append(state.t, record)
+
+    def result(self, ok: bool, message: str, counters: dict, system: System,
+               settings: dict) -> DynamicResult:
+        arrays = {k: np.array(v) for k, v in self.records.items()}
+        return DynamicResult(ok, message, arrays["time"], arrays["position"],
+                             arrays["velocity"], arrays["tension"], arrays["end_force"],
+                             counters, self.mesh, system.name, system.units, settings)
+
+
+def _end_forces(mesh: Mesh, state: StepState) -> FloatArray:
+    """Force each line exerts on its two end points: the end element's axial force plus half
+    its submerged weight (as :meth:`StaticResult.end_force`)."""
+    forces = state.evaluation.element_forces
+    out = np.empty((len(mesh.line_names), 2, 3))
+    for k, elements in enumerate(mesh.line_elements):
+        for side, e in ((0, elements[0]), (1, elements[-1])):
+            out[k, side] = forces[e, side]
+            out[k, side, 2] -= 0.5 * mesh.weight_per_length[e] * mesh.length0[e]
+    return out

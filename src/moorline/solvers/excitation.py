@@ -1,0 +1,74 @@
+"""Time histories: prescribed point motions and time-varying point forces."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..mesh import Mesh
+from ..model import Motion, System
+
+FloatArray = NDArray[np.float64]
+
+
+def ramp(t: float, ramp_time: float) -> tuple[float, float, float]:
+    """Smooth start-up factor ``(1 - cos(pi t / T)) / 2`` and its first two time derivatives."""
+    if ramp_time <= 0 or t >= ramp_time:
+        return 1.0, 0.0, 0.0
+    if t <= 0:
+        return 0.0, 0.0, 0.0
+    w = np.pi / ramp_time
+    return 0.5 * (1 - np.cos(w * t)), 0.5 * w * np.sin(w * t), 0.5 * w * w * np.cos(w * t)
+
+
+def motion_value(motion: Motion, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Value of a history at ``t`` and its first and second time derivatives (3-vectors)."""
+    if motion.kind == "harmonic":
+        amp = np.asarray(motion.amplitude, dtype=float)
+        w = 2 * np.pi / motion.period
+        phase = w * t + np.radians(motion.phase_deg)
+        f = (amp * np.sin(phase), amp * w * np.cos(phase), -amp * w * w * np.sin(phase))
+    else:
+        times = np.asarray(motion.times, dtype=float)
+        values = np.asarray(motion.values, dtype=float).reshape(-1, 3)
+        f0 = np.array([np.interp(t, times, values[:, k]) for k in range(3)])
+        k = int(np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2))
+        inside = times[0] <= t < times[-1]
+        slope = (values[k + 1] - values[k]) / (times[k + 1] - times[k]) if inside else 0 * f0
+        f = (f0, slope, np.zeros(3))
+    r, dr, ddr = ramp(t, motion.ramp_time)
+    return r * f[0], r * f[1] + dr * f[0], r * f[2] + 2 * dr * f[1] + ddr * f[0]
+
+
+class Excitation:
+    """Prescribed node kinematics and point force histories of a system."""
+
+    def __init__(self, system: System, mesh: Mesh, base_positions: FloatArray) -> None:
+        points = list(system.points.values())
+        self._moving = [(int(mesh.point_node[i]), p.motion) for i, p in enumerate(points)
+                        if p.kind == "prescribed" and p.motion is not None]
+        self._forces = [(int(mesh.point_node[i]), p.force_history) for i, p in enumerate(points)
+                        if p.kind == "free" and p.force_history is not None]
+        self.constrained = np.flatnonzero(~mesh.free_nodes)
+        self.base = base_positions[self.constrained].copy()
+
+    def constrained_state(self, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Positions, velocities and accelerations of all fixed and prescribed nodes at ``t``."""
+        x, v, a = self.base.copy(), np.zeros_like(self.base), np.zeros_like(self.base)
+        index = {int(n): i for i, n in enumerate(self.constrained)}
+        for node, motion in self._moving:
+            d, dv, da = motion_value(motion, t)
+            i = index[node]
+            x[i] += d
+            v[i] = dv
+            a[i] = da
+        return x, v, a
+
+    def point_forces(self, t: float, n_nodes: int) -> FloatArray | None:
+        """Time-varying forces on free points at ``t`` (n_nodes, 3), or None if there are none."""
+        if not self._forces:
+            return None
+        out = np.zeros((n_nodes, 3))
+        for node, history in self._forces:
+            out[node] += motion_value(history, t)[0]
+        return out

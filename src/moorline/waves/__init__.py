@@ -1,0 +1,29 @@
+"""Fluid kinematics for cable dynamics: linear waves, currents and their combination.
+
+Everything here implements :class:`FluidField`:
+``kinematics(points (n, 3), t) -> velocity (n, 3), acceleration (n, 3), elevation (n,)``.
+"""
+
+from .airy import AiryWave, WaveComponents, ramp_factor, superpose
+from .current import CurrentProfile
+from .dispersion import omega_from_k, wave_number
+from .field import (
+    CombinedField,
+    FluidField,
+    StillWater,
+    fluid_field_from_environment,
+)
+
+__all__ = [
+    "AiryWave",
+    "CombinedField",
+    "CurrentProfile",
+    "FluidField",
+    "StillWater",
+    "WaveComponents",
+    "fluid_field_from_environment",
+    "omega_from_k",
+    "ramp_factor",
+    "superpose",
+    "wave_number",
+]

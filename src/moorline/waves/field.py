@@ -1,0 +1,117 @@
+"""The fluid-field interface the dynamics solver calls, still water, wave + current, builder."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .airy import AiryWave
+from .current import CurrentProfile
+
+if TYPE_CHECKING:
+    from moorline.model import Environment
+
+FloatArray = NDArray[np.float64]
+
+
+@runtime_checkable
+class FluidField(Protocol):
+    """Anything that gives fluid kinematics at points and times."""
+
+    def kinematics(self, points: np.ndarray, t: float
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """points (n, 3) -> fluid velocity (n, 3), fluid acceleration (n, 3), free-surface
+        elevation (n,) at the points' horizontal positions, at time t."""
+        ...
+
+
+@dataclass(frozen=True)
+class StillWater:
+    """No waves, no current: all kinematics and the elevation are zero."""
+
+    def kinematics(self, points: np.ndarray, t: float
+                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Zeros of shapes (n, 3), (n, 3), (n,)."""
+        p = np.asarray(points, dtype=float)
+        if p.ndim != 2 or p.shape[1] != 3:
+            raise ValueError(f"points must have shape (n, 3), got {p.shape}")
+        return np.zeros_like(p), np.zeros_like(p), np.zeros(p.shape[0])
+
+
+@dataclass(frozen=True)
+class CombinedField:
+    """Waves plus a steady current.
+
+    The velocity is the wave velocity plus the current velocity ``U(z)``; the current is
+    evaluated at the point's actual ``z`` (held at its top-level value up to the crest) and is
+    zero above the wave's instantaneous free surface. The acceleration and the elevation are
+    the wave's (a steady current has no local acceleration; wave-current interaction, e.g. the
+    Doppler shift of the wave frequency, is not modelled).
+
+    Parameters
+    ----------
+    wave
+        Any fluid field that supplies the elevation (e.g. :class:`~moorline.waves.AiryWave`).
+    current
+        The current profile.
+    """
+
+    wave: FluidField
+    current: CurrentProfile
+
+    def kinematics(self, points: np.ndarray, t: float
+                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Velocity (n, 3), acceleration (n, 3), elevation (n,) at time ``t``."""
+        p = np.asarray(points, dtype=float)
+        vel, acc, eta = self.wave.kinematics(p, t)
+        cur = self.current.velocity(p[:, 2])
+        cur[p[:, 2] > eta] = 0.0
+        return vel + cur, acc, eta
+
+
+def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> FluidField:
+    """Fluid field described by a :class:`moorline.model.Environment`.
+
+    ``waves.kind == 'airy'`` with a positive height gives an :class:`~moorline.waves.AiryWave`
+    (heading, depth and gravity from the environment, phase 0, no stretching, ramped over
+    ``ramp_time``); a non-zero ``current.speed`` gives a uniform
+    :class:`~moorline.waves.CurrentProfile` (never ramped: statics already include it).
+    Both give a :class:`CombinedField`, neither gives :class:`StillWater`.
+
+    Parameters
+    ----------
+    env
+        The environment.
+    ramp_time
+        Start-up ramp of the waves [time]; 0 for none.
+
+    Returns
+    -------
+    FluidField
+    """
+    waves = env.waves
+    wave: AiryWave | None = None
+    if waves.kind == "airy":
+        if waves.height > 0.0:
+            wave = AiryWave(height=waves.height, period=waves.period,
+                            heading_deg=waves.heading_deg, depth=env.depth,
+                            gravity=env.gravity, ramp_time=ramp_time)
+    elif waves.kind != "none":
+        raise ValueError(f"unknown wave kind {waves.kind!r}")
+    current = None
+    if env.current.speed != 0.0 and math.isfinite(env.current.speed):
+        speed, heading = env.current.speed, env.current.heading_deg
+        if speed < 0.0:  # a negative speed flows the other way
+            speed, heading = -speed, heading + 180.0
+        current = CurrentProfile.uniform(speed, heading)
+    if wave is not None and current is not None:
+        return CombinedField(wave, current)
+    if wave is not None:
+        return wave
+    if current is not None:
+        return current
+    return StillWater()
