@@ -53,8 +53,13 @@ def test_dispersion_residual_over_kh_sweep(depth, g):
 
 def test_dispersion_matches_bracketing_root_finder():
     for omega, depth in [(0.3, 15.0), (1.1, 40.0), (2.5, 7.0), (0.05, 4000.0)]:
-        ref = brentq(lambda k, w=omega, h=depth: G * k * math.tanh(k * h) - w * w,
-                     1e-12, 100.0, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        ref = brentq(
+            lambda k, w=omega, h=depth: G * k * math.tanh(k * h) - w * w,
+            1e-12,
+            100.0,
+            xtol=1e-300,
+            rtol=4 * np.finfo(float).eps,
+        )
         assert wave_number(omega, depth, G) == pytest.approx(ref, rel=1e-14)
 
 
@@ -71,8 +76,7 @@ def test_dispersion_deep_limit_zero_and_shape():
     omega = np.array([[0.2, 0.7], [1.3, 4.0]])
     np.testing.assert_array_equal(wave_number(omega, math.inf, G), omega**2 / G)
     # kh >= 50: tanh(kh) == 1 in double precision
-    np.testing.assert_allclose(wave_number(omega, 50.0 * G / 0.2**2, G), omega**2 / G,
-                               rtol=1e-15)
+    np.testing.assert_allclose(wave_number(omega, 50.0 * G / 0.2**2, G), omega**2 / G, rtol=1e-15)
     assert wave_number(0.0, 30.0, G) == 0.0 and wave_number(0.0, math.inf, G) == 0.0
     np.testing.assert_array_equal(wave_number(-omega, 30.0, G), wave_number(omega, 30.0, G))
     assert wave_number(omega, 30.0, G).shape == (2, 2)
@@ -140,8 +144,13 @@ def test_airy_velocity_is_divergence_free_and_irrotational(H, T, depth):
         e[j] = d
         grad[:, :, j] = (wave.kinematics(p + e, t)[0] - wave.kinematics(p - e, t)[0]) / (2 * d)
     div = grad[:, 0, 0] + grad[:, 1, 1] + grad[:, 2, 2]
-    curl = np.column_stack((grad[:, 2, 1] - grad[:, 1, 2], grad[:, 0, 2] - grad[:, 2, 0],
-                            grad[:, 1, 0] - grad[:, 0, 1]))
+    curl = np.column_stack(
+        (
+            grad[:, 2, 1] - grad[:, 1, 2],
+            grad[:, 0, 2] - grad[:, 2, 0],
+            grad[:, 1, 0] - grad[:, 0, 1],
+        )
+    )
     # velocity gradients are O(k a omega coth kh); central differences err by (k d)^2/6 ~ 2e-9
     # of that (truncation) plus eps/(k d) ~ 2e-12 (round-off)
     scale = k * wave.amplitude * wave.omega / math.tanh(k * depth)
@@ -161,8 +170,9 @@ def test_airy_kinematic_surface_and_seabed_conditions(H, T, depth):
     wet = eta >= 0.0  # z = 0 is wet only under crests
     assert wet.sum() > 100
     # linearized kinematic condition d(eta)/dt = w(z = 0); time truncation (omega dt)^2/6 ~ 7e-8
-    np.testing.assert_allclose(vel[wet, 2], deta_dt[wet], rtol=0,
-                               atol=1e-6 * wave.amplitude * wave.omega)
+    np.testing.assert_allclose(
+        vel[wet, 2], deta_dt[wet], rtol=0, atol=1e-6 * wave.amplitude * wave.omega
+    )
     if math.isfinite(depth):
         for zb in (-depth, -depth - 3.0):  # at and below the seabed
             vb, ab, _ = wave.kinematics(np.column_stack((xy, np.full(len(xy), zb))), t)
@@ -222,8 +232,7 @@ def test_wheeler_at_surface_equals_unstretched_at_still_water_level(H, T, depth)
     if math.isfinite(depth):  # the seabed stays the seabed
         pb = np.column_stack((xy, np.full(len(xy), -depth)))
         v_ref, _, _ = _analytic(wave, pb, t)
-        np.testing.assert_allclose(wave.kinematics(pb, t)[0], v_ref, rtol=0,
-                                   atol=1e-13 * scale)
+        np.testing.assert_allclose(wave.kinematics(pb, t)[0], v_ref, rtol=0, atol=1e-13 * scale)
 
 
 @pytest.mark.parametrize("stretching", ["none", "wheeler"])
@@ -269,8 +278,15 @@ def test_superposition_equals_sum_of_single_waves():
     w1 = AiryWave(2.0, 8.0, 30.0, depth, G, phase=0.3, ramp_time=12.0)
     w2 = AiryWave(1.2, 13.0, -60.0, depth, G, phase=1.1, ramp_time=12.0)
     both = superpose(w1, w2)
-    direct = WaveComponents([1.0, 0.6], [2 * math.pi / 8.0, 2 * math.pi / 13.0], [0.3, 1.1],
-                            [30.0, -60.0], depth, G, ramp_time=12.0)
+    direct = WaveComponents(
+        [1.0, 0.6],
+        [2 * math.pi / 8.0, 2 * math.pi / 13.0],
+        [0.3, 1.1],
+        [30.0, -60.0],
+        depth,
+        G,
+        ramp_time=12.0,
+    )
     p = np.column_stack((RNG.uniform(-200, 200, (500, 2)), RNG.uniform(-depth, -1.7, 500)))
     for t in (4.0, 30.0):
         s1, s2 = w1.kinematics(p, t), w2.kinematics(p, t)
@@ -285,8 +301,7 @@ def test_superposition_equals_sum_of_single_waves():
 def test_many_components_are_evaluated_in_blocks():
     m = 600
     omegas = np.linspace(0.3, 1.5, m)
-    comps = WaveComponents(np.full(m, 0.01), omegas, RNG.uniform(0, 2 * np.pi, m), 20.0,
-                           80.0, G)
+    comps = WaveComponents(np.full(m, 0.01), omegas, RNG.uniform(0, 2 * np.pi, m), 20.0, 80.0, G)
     p = np.column_stack((RNG.uniform(-50, 50, (5000, 2)), RNG.uniform(-80, -7, 5000)))
     vel, acc, eta = comps.kinematics(p, 2.0)
     vel2, acc2, eta2 = comps.kinematics(p[::-1], 2.0)  # order independent
@@ -348,7 +363,22 @@ def test_uniform_current():
     vel = cur.velocity(np.array([-1e4, -3.0, 0.0]))
     np.testing.assert_allclose(vel, [[0.0, 0.8, 0.0]] * 3, rtol=0, atol=1e-15)
     assert cur == CurrentProfile.uniform(0.8, 90.0)
+    assert cur != CurrentProfile.uniform(0.8, 90.0, ramp_time=3.0)
     assert CurrentProfile.from_levels([-10, 0], [0.1, 0.2], 45.0).headings_deg == (45.0, 45.0)
+
+
+def test_ramped_current_acceleration_is_time_derivative_of_velocity():
+    cur = CurrentProfile((-80.0, -10.0), (0.3, 1.2), (0.0, 40.0), ramp_time=20.0)
+    p = np.column_stack((np.zeros((50, 2)), np.linspace(-100.0, 0.0, 50)))
+    steady = cur.velocity(p[:, 2])
+    for t in (0.5, 3.0, 10.0, 19.9, 25.0):  # not at the C1 kinks t = 0, T_r
+        dt = 1e-4
+        dv = (cur.kinematics(p, t + dt)[0] - cur.kinematics(p, t - dt)[0]) / (2 * dt)
+        vel, acc, _ = cur.kinematics(p, t)
+        r, _ = ramp_factor(t, 20.0)
+        np.testing.assert_allclose(vel, r * steady, rtol=1e-15, atol=0)
+        # truncation (pi dt / T_r)^2 / 6 of pi / (2 T_r) * 1.2 plus round-off eps / dt
+        np.testing.assert_allclose(acc, dv, rtol=0, atol=1e-10)
 
 
 # ---------------------------------------------------------------- fields
@@ -368,10 +398,14 @@ def test_still_water_and_environment_builder():
 
     cur = fluid_field_from_environment(Environment(current=Current(0.5, 200.0)))
     assert cur == CurrentProfile.uniform(0.5, 200.0)
+    cur = fluid_field_from_environment(Environment(current=Current(-0.5, 20.0)), ramp_time=4.0)
+    assert cur == CurrentProfile.uniform(0.5, 200.0, ramp_time=4.0)
 
     both = fluid_field_from_environment(
-        Environment(depth=60.0, waves=waves, current=Current(0.5, 200.0)))
+        Environment(depth=60.0, waves=waves, current=Current(0.5, 200.0))
+    )
     assert isinstance(both, CombinedField)
+    assert both.current.ramp_time == 0.0 and both.wave.ramp_time == 0.0
     for f in (still, wave, cur, both):
         assert isinstance(f, FluidField)
 
@@ -391,3 +425,12 @@ def test_combined_field_adds_current_below_surface_only():
     np.testing.assert_array_equal(e, ew)
     np.testing.assert_allclose(vel[wet], vw[wet] + cur.velocity(p[wet, 2]), rtol=0, atol=1e-15)
     assert not vel[~wet].any()
+    # ramped: the current's r'(t) U adds to the acceleration below the surface
+    field = CombinedField(
+        AiryWave(2.0, 9.0, 15.0, 60.0, G, ramp_time=10.0),
+        CurrentProfile.uniform(0.5, 30.0, ramp_time=10.0),
+    )
+    q = np.column_stack((xy, np.full(300, -5.0)))
+    dt = 1e-4
+    dv = (field.kinematics(q, 4.0 + dt)[0] - field.kinematics(q, 4.0 - dt)[0]) / (2 * dt)
+    np.testing.assert_allclose(field.kinematics(q, 4.0)[1], dv, rtol=0, atol=1e-7)

@@ -118,8 +118,9 @@ def _suspended(H, va, w, inv_ea, s):
     """Offsets ``(h, z)`` after arc length ``s`` of hanging line starting with ``V = va``."""
     s = np.asarray(s, dtype=float)
     if H == 0.0:  # vertical: h = 0, z = int sign(V) ds
-        h = np.zeros_like(s)
-        z = np.sign(va) * s if w == 0.0 else (np.abs(va + w * s) - abs(va)) / w
+        h, vs = np.zeros_like(s), va + w * s
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z = np.where(va * vs >= 0.0, np.sign(va + vs) * s, (np.abs(vs) - abs(va)) / w)
     else:
         a, b = va / H, (va + w * s) / H
         h = s * _asinh_ratio_np(np.full_like(s, a), b)

@@ -192,9 +192,10 @@ def drag_forces(
     inv = np.divide(1.0, un, out=np.zeros_like(un), where=un > 0.0)
     cnw = cn * un
     beta = 2.0 * ct * abs_s - cnw
-    df_du = _outer(t, beta[:, None] * t) + _outer(u_n, (cn * inv)[:, None] * u_n)
-    df_du[:, (0, 1, 2), (0, 1, 2)] += cnw[:, None]
-    dF_dv = _node_blocks(-0.5 * df_du)
+    df_du = _outer(t, (-0.5 * beta)[:, None] * t)  # times -1/2 (du/dv_a) up front
+    df_du += _outer(u_n, (-0.5 * cn * inv)[:, None] * u_n)
+    df_du[:, (0, 1, 2), (0, 1, 2)] -= 0.5 * cnw[:, None]
+    dF_dv = _node_blocks(df_du)
 
     # position through t (u fixed): d u_n/dt = -(t u^T + s I),
     # d(|s| s t)/dt = |s| s I + 2 |s| t u^T, so
@@ -283,8 +284,8 @@ def added_mass_position_derivative(
         s = np.einsum("ij,ij->i", t, ak)
         # c (t a_k^T + (t.a_k) I) (I - t t^T) = c [(t.a_k) (I - t t^T) + t (a_k - (t.a_k) t)^T]
         g = _projector_terms(c * s, t, c[:, None] * (ak - s[:, None] * t))
+        np.negative(g, out=out[:, k, :, 0, :])
         out[:, k, :, 1, :] = g
-        out[:, k, :, 0, :] = -g
     return out.reshape(n_el, 6, 6)
 
 

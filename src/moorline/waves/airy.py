@@ -67,7 +67,7 @@ Stretching = Literal["none", "wheeler"]
 
 _STRETCHINGS = ("none", "wheeler")
 #: Largest (points x components) block evaluated at once (bounds temporary memory).
-_BLOCK = 1 << 21
+_BLOCK = 1 << 16
 
 
 def ramp_factor(t: float, ramp_time: float) -> tuple[float, float]:
@@ -148,8 +148,10 @@ class WaveComponents:
 
     def __post_init__(self) -> None:
         arrays = np.broadcast_arrays(
-            *(np.atleast_1d(np.asarray(v, dtype=float)) for v in
-              (self.amplitudes, self.omegas, self.phases, self.headings_deg))
+            *(
+                np.atleast_1d(np.asarray(v, dtype=float))
+                for v in (self.amplitudes, self.omegas, self.phases, self.headings_deg)
+            )
         )
         if arrays[0].ndim != 1:
             raise ValueError("wave component arguments must be scalars or 1-d")
@@ -174,13 +176,27 @@ class WaveComponents:
         cb, sb = np.cos(beta), np.sin(beta)
         denom = -np.expm1(-2.0 * k * self.depth) if math.isfinite(self.depth) else np.ones_like(k)
         coef = {
-            "a": a, "k": k, "w": w, "phi": phi, "kx": k * cb, "ky": k * sb,
-            "aw_c": a * w * cb, "aw_s": a * w * sb, "aw": a * w,
-            "aw2_c": a * w * w * cb, "aw2_s": a * w * w * sb, "aw2": a * w * w,
+            "a": a,
+            "k": k,
+            "w": w,
+            "phi": phi,
+            "kx": k * cb,
+            "ky": k * sb,
+            "aw_c": a * w * cb,
+            "aw_s": a * w * sb,
+            "aw": a * w,
+            "aw2_c": a * w * w * cb,
+            "aw2_s": a * w * w * sb,
+            "aw2": a * w * w,
             "denom": denom,
         }
-        for name, arr in (("amplitudes", a), ("omegas", w), ("phases", phi),
-                          ("headings_deg", beta_deg), ("wave_numbers", k)):
+        for name, arr in (
+            ("amplitudes", a),
+            ("omegas", w),
+            ("phases", phi),
+            ("headings_deg", beta_deg),
+            ("wave_numbers", k),
+        ):
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
         for arr in coef.values():
@@ -195,8 +211,9 @@ class WaveComponents:
         """Number of linear components ``m``."""
         return int(self.omegas.size)
 
-    def _phase(self, x: FloatArray, y: FloatArray, t: float, c: dict[str, FloatArray]
-               ) -> FloatArray:
+    def _phase(
+        self, x: FloatArray, y: FloatArray, t: float, c: dict[str, FloatArray]
+    ) -> FloatArray:
         return x[:, None] * c["kx"] + y[:, None] * c["ky"] + (c["phi"] - c["w"] * t)
 
     def elevation(self, points: ArrayLike, t: float) -> FloatArray:
@@ -226,8 +243,7 @@ class WaveComponents:
             out[sl] = np.cos(self._phase(p[sl, 0], p[sl, 1], t, c)) @ c["a"]
         return r * out
 
-    def kinematics(self, points: ArrayLike, t: float
-                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def kinematics(self, points: ArrayLike, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Fluid velocity, acceleration and free-surface elevation at ``points`` at time ``t``.
 
         Parameters
@@ -255,8 +271,9 @@ class WaveComponents:
             vel[sl], acc[sl], eta[sl] = self._block(p[sl], t, r, dr)
         return vel, acc, eta
 
-    def _block(self, p: FloatArray, t: float, r: float, dr: float
-               ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def _block(
+        self, p: FloatArray, t: float, r: float, dr: float
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
         c = self._coef
         h = self.depth
         theta = self._phase(p[:, 0], p[:, 1], t, c)
@@ -370,8 +387,7 @@ class AiryWave:
         """Free-surface elevation at (n, 2) or (n, 3) points (:meth:`WaveComponents.elevation`)."""
         return self.components.elevation(points, t)
 
-    def kinematics(self, points: ArrayLike, t: float
-                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def kinematics(self, points: ArrayLike, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Velocity (n, 3), acceleration (n, 3), elevation (n,); see :class:`WaveComponents`."""
         return self.components.kinematics(points, t)
 
@@ -398,8 +414,12 @@ def superpose(*waves: AiryWave | WaveComponents) -> WaveComponents:
     comps = [w.components if isinstance(w, AiryWave) else w for w in waves]
     first = comps[0]
     for c in comps[1:]:
-        same = (c.depth == first.depth and c.gravity == first.gravity
-                and c.ramp_time == first.ramp_time and c.stretching == first.stretching)
+        same = (
+            c.depth == first.depth
+            and c.gravity == first.gravity
+            and c.ramp_time == first.ramp_time
+            and c.stretching == first.stretching
+        )
         if not same:
             raise ValueError("superposed waves must share depth, gravity, ramp_time, stretching")
     return WaveComponents(

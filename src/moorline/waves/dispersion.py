@@ -50,8 +50,9 @@ def wave_number(omega: ArrayLike, depth: ArrayLike, gravity: float) -> FloatArra
     """
     if not gravity > 0.0:
         raise ValueError(f"gravity must be positive, got {gravity!r}")
-    w2, h = np.broadcast_arrays(np.square(np.asarray(omega, dtype=float)),
-                                np.asarray(depth, dtype=float))
+    w2, h = np.broadcast_arrays(
+        np.square(np.asarray(omega, dtype=float)), np.asarray(depth, dtype=float)
+    )
     if np.any(h <= 0.0) or np.any(np.isnan(h)):
         raise ValueError("depth must be positive (inf for deep water)")
     if not np.all(np.isfinite(w2)):

@@ -22,8 +22,7 @@ FloatArray = NDArray[np.float64]
 class FluidField(Protocol):
     """Anything that gives fluid kinematics at points and times."""
 
-    def kinematics(self, points: np.ndarray, t: float
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def kinematics(self, points: np.ndarray, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """points (n, 3) -> fluid velocity (n, 3), fluid acceleration (n, 3), free-surface
         elevation (n,) at the points' horizontal positions, at time t."""
         ...
@@ -33,8 +32,7 @@ class FluidField(Protocol):
 class StillWater:
     """No waves, no current: all kinematics and the elevation are zero."""
 
-    def kinematics(self, points: np.ndarray, t: float
-                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def kinematics(self, points: np.ndarray, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Zeros of shapes (n, 3), (n, 3), (n,)."""
         p = np.asarray(points, dtype=float)
         if p.ndim != 2 or p.shape[1] != 3:
@@ -48,9 +46,9 @@ class CombinedField:
 
     The velocity is the wave velocity plus the current velocity ``U(z)``; the current is
     evaluated at the point's actual ``z`` (held at its top-level value up to the crest) and is
-    zero above the wave's instantaneous free surface. The acceleration and the elevation are
-    the wave's (a steady current has no local acceleration; wave-current interaction, e.g. the
-    Doppler shift of the wave frequency, is not modelled).
+    zero above the wave's instantaneous free surface. The acceleration is the wave's plus the
+    current's (non-zero only during the current's start-up ramp); the elevation is the wave's.
+    Wave-current interaction (e.g. the Doppler shift of the wave frequency) is not modelled.
 
     Parameters
     ----------
@@ -63,31 +61,33 @@ class CombinedField:
     wave: FluidField
     current: CurrentProfile
 
-    def kinematics(self, points: np.ndarray, t: float
-                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def kinematics(self, points: np.ndarray, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Velocity (n, 3), acceleration (n, 3), elevation (n,) at time ``t``."""
         p = np.asarray(points, dtype=float)
         vel, acc, eta = self.wave.kinematics(p, t)
-        cur = self.current.velocity(p[:, 2])
-        cur[p[:, 2] > eta] = 0.0
-        return vel + cur, acc, eta
+        cur_v, cur_a = self.current.ramped(p[:, 2], t)
+        dry = p[:, 2] > eta
+        cur_v[dry] = 0.0
+        cur_a[dry] = 0.0
+        return vel + cur_v, acc + cur_a, eta
 
 
 def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> FluidField:
     """Fluid field described by a :class:`moorline.model.Environment`.
 
     ``waves.kind == 'airy'`` with a positive height gives an :class:`~moorline.waves.AiryWave`
-    (heading, depth and gravity from the environment, phase 0, no stretching, ramped over
-    ``ramp_time``); a non-zero ``current.speed`` gives a uniform
-    :class:`~moorline.waves.CurrentProfile` (never ramped: statics already include it).
-    Both give a :class:`CombinedField`, neither gives :class:`StillWater`.
+    (heading, depth and gravity from the environment, phase 0, no stretching); a non-zero
+    ``current.speed`` gives a uniform :class:`~moorline.waves.CurrentProfile`. Both are ramped
+    over ``ramp_time`` (``DynamicsSettings.ramp_time`` ramps "waves and current": the
+    dynamics starts from a static state computed without current drag). Both give a
+    :class:`CombinedField`, neither gives :class:`StillWater`.
 
     Parameters
     ----------
     env
         The environment.
     ramp_time
-        Start-up ramp of the waves [time]; 0 for none.
+        Start-up ramp of the waves and the current [time]; 0 for none.
 
     Returns
     -------
@@ -97,9 +97,14 @@ def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> Fl
     wave: AiryWave | None = None
     if waves.kind == "airy":
         if waves.height > 0.0:
-            wave = AiryWave(height=waves.height, period=waves.period,
-                            heading_deg=waves.heading_deg, depth=env.depth,
-                            gravity=env.gravity, ramp_time=ramp_time)
+            wave = AiryWave(
+                height=waves.height,
+                period=waves.period,
+                heading_deg=waves.heading_deg,
+                depth=env.depth,
+                gravity=env.gravity,
+                ramp_time=ramp_time,
+            )
     elif waves.kind != "none":
         raise ValueError(f"unknown wave kind {waves.kind!r}")
     current = None
@@ -107,7 +112,7 @@ def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> Fl
         speed, heading = env.current.speed, env.current.heading_deg
         if speed < 0.0:  # a negative speed flows the other way
             speed, heading = -speed, heading + 180.0
-        current = CurrentProfile.uniform(speed, heading)
+        current = CurrentProfile.uniform(speed, heading, ramp_time=ramp_time)
     if wave is not None and current is not None:
         return CombinedField(wave, current)
     if wave is not None:
