@@ -32,8 +32,9 @@ class Mesh:
         Node indices (n_elements, 2), from end A towards end B of each line.
     length0
         Unstretched element lengths (n_elements,).
-    EA, EA1, tau, slack_ratio
-        Axial stiffness [force], viscoelastic extra stiffness and time, slack stiffness ratio.
+    EA, EA1, tau, slack_ratio, slack_smoothing
+        Axial stiffness [force], viscoelastic extra stiffness and time, slack stiffness ratio
+        and the strain band of the smooth slack transition.
     BA
         Internal axial damping [force*time] (a negative line-type value, a damping ratio, is
         resolved here: ``BA = zeta L0 sqrt(EA m)``).
@@ -74,6 +75,7 @@ class Mesh:
     EA1: FloatArray
     tau: FloatArray
     slack_ratio: FloatArray
+    slack_smoothing: FloatArray
     BA: FloatArray
     viscoelastic: BoolArray
     mass_per_length: FloatArray
@@ -138,13 +140,14 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
     env = system.environment
     lines = list(system.lines.values())
     props: dict[str, list[float]] = {k: [] for k in (
-        "EA", "EA1", "tau", "slack_ratio", "BA", "viscoelastic", "mass_per_length",
+        "EA", "EA1", "tau", "slack_ratio", "slack_smoothing", "BA", "viscoelastic", "mass_per_length",
         "weight_per_length", "diameter", "Cd", "Ca", "Ct", "Cat")}
     for line in lines:
         lt = system.line_types[line.line_type]
         weight = (lt.mass_per_length - env.water_density * lt.area_displaced) * env.gravity
         values = {"EA": lt.EA, "EA1": lt.EA1, "tau": lt.tau,
-                  "slack_ratio": lt.slack_stiffness_ratio, "BA": lt.BA,
+                  "slack_ratio": lt.slack_stiffness_ratio,
+                  "slack_smoothing": lt.slack_smoothing, "BA": lt.BA,
                   "viscoelastic": float(lt.material == "viscoelastic"),
                   "mass_per_length": lt.mass_per_length, "weight_per_length": weight,
                   "diameter": lt.diameter, "Cd": lt.Cd, "Ca": lt.Ca, "Ct": lt.Ct, "Cat": lt.Cat}

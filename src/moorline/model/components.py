@@ -53,6 +53,7 @@ class LineType:
     EA1: float = 0.0
     tau: float = 0.0
     slack_stiffness_ratio: float = 1.0e-6
+    slack_smoothing: float = 1.0e-5
     BA: float = 0.0
 
     @property

@@ -54,28 +54,50 @@ def element_geometry(
 
 
 def axial_tension(
-    length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray
+    length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray,
+    smoothing: FloatArray | float = 0.0,
 ) -> tuple[FloatArray, FloatArray]:
     """Tension of an elastic element that carries (almost) no compression.
+
+    ``T = EA eps`` for ``eps >= s``; in the band ``|eps| < s`` (``s = smoothing``) the law
+    blends smoothly (C1) into the slack branch, ``T = EA (eps + s)^2 / (4 s)``; below
+    ``-s`` a slack element keeps ``slack_ratio EA (eps + s)``. With ``s = 0`` it is the
+    plain no-compression law. The band exists for Newton's sake: an element that switches
+    between slack and taut inside an iteration makes the residual kink, and implicit steps
+    then cycle instead of converging (seen on chain lying on the seabed being pushed).
 
     Returns
     -------
     tension, dtension_dlength
-        ``T = EA eps`` for ``eps >= 0`` and ``slack_ratio EA eps`` otherwise, and ``dT/dl``.
+        Tension and its derivative with respect to the current length.
     """
     strain = length / length0 - 1.0
-    stiffness = np.where(strain >= 0.0, EA, slack_ratio * EA)
-    return stiffness * strain, stiffness / length0
+    s = np.broadcast_to(np.asarray(smoothing, dtype=float), strain.shape)
+    taut = strain >= s
+    band = ~taut & (strain > -s)
+    safe_s = np.where(s > 0, s, 1.0)
+    shifted = strain + s
+    tension = np.where(taut, EA * strain,
+                       np.where(band, EA * shifted**2 / (4 * safe_s), slack_ratio * EA * shifted))
+    slope = np.where(taut, EA, np.where(band, EA * shifted / (2 * safe_s), slack_ratio * EA))
+    return tension, slope / length0
 
 
 def strain_energy(
-    length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray
+    length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray,
+    smoothing: FloatArray | float = 0.0,
 ) -> FloatArray:
-    """Elastic energy stored in each element, ``EA eps^2 L0 / 2`` (slack: times the ratio);
-    its derivative with respect to ``l`` is :func:`axial_tension`."""
+    """Elastic energy stored in each element, ``L0 * integral of T d(eps)`` for the law of
+    :func:`axial_tension` (its derivative with respect to ``l`` is the tension)."""
     strain = length / length0 - 1.0
-    stiffness = np.where(strain >= 0.0, EA, slack_ratio * EA)
-    return 0.5 * stiffness * strain**2 * length0
+    s = np.broadcast_to(np.asarray(smoothing, dtype=float), strain.shape)
+    safe_s = np.where(s > 0, s, 1.0)
+    shifted = strain + s
+    energy = np.where(
+        strain >= s, EA * (strain**2 / 2 + s**2 / 6),
+        np.where(strain > -s, EA * shifted**3 / (12 * safe_s),
+                 0.5 * slack_ratio * EA * shifted**2))
+    return energy * length0
 
 
 def nodal_forces(tension: FloatArray, unit: FloatArray) -> FloatArray:

@@ -29,7 +29,7 @@ Here the state is always passed in and returned, never stored:
 * :func:`sls_update_exponential` integrates (2) exactly for a strain that varies linearly over
   the step, with ``Q`` as state. It is exact for piecewise-linear strain histories, second-order
   accurate otherwise, stable and accurate for any ``dt / tau`` (the source's form needs
-  ``dt << tau``, Tuah p. 31: "for dt << 5 seconds").
+  ``dt << tau``, Tuah sec. 2.2.b: "for dt << 5 seconds").
 
 Slack (folded into :func:`sls_update_exponential`, keyword ``slack_ratio``)
 ----------------------------------------------------------------------------
@@ -44,9 +44,13 @@ material recovers towards its unstretched length with the retardation time
 ``tau (EA + EA1) / EA``. No extra state is needed: ``eps_m = max(eps, -Q / EA)``
 (:func:`sls_material_strain`) holds in both phases. The transmitted force while slack is the
 elastic element's tiny regularizing compression, ``slack_ratio EA (eps - eps_m)``, with tangent
-``slack_ratio EA`` (for ``EA1 = 0`` this is exactly :func:`~moorline.physics.element.
-axial_tension`). Tension is continuous across the taut/slack switch. The incremental form is
-kept as the source's linear law only (no slack): it serves to reproduce Tuah's Example 3.
+``slack_ratio EA``; for ``EA1 = 0`` this is exactly the elastic element's
+:func:`~moorline.physics.element.axial_tension`. Tension is continuous across the taut/slack
+switch. While slack the material strain is not piecewise linear in time, so the exponential
+update is second-order accurate there (not exact); for steps much longer than the retardation
+time it under-predicts the recovery (``Q`` shrinks by about ``EA1 tau / (EA dt)`` per step
+instead of ``exp(-dt/tc)``). The incremental form is kept as the source's linear law only (no
+slack): it serves to reproduce Tuah's Example 3.
 
 All functions take strains and return tensions and ``dT/deps``; an element's ``dT/dl`` is
 ``dT/deps / L0``. Arguments broadcast (per-element arrays or scalars). Imports only numpy.
@@ -112,18 +116,24 @@ def sls_update_incremental(
         + (EA * strain_old - tension_old) * (np.asarray(dt, dtype=float) / tau)
         + stiff * (strain_new - strain_old)
     )
-    return tension_new, stiff + np.zeros_like(tension_new)
+    return tension_new, _full(stiff, tension_new)
 
 
 def _relaxation_factors(
     dt: ArrayLike, tau: ArrayLike
 ) -> tuple[FloatArray, FloatArray]:
-    """``a = exp(-h)`` and ``phi = (1 - exp(-h)) / h`` with ``h = dt / tau`` (``phi(0) = 1``)."""
-    h = np.asarray(dt, dtype=float) / np.asarray(tau, dtype=float)
-    one_minus_a = -np.expm1(-h)
-    safe = np.where(h > 0.0, h, 1.0)
-    phi = np.where(h > 0.0, one_minus_a / safe, 1.0)
-    return 1.0 - one_minus_a, phi
+    """``exp(-h) - 1`` and ``phi = (1 - exp(-h)) / h`` with ``h = dt / tau`` (``phi(0) = 1``)."""
+    minus_h = -(np.asarray(dt, dtype=float) / np.asarray(tau, dtype=float))
+    a_minus_1 = np.expm1(minus_h)
+    if a_minus_1.ndim == 0:
+        return a_minus_1, (a_minus_1 / minus_h if minus_h < 0.0 else np.ones_like(minus_h))
+    phi = np.divide(a_minus_1, minus_h, out=np.ones_like(a_minus_1), where=minus_h < 0.0)
+    return a_minus_1, phi
+
+
+def _full(x: FloatArray, like: FloatArray) -> FloatArray:
+    """``x`` broadcast to the shape of ``like`` (a copy only when the shapes differ)."""
+    return x if x.shape == like.shape else x + np.zeros_like(like)
 
 
 def sls_material_strain(strain: ArrayLike, Q: ArrayLike, EA: ArrayLike) -> FloatArray:
@@ -186,22 +196,21 @@ def sls_update_exponential(
     strain_new = np.asarray(strain_new, dtype=float)
     Q_old = np.asarray(Q_old, dtype=float)
     EA = np.asarray(EA, dtype=float)
-    a, phi = _relaxation_factors(dt, tau)
+    a_minus_1, phi = _relaxation_factors(dt, tau)
     c = np.asarray(EA1, dtype=float) * phi  # d Q_new / d eps_new
     if slack_ratio is None:
         start = np.asarray(strain_old, dtype=float)
     else:
         start = sls_material_strain(strain_old, Q_old, EA)
-    aq = a * Q_old
+    aq = Q_old + a_minus_1 * Q_old  # exp(-dt/tau) Q_old
     Q_new = aq + c * (strain_new - start)
     tension = EA * strain_new + Q_new
     tangent = EA + c
-    if slack_ratio is None:
-        return tension, Q_new, tangent + np.zeros_like(tension)
-    slack = tension < 0.0
-    material = (c * start - aq) / (EA + c)  # EA eps_m + aq + c (eps_m - start) = 0
+    if slack_ratio is None or not np.any(slack := tension < 0.0):
+        return tension, _full(Q_new, tension), _full(tangent, tension)
+    material = (c * start - aq) / tangent  # EA eps_m + aq + c (eps_m - start) = 0
     k_slack = np.asarray(slack_ratio, dtype=float) * EA
     tension = np.where(slack, k_slack * (strain_new - material), tension)
     Q_new = np.where(slack, -EA * material, Q_new)
     tangent = np.where(slack, k_slack, tangent)
-    return tension, Q_new, tangent
+    return tension, _full(Q_new, tension), _full(tangent, tension)

@@ -47,7 +47,8 @@ class StaticModel:
         """All nodal forces at positions ``x`` (n_nodes, 3) with the loads scaled by ``lam``."""
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
-        tension, _ = element.axial_tension(length, m.length0, m.EA, m.slack_ratio)
+        tension, _ = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
+                                                m.slack_smoothing)
         el_forces = element.nodal_forces(tension, unit)
         nodal = lam * self.external
         nodal = nodal + _sum_to_nodes(el_forces, m.elements, m.n_nodes)
@@ -64,7 +65,8 @@ class StaticModel:
         """Exact tangent ``-dR/dx`` assembled over ``pattern`` (default: the free dofs)."""
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
-        tension, dT = element.axial_tension(length, m.length0, m.EA, m.slack_ratio)
+        tension, dT = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
+                                                m.slack_smoothing)
         blocks = element.tangent_blocks(length, unit, tension, dT)
         node_blocks = None
         if np.isfinite(m.seabed_z):
@@ -81,7 +83,8 @@ class StaticModel:
         """
         m = self.mesh
         length, _ = element.element_geometry(x, m.elements)
-        energy = float(element.strain_energy(length, m.length0, m.EA, m.slack_ratio).sum())
+        energy = float(element.strain_energy(length, m.length0, m.EA, m.slack_ratio,
+                                                      m.slack_smoothing).sum())
         if np.isfinite(m.seabed_z):
             energy += seabed.contact_energy(x, m.seabed_z, self.node_seabed_stiffness)
         return energy - lam * float(np.sum(self.external * x))

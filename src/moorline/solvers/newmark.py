@@ -114,46 +114,77 @@ class Stepper:
         self.counters["tangents"] += 1
         self.counters["factorizations"] += 1
 
+    def _trial(self, s0, x1, h, constrained, point_forces, tangent):
+        v1, a1 = self._kinematics(s0, x1, h)
+        v1[~self.free], a1[~self.free] = constrained[1], constrained[2]
+        ev = self.model.evaluate(x1, v1, a1, s0.t + h, s0.material, h, tangent, point_forces)
+        self.counters["residuals"] += 1
+        r = self._residual(s0, ev, a1)
+        return ev, r, float(np.abs(r).max(initial=0.0)), a1
+
+    def _search(self, s0, x1, dx, norm, h, constrained, point_forces, max_halvings=4):
+        """Backtrack along ``dx`` until the residual decreases (slack/taut and seabed
+        contact switches make the residual non-smooth; a full step can cycle)."""
+        alpha, merit0 = 1.0, norm
+        for _ in range(max_halvings + 1):
+            trial = x1 + alpha * dx
+            ev, r, n, a1 = self._trial(s0, trial, h, constrained, point_forces, False)
+            merit = float(np.linalg.norm(r))
+            if merit < merit0:
+                break
+            alpha *= 0.5
+        return trial, ev, r, n, a1, merit < merit0
+
     def step(self, s0: StepState, h: float, constrained, point_forces) -> tuple[StepState, bool,
                                                                                  float]:
         """Advance from ``s0`` by ``h``. Returns the new state, convergence and the final
         residual max-norm."""
-        t1 = s0.t + h
         x1 = s0.x + h * s0.v + 0.5 * h * h * s0.a
-        x1[~self.free], v_c, a_c = constrained
-        v1, a1 = self._kinematics(s0, x1, h)
-        v1[~self.free], a1[~self.free] = v_c, a_c
+        x1[~self.free] = constrained[0]
         refresh = self.lu is None or self.lu_h != h or self.lu_age >= self.stiffness_update
-        one_shot = self.variant != "iterative"
-        norm, previous_norm = np.inf, np.inf
-        for it in range(self.max_iterations + 1):
-            need_tangent = refresh
-            ev = self.model.evaluate(x1, v1, a1, t1, s0.material, h, need_tangent, point_forces)
-            self.counters["residuals"] += 1
-            r = self._residual(s0, ev, a1)
-            if self.variant == "incremental" and it == 0 and self.carried is not None:
-                r = r - self.carried
-            norm = float(np.abs(r).max(initial=0.0))
-            if not one_shot and norm <= self.tol:
-                break
-            if one_shot and it == 1:
-                break
-            if it == self.max_iterations:
-                return s0, False, norm
-            if refresh or norm > 0.5 * previous_norm:
-                if not need_tangent:
-                    ev = self.model.evaluate(x1, v1, a1, t1, s0.material, h, True, point_forces)
-                self._factorize(ev, h)
+        ev, r, norm, a1 = self._trial(s0, x1, h, constrained, point_forces, refresh)
+        if self.variant == "incremental" and self.carried is not None:
+            r = r - self.carried
+        if self.variant != "iterative":
+            return self._one_shot(s0, x1, h, constrained, point_forces, ev, r, refresh)
+        stalled = 0
+        for _ in range(self.max_iterations):
+            if norm <= self.tol:
+                self.lu_age += 1
+                return StepState(s0.t + h, x1, *self._kinematics_c(s0, x1, h, constrained),
+                                 ev.material, ev), True, norm
+            if refresh:
+                self._factorize(ev if ev.K is not None else self._trial(
+                    s0, x1, h, constrained, point_forces, True)[0], h)
                 refresh = False
-            previous_norm = norm
             dx = scatter_free(self.lu.solve(r), self.dof)
-            x1 = x1 + dx
-            v1, a1 = self._kinematics(s0, x1, h)
-            v1[~self.free], a1[~self.free] = v_c, a_c
             self.counters["iterations"] += 1
+            x_new, ev_new, r_new, n_new, a1, better = self._search(
+                s0, x1, dx, float(np.linalg.norm(r)), h, constrained, point_forces)
+            if not better and self.lu_age > 0:
+                refresh = True  # stale tangent: refresh and retry from the same point
+                self.lu_age = 0
+                continue
+            refresh = refresh or n_new > 0.5 * norm
+            stalled = stalled + 1 if n_new > 0.9 * norm else 0
+            x1, ev, r, norm = x_new, ev_new, r_new, n_new
+            if stalled >= 3:
+                break  # not converging (e.g. slack/taut switching): cut the step early
+        return s0, False, norm
+
+    def _kinematics_c(self, s0, x1, h, constrained):
+        v1, a1 = self._kinematics(s0, x1, h)
+        v1[~self.free], a1[~self.free] = constrained[1], constrained[2]
+        return v1, a1
+
+    def _one_shot(self, s0, x1, h, constrained, point_forces, ev, r, refresh):
+        """Residual feedback / purely incremental: one solve per step, no iteration."""
+        if refresh or self.lu is None:
+            self._factorize(ev, h)
+        x1 = x1 + scatter_free(self.lu.solve(r), self.dof)
+        self.counters["iterations"] += 1
+        ev, end, norm, _ = self._trial(s0, x1, h, constrained, point_forces, False)
+        self.carried = end if self.variant == "incremental" else None
         self.lu_age += 1
-        if one_shot:
-            end = self._residual(s0, ev, a1)
-            self.carried = end if self.variant == "incremental" else None
-            norm = float(np.abs(end).max(initial=0.0))
-        return StepState(t1, x1, v1, a1, ev.material, ev), True, norm
+        return StepState(s0.t + h, x1, *self._kinematics_c(s0, x1, h, constrained),
+                         ev.material, ev), True, norm
