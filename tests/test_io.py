@@ -224,7 +224,7 @@ BAD_CASES = [
     ("initial_shape_wrong_end", "lines.line1.initial_shape[2]", "must be at end_b 'fairlead'"),
     ("wrong_dimension", "lines.line1.length", "expected a length, got '350 kg' (a mass)"),
     ("unknown_unit", "lines.line1.length", "unknown unit 'blorps'"),
-    ("unknown_analysis_kind", "analyses[0].kind", "allowed kinds: 'statics'"),
+    ("unknown_analysis_kind", "analyses[0].kind", "allowed kinds: 'statics', 'dynamics'"),
     ("unknown_statics_method", "analyses[0].method", "got 'magic'"),
     ("unattached_free_point", "points.buoy", "not attached to any line"),
     ("initial_position_fixed", "points.anchor.initial_position", "only prescribed points"),

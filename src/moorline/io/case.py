@@ -21,9 +21,11 @@ from pydantic import BaseModel, ValidationError
 from moorline.errors import CaseError
 from moorline.model import (
     Current,
+    DynamicsSettings,
     Environment,
     Line,
     LineType,
+    Motion,
     OutputSettings,
     Point,
     Seabed,
@@ -32,7 +34,15 @@ from moorline.model import (
     Waves,
 )
 
-from .schema import CaseSpec, LineSpec, PointSpec, StaticsSpec, describe_errors
+from .schema import (
+    CaseSpec,
+    DynamicsSpec,
+    LineSpec,
+    MotionSpec,
+    PointSpec,
+    StaticsSpec,
+    describe_errors,
+)
 from .units import default_value
 
 __all__ = ["MAX_STRAIN", "SEABED_TOLERANCE", "load_case", "load_case_text"]
@@ -206,6 +216,13 @@ def _check_point(
             f"only prescribed points take an initial_position; this point is {point.kind}",
             f"points.{name}.initial_position",
         )
+    for key, kind in (("motion", "prescribed"), ("force_history", "free")):
+        history = getattr(point, key)
+        if history is not None and point.kind != kind:
+            fail(f"only {kind} points take a {key}; this point is {point.kind}",
+                 f"points.{name}.{key}")
+        if history is not None:
+            _check_history(history, f"points.{name}.{key}", fail)
     if point.kind == "free" or not math.isfinite(depth):
         return
     for key in ("position", "initial_position"):
@@ -215,6 +232,21 @@ def _check_point(
                 f"{point.kind} point is below the seabed: z = {xyz[2]:g} < -depth = {-depth:g}",
                 f"points.{name}.{key}[2]",
             )
+
+
+def _check_history(history: MotionSpec, field: str, fail: Callable[[str, str], None]) -> None:
+    if history.kind == "harmonic" and history.period is None:
+        fail("a harmonic history needs a period > 0", f"{field}.period")
+    if history.kind == "table":
+        given = (history.times is not None, history.values is not None)
+        if history.file is None and not all(given):
+            fail("a table history needs 'times' and 'values', or a CSV 'file'", field)
+        if history.file is None and len(history.times) != len(history.values):
+            fail(f"'times' has {len(history.times)} entries but 'values' has "
+                 f"{len(history.values)}", f"{field}.values")
+        if history.times is not None and any(
+                b <= a for a, b in zip(history.times, history.times[1:], strict=False)):
+            fail("'times' must increase strictly", f"{field}.times")
 
 
 def _start(point: PointSpec) -> Sequence[float]:
@@ -328,6 +360,11 @@ def _build(spec: CaseSpec, source: str | None) -> System:
             volume=p.volume,
             force=tuple(p.force),
             initial_position=None if p.initial_position is None else tuple(p.initial_position),
+            motion=_motion(p.motion, source, f"points.{name}.motion"),
+            force_history=_motion(p.force_history, source, f"points.{name}.force_history"),
+            Cd=p.Cd,
+            drag_area=p.drag_area,
+            Ca=p.Ca,
         )
         for name, p in spec.points.items()
     }
@@ -373,5 +410,56 @@ def _statics(spec: StaticsSpec, units: str) -> StaticsSettings:
     return StaticsSettings(**values)
 
 
-_ANALYSES: dict[type[BaseModel], Callable[[Any, str], Any]] = {StaticsSpec: _statics}
+def _dynamics(spec: DynamicsSpec, units: str) -> DynamicsSettings:
+    return DynamicsSettings(**spec.model_dump())
+
+
+def _motion(spec: MotionSpec | None, source: str | None, field: str) -> Motion | None:
+    """A history spec as a :class:`Motion`, reading a CSV table relative to the case file."""
+    if spec is None:
+        return None
+    times, values = spec.times or [], spec.values or []
+    if spec.file is not None:
+        times, values = _read_table(spec.file, source, field)
+    return Motion(kind=spec.kind, amplitude=tuple(spec.amplitude), period=spec.period or 0.0,
+                  phase_deg=spec.phase, times=tuple(times),
+                  values=tuple(tuple(v) for v in values), ramp_time=spec.ramp_time)
+
+
+def _read_table(name: str, source: str | None, field: str) -> tuple[list, list]:
+    """Read ``t, x, y, z`` rows from a CSV file (``#`` comments and a header row allowed)."""
+    import numpy as np
+
+    base = Path(source).parent if source else Path.cwd()
+    path = (base / name).resolve()
+    try:
+        data = np.loadtxt(path, delimiter=",", comments="#", ndmin=2,
+                          skiprows=_header_rows(path))
+    except (OSError, ValueError) as exc:
+        raise CaseError(f"cannot read time table {str(path)!r}: {exc}", file=source,
+                        field=f"{field}.file") from None
+    if data.shape[1] != 4 or len(data) < 2:
+        raise CaseError(f"time table {str(path)!r} must have >= 2 rows of 4 columns t, x, y, z",
+                        file=source, field=f"{field}.file")
+    if np.any(np.diff(data[:, 0]) <= 0):
+        raise CaseError(f"time table {str(path)!r}: times must increase strictly", file=source,
+                        field=f"{field}.file")
+    return data[:, 0].tolist(), data[:, 1:].tolist()
+
+
+def _header_rows(path: Path) -> int:
+    """1 if the first non-comment line of a CSV file is not numeric, else 0."""
+    with open(path, encoding="utf-8") as handle:
+        for line in handle:
+            if line.strip() and not line.lstrip().startswith("#"):
+                try:
+                    [float(x) for x in line.split(",")]
+                except ValueError:
+                    return 1
+                return 0
+    return 0
+
+
+_ANALYSES: dict[type[BaseModel], Callable[[Any, str], Any]] = {
+    StaticsSpec: _statics, DynamicsSpec: _dynamics}
 """How each analysis spec becomes its settings object; extend with new analysis kinds."""

@@ -30,8 +30,9 @@ from pydantic_core import PydanticCustomError
 
 from .units import UnitParseError, to_system
 
-__all__ = ["AnalysisSpec", "CaseSpec", "LineSpec", "LineTypeSpec", "PointSpec", "StaticsSpec",
-           "describe_errors", "quantity"]
+__all__ = ["AnalysisSpec", "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "LineSpec",
+           "LineTypeSpec", "MotionSpec", "PointSpec", "StaticsSpec", "describe_errors",
+           "quantity"]
 
 
 def _show(value: Any) -> str:
@@ -119,6 +120,16 @@ Force3 = Annotated[list[quantity("force")], AfterValidator(_three)]
 Coefficient = quantity("dimensionless", ge=0.0)
 
 
+def _internal_damping(value: Any, info: ValidationInfo) -> float:
+    """``BA``: a damping coefficient [force*time], or a negative plain number ``-zeta`` (a
+    damping ratio of each segment's axial mode, MoorDyn's convention)."""
+    if isinstance(value, int | float) and not isinstance(value, bool) and value < 0:
+        if value < -10:
+            raise _fail(f"a negative BA is a damping ratio -zeta and must be >= -10, got {value}")
+        return float(value)
+    return quantity("force*time", ge=0.0).__metadata__[0].func(value, info)
+
+
 class _Spec(BaseModel):
     """Base of all case-file sections: unknown keys are errors."""
 
@@ -175,6 +186,33 @@ class LineTypeSpec(_Spec):
     EA1: quantity("force", ge=0.0) = 0.0
     tau: quantity("time", ge=0.0) = 0.0
     slack_stiffness_ratio: quantity("dimensionless", gt=0.0, le=1.0) = 1.0e-6
+    slack_smoothing: quantity("dimensionless", ge=0.0, le=0.01) = 1.0e-5
+    BA: Annotated[float, PlainValidator(_internal_damping)] = 0.0
+
+
+class MotionSpec(_Spec):
+    """``points.<name>.motion``: displacement history of a prescribed point.
+
+    ``harmonic``: ``amplitude sin(2 pi t / period + phase)``; ``table``: ``times`` and
+    ``values`` (3-vectors) or a CSV ``file`` with columns t, x, y, z (relative to the case
+    file), linearly interpolated.
+    """
+
+    kind: Literal["harmonic", "table"]
+    amplitude: Vector3 = (0.0, 0.0, 0.0)
+    period: quantity("time", gt=0.0) | None = None
+    phase: quantity("angle") = 0.0
+    times: list[quantity("time")] | None = None
+    values: list[Vector3] | None = None
+    file: str | None = None
+    ramp_time: quantity("time", ge=0.0) = 0.0
+
+
+class ForceHistorySpec(MotionSpec):
+    """``points.<name>.force_history``: force history added to a free point's force."""
+
+    amplitude: Force3 = (0.0, 0.0, 0.0)
+    values: list[Force3] | None = None
 
 
 class PointSpec(_Spec):
@@ -190,6 +228,11 @@ class PointSpec(_Spec):
     volume: quantity("volume", ge=0.0) = 0.0
     force: Force3 = (0.0, 0.0, 0.0)
     initial_position: Vector3 | None = None
+    motion: MotionSpec | None = None
+    force_history: ForceHistorySpec | None = None
+    Cd: Coefficient = 0.0
+    drag_area: quantity("area", ge=0.0) = 0.0
+    Ca: Coefficient = 0.0
 
 
 class LineSpec(_Spec):
@@ -219,8 +262,25 @@ class StaticsSpec(_Spec):
     max_step: quantity("dimensionless", gt=0.0) = 0.5
 
 
-# Add new analyses (dynamics, modal, ...) as further members of this union.
-AnalysisSpec = Annotated[Union[StaticsSpec], Field(discriminator="kind")]  # noqa: UP007
+class DynamicsSpec(_Spec):
+    """``analyses[i]`` with ``kind: dynamics`` (see :class:`moorline.model.DynamicsSettings`)."""
+
+    kind: Literal["dynamics"]
+    duration: quantity("time", gt=0.0)
+    dt: quantity("time", gt=0.0)
+    scheme: Literal["newmark", "hht"] = "newmark"
+    alpha: quantity("dimensionless", ge=-1.0 / 3.0, le=0.0) = -0.05
+    variant: Literal["iterative", "residual_feedback", "incremental"] = "iterative"
+    tolerance: quantity("dimensionless", gt=0.0) = 1.0e-6
+    max_iterations: PositiveInt = 20
+    stiffness_update: PositiveInt = 20
+    max_step_cuts: Annotated[int, Field(ge=0, le=20)] = 6
+    ramp_time: quantity("time", ge=0.0) = 0.0
+
+
+# Add new analyses (modal, ...) as further members of this union.
+AnalysisSpec = Annotated[Union[StaticsSpec, DynamicsSpec],  # noqa: UP007
+                         Field(discriminator="kind")]
 
 
 class OutputSpec(_Spec):

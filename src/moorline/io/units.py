@@ -75,6 +75,7 @@ DIMENSIONS: dict[str, Dimension] = {
     "mass/length": Dimension("mass per length", "kg/m", "slug/ft"),
     "mass/length^3": Dimension("mass density", "kg/m**3", "slug/ft**3"),
     "force/length^3": Dimension("force per length^3", "N/m**3", "lbf/ft**3"),
+    "force*time": Dimension("force*time", "N*s", "lbf*s"),
     "force*time/length": Dimension("force*time per length", "N*s/m", "lbf*s/ft"),
     "force*time/length^3": Dimension("force*time per length^3", "N*s/m**3", "lbf*s/ft**3"),
 }
