@@ -203,59 +203,258 @@ def statics_summary(result: Any, with_stiffness: bool = True) -> dict[str, Any]:
     }
 
 
-def statics_dataset(result: Any) -> Any:
-    """``result.to_xarray()`` plus what the plots need: ``seabed_z`` and ``point_kind``."""
-    ds = result.to_xarray()
-    mesh = result.mesh
-    if "seabed_z" not in ds.attrs:
-        ds.attrs["seabed_z"] = float(mesh.seabed_z)
-    if "point_kind" not in ds.coords and "point" in ds.dims:
-        ds = ds.assign_coords(point_kind=("point", list(mesh.point_kind)))
-    return ds
+RESULTS_FILE = "results.nc"
 
 
 @dataclass
 class Outcome:
-    """What one analysis of a case produced."""
+    """What one analysis of a case produced.
+
+    Attributes
+    ----------
+    kind, success, message
+        The analysis kind, whether it succeeded, and how it ended.
+    summary
+        Its part of the ``--json`` summary.
+    files
+        Files it wrote besides the results file (plots).
+    result
+        The result object (e.g. the :class:`~moorline.results.StaticResult` a following
+        dynamics analysis starts from), ``None`` when there is none.
+    """
 
     kind: str
     success: bool
     message: str
     summary: dict[str, Any]
     files: list[Path] = field(default_factory=list)
+    result: Any = None
 
 
-def run_statics(system: Any, settings: Any, directory: Path, label: str,
-                quiet: bool) -> Outcome:
-    """Solve statics, write ``<label>.nc`` and the configuration plots into ``directory``."""
-    from .io.writers import write_netcdf
+@dataclass
+class RunContext:
+    """What the analyses of one run share.
+
+    Attributes
+    ----------
+    system
+        The loaded case.
+    directory
+        Output directory ``DIR/<case>/``.
+    results
+        The run's results file (``directory/results.nc``); each analysis adds its group.
+    quiet
+        No progress bars or status messages.
+    outcomes
+        The analyses done so far, in order.
+    time
+        Simulated time reached by the running time-domain analysis (for the interrupt
+        message), ``None`` outside one.
+    """
+
+    system: Any
+    directory: Path
+    results: Path
+    quiet: bool
+    outcomes: list[Outcome] = field(default_factory=list)
+    time: float | None = None
+
+    def latest(self, kind: str) -> Outcome | None:
+        """The most recent outcome of an analysis kind, if any."""
+        return next((o for o in reversed(self.outcomes) if o.kind == kind), None)
+
+
+class _Interrupted(Exception):
+    """Ctrl-C during a run, with the line to print (exit code 130)."""
+
+
+def _prefix(label: str, kind: str) -> str:
+    """File-name prefix of an analysis' plots: none unless its kind repeats."""
+    return "" if label == kind else f"{label}_"
+
+
+def run_statics(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Solve statics, add group ``label`` to the results file and plot the configuration."""
+    from .io.writers import write_group
     from .plot import plot_configuration
     from .solvers.statics import solve_statics
 
-    with _status(f"solving statics of {system.name} ...", quiet) as update:
+    system, directory = context.system, context.directory
+    with _status(f"solving statics of {system.name} ...", context.quiet) as update:
         result = solve_statics(system, settings)
         logger.info("statics of %s: %s", system.name, result.message)
         update("computing point stiffness ...")
         summary = statics_summary(result)
         update("writing results ...")
-        ds = statics_dataset(result)
-        prefix = "" if label == "statics" else f"{label}_"
-        nc = write_netcdf(ds, directory / f"{label}.nc")
+        ds = result.to_xarray()
+        write_group(ds, context.results, label)
+        prefix = _prefix(label, "statics")
         xz, view3d = (directory / f"{prefix}configuration_xz.png",
                       directory / f"{prefix}configuration_3d.png")
         update("plotting ...")
         plot_configuration(ds, xz, view3d)
-    return Outcome("statics", bool(result.success), result.message, summary, [nc, xz, view3d])
+    return Outcome("statics", bool(result.success), result.message, summary, [xz, view3d],
+                   result)
 
 
-#: Runner of each analysis kind a case may list: (system, settings, dir, label, quiet).
-RUNNERS: dict[str, Callable[[Any, Any, Path, str, bool], Outcome]] = {
+def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Simulate, streaming the histories into group ``label`` of the results file.
+
+    Starts from the preceding statics result of the run when there is one (otherwise the
+    solver solves statics itself). A :class:`~moorline.errors.ConvergenceError` ends the
+    analysis as failed: the group keeps the records computed so far (``complete = 0``).
+    Ctrl-C closes the group the same way and raises :class:`_Interrupted`.
+    """
+    from .errors import ConvergenceError
+    from .io.writers import read_group
+    from .mesh import discretize
+    from .plot import plot_motion_history, plot_tension_history
+    from .solvers.dynamics import simulate
+
+    system = context.system
+    statics = context.latest("statics")
+    initial = statics.result if statics is not None and statics.success else None
+    mesh = initial.mesh if initial is not None else discretize(system)
+    counters: dict[str, int] = {}
+    try:
+        with _history_writer(context, mesh, settings, label) as writer, \
+                _progress(f"{label} of {system.name}", settings.duration,
+                          context.quiet) as advance:
+            def progress(t: float) -> None:
+                context.time = t
+                advance(t)
+
+            result = simulate(system, settings, initial=initial, writer=writer,
+                              progress=progress)
+            counters = {k: int(v) for k, v in result.counters.items()}
+            writer.close({"complete": 1, "success": 1, "message": result.message,
+                          "status": f"complete: {writer.count} records", **counters})
+        success, message = True, result.message
+    except ConvergenceError as exc:
+        logger.info("dynamics of %s failed: %s", system.name, exc)
+        success, message = False, str(exc)
+    ds = read_group(context.results, label)
+    summary = dynamics_summary(ds, settings, success, message, counters)
+    files = []
+    if ds.sizes.get("time", 0):
+        prefix = _prefix(label, "dynamics")
+        files = [context.directory / f"{prefix}tension_history.png",
+                 context.directory / f"{prefix}motion_history.png"]
+        with _status("plotting ...", context.quiet):
+            plot_tension_history(ds, files[0])
+            plot_motion_history(ds, files[1])
+    return Outcome("dynamics", success, message, summary, files)
+
+
+@contextmanager
+def _history_writer(context: RunContext, mesh: Any, settings: Any,
+                    label: str) -> Iterator[Any]:
+    """A :class:`~moorline.io.stream.HistoryWriter` on group ``label`` of the results file."""
+    from dataclasses import asdict
+
+    from .io.stream import HistoryWriter
+    from .io.units import DIMENSIONS
+    from .io.writers import add_analysis
+
+    system = context.system
+    units = {key: DIMENSIONS[key].unit(system.units)
+             for key in ("length", "velocity", "force", "time")}
+    attrs = {"analysis": "dynamics", "case": system.name, "units": system.units,
+             "moorline_version": __version__, "seabed_z": float(mesh.seabed_z),
+             "output_every": float(max(system.output.every, settings.dt)),
+             **{f"setting_{k}": v for k, v in asdict(settings).items()}}
+    add_analysis(context.results, label)
+    with HistoryWriter(context.results, mesh, attrs, units, group=label) as writer:
+        yield writer
+
+
+@contextmanager
+def _progress(description: str, total: float, quiet: bool) -> Iterator[Callable[[float], None]]:
+    """A rich progress bar of simulated time on stderr (nothing when quiet); yields a
+    function that moves it to time ``t``."""
+    if quiet:
+        yield lambda _t: None
+        return
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    columns = (TextColumn("{task.description}"), BarColumn(),
+               TextColumn("t = {task.completed:.2f} / {task.total:g} s"),
+               TimeElapsedColumn(), TimeRemainingColumn())
+    with Progress(*columns, console=Console(stderr=True)) as bar:
+        task = bar.add_task(escape(description), total=total)
+        yield lambda t: bar.update(task, completed=t)
+
+
+def dynamics_summary(ds: Any, settings: Any, success: bool, message: str,
+                     counters: dict[str, int]) -> dict[str, Any]:
+    """The ``--json`` object of a dynamics analysis, from its histories.
+
+    Parameters
+    ----------
+    ds
+        The dynamics group read back (or :meth:`~moorline.results.DynamicResult.to_xarray`):
+        ``time``, ``end_force(time, line, end, xyz)``, ``position(time, node, xyz)``,
+        ``point_node`` and the coordinate ``point_kind``.
+    settings
+        The :class:`~moorline.model.DynamicsSettings`.
+    success, message
+        How the run ended.
+    counters
+        Solver counters (``steps``, ``iterations``, ``factorizations``, ``step_cuts``, ...);
+        empty when the run failed.
+
+    Returns
+    -------
+    dict
+        ``{"converged", "message", "duration", "dt", "records", "time_start", "time_end",
+        "lines": {id: {"end_a": {"max", "min", "mean", "std"}, "end_b": ...}},
+        "points": {id: {"kind", "min": [x, y, z], "max": [x, y, z]}}, "counters"}``;
+        statistics over the output records, in the case's units.
+    """
+    time = np.asarray(ds["time"].values, dtype=float)
+    tension = np.linalg.norm(np.asarray(ds["end_force"].values, dtype=float), axis=-1)
+    lines = {str(name): {f"end_{end}": _stats(tension[:, k, j]) for j, end in enumerate("ab")}
+             for k, name in enumerate(ds["line"].values)}
+    position = np.asarray(ds["position"].values, dtype=float)
+    kinds = ds["point_kind"].values if "point_kind" in ds.coords else [""] * ds.sizes["point"]
+    points = {}
+    for name, kind, node in zip(ds["point"].values, kinds, ds["point_node"].values,
+                                strict=True):
+        path = position[:, int(node)]
+        empty = np.full(3, np.nan)
+        points[str(name)] = {"kind": str(kind),
+                             "min": (path.min(axis=0) if len(path) else empty).tolist(),
+                             "max": (path.max(axis=0) if len(path) else empty).tolist()}
+    return {"converged": bool(success), "message": message,
+            "duration": float(settings.duration), "dt": float(settings.dt),
+            "records": int(len(time)),
+            "time_start": float(time[0]) if len(time) else None,
+            "time_end": float(time[-1]) if len(time) else None,
+            "lines": lines, "points": points, "counters": counters}
+
+
+def _stats(values: np.ndarray) -> dict[str, float]:
+    if not len(values):
+        return dict.fromkeys(("max", "min", "mean", "std"), math.nan)
+    return {"max": float(values.max()), "min": float(values.min()),
+            "mean": float(values.mean()), "std": float(values.std())}
+
+
+#: Runner of each analysis kind a case may list: (settings, context, label) -> Outcome.
+RUNNERS: dict[str, Callable[[Any, RunContext, str], Outcome]] = {
     "statics": run_statics,
+    "dynamics": run_dynamics,
 }
 
 
 def _labels(kinds: list[str]) -> list[str]:
-    """File labels: the kind, numbered when a kind appears more than once."""
+    """Group and file labels: the kind, numbered when a kind appears more than once."""
     seen: dict[str, int] = {}
     labels = []
     for kind in kinds:
@@ -266,6 +465,32 @@ def _labels(kinds: list[str]) -> list[str]:
 
 def _analysis_kind(analysis: Any) -> str:
     return str(getattr(analysis, "kind", type(analysis).__name__))
+
+
+def _run_analyses(context: RunContext, analyses: list[Any], kinds: list[str]) -> None:
+    """Run the analyses in order into ``context`` (stopping after one that fails), then mark
+    the results file complete or not; Ctrl-C becomes :class:`_Interrupted`."""
+    from .io.writers import start_results, update_results
+
+    system = context.system
+    start_results(context.results, {"case": system.name, "units": system.units,
+                                    "moorline_version": __version__, "analyses": ""})
+    label = ""
+    try:
+        for kind, analysis, label in zip(kinds, analyses, _labels(kinds), strict=True):
+            context.time = None
+            outcome = RUNNERS[kind](analysis, context, label)
+            context.outcomes.append(outcome)
+            if not outcome.success:
+                break
+    except KeyboardInterrupt:
+        when = f"at t = {context.time:.6g} s" if context.time is not None else f"in {label}"
+        update_results(context.results, {"complete": 0, "status": f"interrupted {when}"})
+        raise _Interrupted(f"interrupted {when}; results so far in "
+                           f"{context.results}") from None
+    failed = [o for o in context.outcomes if not o.success]
+    status = f"{failed[0].kind} failed: {failed[0].message}" if failed else "complete"
+    update_results(context.results, {"complete": int(not failed), "status": status})
 
 
 # ----------------------------------------------------------------------------- commands
@@ -285,15 +510,15 @@ def cli() -> None:
 def statics(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> None:
     """Solve the static equilibrium of CASE (the method of its first statics analysis).
 
-    Writes DIR/<case>/statics.nc, summary.json, summary.txt, configuration_xz.png and
-    configuration_3d.png.
+    Writes DIR/<case>/results.nc (group statics), summary.json, summary.txt,
+    configuration_xz.png and configuration_3d.png.
     """
     _configure_logging(verbose)
     system = _load(case)
     settings = next((a for a in system.analyses if _analysis_kind(a) == "statics"), None)
-    directory = out / _safe_name(system.name, case.stem)
-    outcome = run_statics(system, settings, directory, "statics", quiet)
-    _finish(case, directory, outcome.summary, [outcome], as_json, quiet)
+    context = _context(system, case, out, quiet)
+    _run_analyses(context, [settings], ["statics"])
+    _finish(case, context, context.outcomes[0].summary, as_json)
 
 
 @cli.command()
@@ -304,8 +529,10 @@ def statics(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) ->
 def run(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> None:
     """Run every analysis CASE lists, in order, writing DIR/<case>/.
 
-    Each analysis writes <kind>.nc (numbered when a kind repeats) and its plots; summary.json
-    and summary.txt cover them all.
+    One results file, results.nc, holds a group per analysis (statics, dynamics; numbered
+    when a kind repeats); each analysis adds its plots; summary.json and summary.txt cover
+    them all. The run stops after an analysis that fails. Ctrl-C keeps what was computed
+    (exit code 130).
     """
     _configure_logging(verbose)
     system = _load(case)
@@ -315,21 +542,28 @@ def run(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> Non
     if unknown:
         raise CaseError(f"analysis kind {', '.join(map(repr, unknown))} is not supported by "
                         f"this version; supported: {', '.join(RUNNERS)}", str(case), "analyses")
-    directory = out / _safe_name(system.name, case.stem)
-    outcomes = [RUNNERS[kind](system, analysis, directory, label, quiet)
-                for kind, analysis, label in zip(kinds, analyses, _labels(kinds), strict=True)]
-    summary = {"case": system.name, "converged": all(o.success for o in outcomes),
+    context = _context(system, case, out, quiet)
+    _run_analyses(context, analyses, kinds)
+    outcomes = context.outcomes
+    summary = {"case": system.name,
+               "converged": len(outcomes) == len(kinds) and all(o.success for o in outcomes),
                "units": system.units,
                "analyses": [{"kind": o.kind, **o.summary} for o in outcomes]}
-    _finish(case, directory, summary, outcomes, as_json, quiet)
+    _finish(case, context, summary, as_json)
 
 
-def _finish(case: Path, directory: Path, summary: dict[str, Any], outcomes: list[Outcome],
-            as_json: bool, quiet: bool) -> None:
+def _context(system: Any, case: Path, out: Path, quiet: bool) -> RunContext:
+    directory = out / _safe_name(system.name, case.stem)
+    return RunContext(system, directory, directory / RESULTS_FILE, quiet)
+
+
+def _finish(case: Path, context: RunContext, summary: dict[str, Any], as_json: bool) -> None:
     """Write the summary, report on stdout, exit 1 when an analysis failed."""
     from .io.writers import render_summary, summary_json, write_summary
 
-    files = [f for o in outcomes for f in o.files] + list(write_summary(summary, directory))
+    outcomes, quiet = context.outcomes, context.quiet
+    files = [context.results, *(f for o in outcomes for f in o.files),
+             *write_summary(summary, context.directory)]
     if as_json:
         click.echo(summary_json(summary))
     else:

@@ -20,11 +20,12 @@ from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from numpy.typing import NDArray
 
-__all__ = ["plot_configuration"]
+__all__ = ["plot_configuration", "plot_motion_history", "plot_tension_history"]
 
 CMAP = "viridis"
 _MARKERS = {"fixed": ("s", "black"), "prescribed": ("^", "tab:red"), "free": ("o", "tab:blue")}
 _UNITS = {"SI": {"force": "N", "length": "m"}, "US": {"force": "lbf", "length": "ft"}}
+_MOVING = ("free", "prescribed")
 
 
 def plot_configuration(dataset: xr.Dataset, path_xz: str | Path, path_3d: str | Path) -> None:
@@ -190,3 +191,85 @@ def _bounds(segments: NDArray[np.float64],
     half = np.maximum((high - low) / 2, 0.1 * longest) + 0.05 * longest
     centre = (high + low) / 2
     return centre - half, centre + half
+
+
+# ----------------------------------------------------------------------------- time histories
+
+
+def plot_tension_history(dataset: xr.Dataset, path: str | Path) -> None:
+    """Plot the end-B (fairlead) tension of every line against time.
+
+    Parameters
+    ----------
+    dataset
+        A dynamics dataset (:meth:`moorline.results.DynamicResult.to_xarray` or the
+        ``dynamics`` group of a ``results.nc`` read back) with ``time`` and
+        ``end_force(time, line, end, xyz)`` (or ``end_tension(time, line, end)``); attributes
+        ``units`` and ``case``.
+    path
+        PNG file to write (parent directories are created).
+    """
+    units = _UNITS.get(str(dataset.attrs.get("units", "SI")), _UNITS["SI"])
+    time = np.asarray(dataset["time"].values, dtype=float)
+    if "end_tension" in dataset:
+        tension = np.asarray(dataset["end_tension"].values, dtype=float)
+    else:
+        tension = np.linalg.norm(np.asarray(dataset["end_force"].values, dtype=float), axis=-1)
+    fig = Figure(figsize=(9.0, 4.5), layout="constrained")
+    ax = fig.add_subplot()
+    for k, line in enumerate(str(n) for n in dataset["line"].values):
+        ax.plot(time, tension[:, k, 1], linewidth=1.0, label=line)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel(f"end B tension [{units['force']}]")
+    ax.set_title(_history_title(dataset, "line tension at end B"))
+    ax.grid(True, linewidth=0.3)
+    if len(dataset["line"]):
+        ax.legend(loc="best", fontsize=8)
+    _save(fig, Path(path))
+
+
+def plot_motion_history(dataset: xr.Dataset, path: str | Path) -> None:
+    """Plot x and z of every free and prescribed point against time (two panels).
+
+    Parameters
+    ----------
+    dataset
+        A dynamics dataset with ``time``, ``position(time, node, xyz)``, ``point_node(point)``
+        and the coordinate ``point_kind`` (without it every point is drawn).
+    path
+        PNG file to write (parent directories are created).
+    """
+    units = _UNITS.get(str(dataset.attrs.get("units", "SI")), _UNITS["SI"])
+    time = np.asarray(dataset["time"].values, dtype=float)
+    position = np.asarray(dataset["position"].values, dtype=float)
+    names = [str(n) for n in dataset["point"].values]
+    kinds = ([str(k) for k in dataset["point_kind"].values] if "point_kind" in dataset.coords
+             else list(_MOVING[:1]) * len(names))
+    nodes = (np.asarray(dataset["point_node"].values, dtype=int) if "point_node" in dataset
+             else np.arange(len(names)))
+    fig = Figure(figsize=(9.0, 6.0), layout="constrained")
+    axes = fig.subplots(2, 1, sharex=True)
+    drawn = 0
+    for name, kind, node in zip(names, kinds, nodes, strict=True):
+        if kind not in _MOVING:
+            continue
+        for ax, component in zip(axes, (0, 2), strict=True):
+            ax.plot(time, position[:, node, component], linewidth=1.0,
+                    label=f"{name} ({kind})")
+        drawn += 1
+    for ax, axis in zip(axes, "xz", strict=True):
+        ax.set_ylabel(f"{axis} [{units['length']}]")
+        ax.grid(True, linewidth=0.3)
+    axes[1].set_xlabel("time [s]")
+    axes[0].set_title(_history_title(dataset, "motion of free and prescribed points"))
+    if drawn:
+        axes[0].legend(loc="best", fontsize=8)
+    else:
+        axes[0].text(0.5, 0.5, "no free or prescribed points", transform=axes[0].transAxes,
+                     ha="center", va="center")
+    _save(fig, Path(path))
+
+
+def _history_title(dataset: xr.Dataset, what: str) -> str:
+    case = str(dataset.attrs.get("case", "")).strip()
+    return f"{case}: {what}" if case else what[:1].upper() + what[1:]

@@ -114,17 +114,25 @@ class StaticResult:
         return float(tributary[touching].sum())
 
     def to_xarray(self) -> xr.Dataset:
-        """The result as an :class:`xarray.Dataset` (dims node, element, xyz, line, end, point)."""
+        """The result as an :class:`xarray.Dataset` (dims node, element, xyz, line, end, point).
+
+        ``max_tension`` is the largest tension of each line, its end tensions included (as in
+        the ``--json`` summary); the attribute ``seabed_z`` (``-inf`` without seabed) and the
+        coordinate ``point_kind`` are there for the plots.
+        """
         m = self.mesh
         ends = np.array([[self.end_force(n, e) for e in "ab"] for n in m.line_names])
         ends = ends.reshape(len(m.line_names), 2, 3)
+        end_tension = np.linalg.norm(ends, axis=2)
+        max_tension = [float(np.nanmax([*self.line_tension(n), *end_tension[k]]))
+                       for k, n in enumerate(m.line_names)]
         ds = xr.Dataset(
             {
                 "position": (("node", "xyz"), self.positions),
                 "tension": (("element",), self.tension),
                 "end_force": (("line", "end", "xyz"), ends),
-                "end_tension": (("line", "end"), np.linalg.norm(ends, axis=2)),
-                "max_tension": (("line",), [self.line_tension(n).max() for n in m.line_names]),
+                "end_tension": (("line", "end"), end_tension),
+                "max_tension": (("line",), max_tension),
                 "seabed_length": (("line",), [self.seabed_length(n) for n in m.line_names]),
                 "point_position": (("point", "xyz"),
                                    self.positions[m.point_node].reshape(-1, 3)),
@@ -135,10 +143,12 @@ class StaticResult:
             coords={
                 "xyz": ["x", "y", "z"], "end": ["a", "b"], "line": list(m.line_names),
                 "point": list(m.point_names),
+                "point_kind": (("point",), list(m.point_kind)),
                 "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
             },
             attrs={
                 "analysis": "statics", "case": self.case, "units": self.units,
+                "seabed_z": float(m.seabed_z),
                 "moorline_version": __version__, "method": self.method,
                 "converged": int(self.success), "message": self.message,
                 "iterations": self.iterations, "load_steps": self.load_steps,
@@ -198,7 +208,12 @@ class DynamicResult:
 
     def to_xarray(self) -> xr.Dataset:
         """The histories as an :class:`xarray.Dataset` (dims time, node, element, xyz, line,
-        end)."""
+        end, point).
+
+        The same variables, coordinates and attributes as the ``dynamics`` group that
+        :class:`~moorline.io.stream.HistoryWriter` streams, plus ``end_tension`` and
+        ``fairlead_tension`` (end B).
+        """
         m = self.mesh
         end_tension = np.linalg.norm(self.end_force, axis=-1)
         ds = xr.Dataset(
@@ -210,16 +225,19 @@ class DynamicResult:
                 "end_tension": (("time", "line", "end"), end_tension),
                 "fairlead_tension": (("time", "line"), end_tension[:, :, 1]),
                 "element_nodes": (("element", "pair"), m.elements),
+                "point_node": (("point",), np.asarray(m.point_node, dtype=np.int64)),
             },
             coords={
                 "time": self.time, "xyz": ["x", "y", "z"], "end": ["a", "b"],
                 "line": list(m.line_names), "point": list(m.point_names),
+                "point_kind": (("point",), list(m.point_kind)),
                 "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
             },
             attrs={
                 "analysis": "dynamics", "case": self.case, "units": self.units,
                 "moorline_version": __version__, "success": int(self.success),
-                "message": self.message,
+                "complete": int(self.success), "message": self.message,
+                "seabed_z": float(m.seabed_z),
                 **{k: v for k, v in self.counters.items()},
                 **{f"setting_{k}": v for k, v in self.settings.items()},
             },

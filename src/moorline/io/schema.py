@@ -276,6 +276,7 @@ class DynamicsSpec(_Spec):
     stiffness_update: PositiveInt = 20
     max_step_cuts: Annotated[int, Field(ge=0, le=20)] = 6
     ramp_time: quantity("time", ge=0.0) = 0.0
+    viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
 
 
 # Add new analyses (modal, ...) as further members of this union.

@@ -1,4 +1,11 @@
-"""Result writers: NetCDF datasets and the run summary (``summary.json`` and ``summary.txt``).
+"""Result writers: the run's NetCDF results file and its summary (``summary.json``/``.txt``).
+
+A run writes one NetCDF-4 file, ``results.nc``, with one group per analysis (``statics``,
+``dynamics``; numbered when a kind repeats: ``statics1``, ``statics2``). Its root group holds
+only attributes: ``case``, ``units``, ``moorline_version``, ``analyses`` (the group names in
+order), ``complete`` (1 when every analysis ran to its end) and ``status``. Static groups are
+written whole with xarray (:func:`write_group`); time histories are streamed into their group by
+:class:`moorline.io.stream.HistoryWriter`.
 
 The summary is a plain dict (the object ``moorline statics --json`` prints). It is written
 twice: as JSON for scripts, and as a readable table (rendered with rich) for people.
@@ -24,9 +31,14 @@ from .units import DIMENSIONS
 
 __all__ = [
     "jsonable",
+    "read_group",
     "render_summary",
+    "result_groups",
+    "start_results",
     "summary_json",
     "summary_text",
+    "update_results",
+    "write_group",
     "write_netcdf",
     "write_summary",
 ]
@@ -51,6 +63,94 @@ def write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     ds.to_netcdf(path, engine="netcdf4")
     return path
+
+
+def start_results(path: str | Path, attrs: dict[str, Any]) -> Path:
+    """Create a fresh results file (replacing an old one) holding only root attributes.
+
+    Parameters
+    ----------
+    path
+        The file, usually ``out/<case>/results.nc`` (parent directories are created).
+    attrs
+        Root attributes (``case``, ``units``, ...); ``complete = 0`` and ``status =
+        "running"`` are added unless given.
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
+    import netCDF4
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.unlink(missing_ok=True)
+    with netCDF4.Dataset(path, "w", format="NETCDF4") as root:
+        root.setncatts(_nc_attrs({"complete": 0, "status": "running", **attrs}))
+    return path
+
+
+def update_results(path: str | Path, attrs: dict[str, Any]) -> None:
+    """Set root attributes of an existing results file (e.g. ``complete`` and ``status``)."""
+    import netCDF4
+
+    with netCDF4.Dataset(Path(path), "a") as root:
+        root.setncatts(_nc_attrs(attrs))
+
+
+def write_group(ds: xr.Dataset, path: str | Path, group: str) -> Path:
+    """Add ``ds`` as group ``group`` of the results file ``path`` (created if missing).
+
+    The group's name is appended to the root attribute ``analyses``.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if not path.exists():
+        start_results(path, {})
+    ds.to_netcdf(path, mode="a", group=group, engine="netcdf4")
+    add_analysis(path, group)
+    return path
+
+
+def add_analysis(path: str | Path, group: str) -> None:
+    """Append ``group`` to the root attribute ``analyses`` (comma-separated group names)."""
+    import netCDF4
+
+    with netCDF4.Dataset(Path(path), "a") as root:
+        names = [n for n in str(getattr(root, "analyses", "")).split(",") if n]
+        root.setncattr("analyses", ",".join([*names, group]))
+
+
+def result_groups(path: str | Path) -> dict[str, str]:
+    """The analysis groups of a results file, in order: group name -> analysis kind.
+
+    A file of one analysis without groups (an older ``statics.nc``) gives ``{"": kind}``.
+
+    Raises
+    ------
+    OSError
+        When the file cannot be opened as NetCDF.
+    """
+    import netCDF4
+
+    with netCDF4.Dataset(Path(path), "r") as root:
+        groups = {name: str(getattr(group, "analysis", ""))
+                  for name, group in root.groups.items()}
+        if not groups and "position" in root.variables:
+            groups = {"": str(getattr(root, "analysis", "statics"))}
+    return groups
+
+
+def read_group(path: str | Path, group: str) -> xr.Dataset:
+    """Load one group of a results file into memory (``""``: the root group)."""
+    with xr.open_dataset(Path(path), group=group or None, engine="netcdf4") as opened:
+        return opened.load()
+
+
+def _nc_attrs(attrs: dict[str, Any]) -> dict[str, Any]:
+    return {k: int(v) if isinstance(v, bool) else ("" if v is None else v)
+            for k, v in attrs.items()}
 
 
 def jsonable(value: Any) -> Any:
@@ -131,6 +231,8 @@ def render_summary(summary: dict) -> list[RenderableType]:
 
 def _render_analysis(summary: dict, units: str) -> list[RenderableType]:
     kind = summary.get("kind", "statics")
+    if kind == "dynamics":
+        return _render_dynamics(summary, units)
     if kind != "statics":
         return [Text(f"{kind}: {_status(summary.get('converged'))}")]
     units = summary.get("units", units)
@@ -142,6 +244,36 @@ def _render_analysis(summary: dict, units: str) -> list[RenderableType]:
         out.append(Text(str(summary["message"])))
     out.append(_lines_table(summary.get("lines", {}), force, length))
     out.append(_points_table(summary.get("points", {}), force, length))
+    return out
+
+
+def _render_dynamics(summary: dict, units: str) -> list[RenderableType]:
+    """Heading, end-tension statistics per line, motion extremes per point, counters."""
+    force, length = _unit("force", units), _unit("length", units)
+    head = (f"dynamics: {summary.get('message', '')}, output t = "
+            f"{_num(summary.get('time_start'))} to {_num(summary.get('time_end'))} s "
+            f"({summary.get('records', 0)} records)")
+    out: list[RenderableType] = [Text(head, style="bold")]
+    table = Table(title=escape(f"Line end tensions over the output records [{force}]"))
+    for name in ("line", "end", "max", "min", "mean", "std"):
+        table.add_column(name, justify="left" if name in ("line", "end") else "right")
+    for name, line in summary.get("lines", {}).items():
+        for end in ("a", "b"):
+            stats = line.get(f"end_{end}", {})
+            table.add_row(escape(name) if end == "a" else "", end,
+                          *_fmt(stats.get(k) for k in ("max", "min", "mean", "std")))
+    out.append(table)
+    points = Table(title=escape(f"Point motion extremes [{length}]"))
+    for name in ("point", "kind", "x min", "x max", "y min", "y max", "z min", "z max"):
+        points.add_column(name, justify="left" if name in ("point", "kind") else "right")
+    for name, point in summary.get("points", {}).items():
+        low, high = point.get("min", [None] * 3), point.get("max", [None] * 3)
+        points.add_row(escape(name), point.get("kind", ""),
+                       *[_num(v) for pair in zip(low, high, strict=True) for v in pair])
+    out.append(points)
+    counters = summary.get("counters") or {}
+    if counters:
+        out.append(Text("counters: " + ", ".join(f"{k} {v}" for k, v in counters.items())))
     return out
 
 

@@ -90,6 +90,9 @@ class DynamicsSettings:
         How many times a failing step may be halved before giving up.
     ramp_time
         Start-up ramp of waves and current [time].
+    viscoelastic_update
+        Standard linear solid update: ``exponential`` (exact integration of the Maxwell branch
+        over a step, accurate for any dt) or ``incremental`` (Tuah eq. 2.2.b.3).
     """
 
     kind: Literal["dynamics"] = "dynamics"
@@ -103,3 +106,4 @@ class DynamicsSettings:
     stiffness_update: int = 20
     max_step_cuts: int = 6
     ramp_time: float = 0.0
+    viscoelastic_update: Literal["exponential", "incremental"] = "exponential"

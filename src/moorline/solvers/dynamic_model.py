@@ -61,9 +61,12 @@ class DynamicModel:
         The discretized system.
     fluid
         Any object with ``kinematics(points, t) -> (velocity, acceleration, elevation)``.
+    viscoelastic_update
+        ``exponential`` (exact for strain linear over a step) or ``incremental`` (Tuah eq.
+        2.2.b.3, first order in dt).
     """
 
-    def __init__(self, mesh: Mesh, fluid) -> None:
+    def __init__(self, mesh: Mesh, fluid, viscoelastic_update: str = "exponential") -> None:
         self.mesh = mesh
         self.fluid = fluid
         static = StaticModel(mesh)
@@ -79,6 +82,7 @@ class DynamicModel:
         self.has_point_hydro = bool(np.any(m.node_Cd * m.node_drag_area > 0)
                                     or np.any(m.node_Ca * m.node_volume > 0))
         self.any_viscoelastic = bool(np.any(m.viscoelastic))
+        self.viscoelastic_update = viscoelastic_update
         # depth over which seabed damping builds up: a lying line's static penetration
         weight = np.maximum(static.external[:, 2] * -1.0, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -128,18 +132,25 @@ class DynamicModel:
         maxwell = previous.maxwell
         if self.any_viscoelastic:
             ve = m.viscoelastic
-            T_ve, maxwell_ve, k_ve = material.sls_update_exponential(
-                strain[ve], previous.strain[ve], previous.maxwell[ve], dt, m.EA[ve],
-                m.EA1[ve], m.tau[ve])
-            T_ve, k_ve = material.slack(T_ve, k_ve, strain[ve], m.EA[ve], m.slack_ratio[ve])
-            T, dT_deps = T.copy(), dT_deps.copy()
-            T[ve], dT_deps[ve] = T_ve, k_ve
-            maxwell = previous.maxwell.copy()
-            maxwell[ve] = maxwell_ve
+            T, dT_deps, maxwell = T.copy(), dT_deps.copy(), previous.maxwell.copy()
+            T[ve], maxwell[ve], dT_deps[ve] = self._viscoelastic(
+                strain[ve], previous.strain[ve], previous.maxwell[ve], dt, m.EA[ve], m.EA1[ve],
+                m.tau[ve], m.slack_ratio[ve])
         taut = strain > -m.slack_smoothing
         strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0
         T = T + np.where(taut, m.BA * strain_rate, 0.0)
         return T, dT_deps / m.length0, MaterialState(strain, maxwell), taut
+
+    def _viscoelastic(self, strain, strain_old, maxwell_old, dt, EA, EA1, tau, slack_ratio):
+        """Standard linear solid update: exact exponential integration of the Maxwell branch
+        (default) or the source's incremental form, Tuah (1982) eq. 2.2.b.3."""
+        if self.viscoelastic_update == "exponential":
+            return material.sls_update_exponential(strain, strain_old, maxwell_old, dt, EA, EA1,
+                                                   tau, slack_ratio)
+        tension_old = EA * strain_old + maxwell_old
+        T, k = material.sls_update_incremental(strain, strain_old, tension_old, dt, EA, EA1,
+                                               tau)
+        return T, T - EA * strain, k
 
     def _axial_tangent(self, length, unit, dv, T, dT_dl, taut):
         m = self.mesh

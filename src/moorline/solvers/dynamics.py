@@ -23,7 +23,7 @@ from ..mesh import Mesh, discretize
 from ..model import DynamicsSettings, StaticsSettings, System
 from ..results import DynamicResult, StaticResult
 from .assembly import gather_free, scatter_free
-from .dynamic_model import DynamicModel
+from .dynamic_model import DynamicModel, MaterialState
 from .equilibrium import StaticModel
 from .excitation import Excitation
 from .newmark import Coefficients, Stepper, StepState
@@ -41,6 +41,7 @@ def simulate(
     output_every: float | None = None,
     writer=None,
     progress: Callable[[float], None] | None = None,
+    maxwell: FloatArray | None = None,
 ) -> DynamicResult:
     """Run a time-domain analysis.
 
@@ -61,6 +62,9 @@ def simulate(
         Optional :class:`~moorline.io.stream.HistoryWriter` receiving every record.
     progress
         Called with the current time after every step.
+    maxwell
+        Initial Maxwell-branch force of viscoelastic elements (n_elements,); default relaxed
+        (zero) at the initial positions.
     """
     mesh = initial.mesh if isinstance(initial, StaticResult) else discretize(system)
     if initial is None:
@@ -70,9 +74,9 @@ def simulate(
                                    f"{initial.message}", time=0.0)
     x0 = initial.positions if isinstance(initial, StaticResult) else np.asarray(initial, float)
     fluid = fluid if fluid is not None else _fluid(system, settings)
-    model = DynamicModel(mesh, fluid)
+    model = DynamicModel(mesh, fluid, settings.viscoelastic_update)
     excitation = Excitation(system, mesh, x0)
-    state = _initial_state(model, excitation, x0, settings.dt)
+    state = _initial_state(model, excitation, x0, settings.dt, maxwell)
     scale = max(float(np.abs(model.external).max(initial=0.0)),
                 float(np.abs(state.evaluation.tension).max(initial=0.0)) * 1e-3, 1e-12)
     tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
@@ -113,7 +117,7 @@ def _fluid(system: System, settings: DynamicsSettings):
 
 
 def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
-                   dt: float) -> StepState:
+                   dt: float, maxwell: FloatArray | None = None) -> StepState:
     """Start at rest at the static state, with the acceleration the loads give at t = 0."""
     mesh = model.mesh
     x = x0.copy()
@@ -124,6 +128,8 @@ def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
     a = np.zeros_like(x)
     a[~mesh.free_nodes] = a_c
     material = model.initial_material(x)
+    if maxwell is not None:
+        material = MaterialState(material.strain, np.asarray(maxwell, dtype=float).copy())
     forces = excitation.point_forces(0.0, mesh.n_nodes)
     ev = model.evaluate(x, v, a, 0.0, material, dt, True, forces)
     mass = ev.node_M if ev.node_M is not None else np.zeros((mesh.n_nodes, 3, 3))

@@ -11,5 +11,7 @@ register("tuah-ex1", "tuah_ex1:run")
 register("tuah-ex2", "tuah_ex2:run")
 register("tcheou-t1", "tcheou_t1:run")
 register("oc3-line", "oc3_line:run")
+register("tuah-ex3", "tuah_ex3:run")
+register("tuah-ex4", "tuah_ex4:run")
 
 __all__ = ["CASES", "Row", "register", "run_cases"]
