@@ -1,8 +1,12 @@
 """The ``moorline`` command line: ``statics``, ``run``, ``verify`` and ``plot``.
 
+``statics`` and ``run`` write ``DIR/<case>/``: one results file ``results.nc`` with a NetCDF
+group per analysis (see :mod:`moorline.io.writers`), plots, ``summary.json`` and
+``summary.txt``. Each analysis kind a case may list has a runner in :data:`RUNNERS`.
+
 Exit codes: 0 success; 1 the analysis failed (no convergence, a verification row out of
 tolerance); 2 bad input (a case file that does not validate, a missing or unreadable file, an
-unknown name). Expected errors print ``error: <file>: <key path>: <reason>`` on stderr, never a
+unknown name); 130 interrupted (Ctrl-C: the results file keeps what was computed). Expected errors print ``error: <file>: <key path>: <reason>`` on stderr, never a
 traceback; unexpected exceptions are bugs and keep their traceback.
 
 With ``--json`` a command prints exactly one JSON document on stdout and nothing else; logs,
@@ -13,6 +17,7 @@ from __future__ import annotations
 
 import json
 import logging
+import math
 import re
 import sys
 from collections.abc import Callable, Iterator
@@ -32,7 +37,7 @@ from .errors import CaseError, ConvergenceError, MoorlineError
 
 logger = logging.getLogger(__name__)
 
-EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 F = TypeVar("F", bound=Callable[..., Any])
 
 
@@ -53,6 +58,12 @@ class _Cli(click.Group):
             _fail(str(exc), EXIT_FAILED)
         except OSError as exc:
             _fail(_describe_os_error(exc), EXIT_BAD_INPUT)
+        except _Interrupted as exc:
+            click.echo(str(exc), err=True)
+            raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
+        except KeyboardInterrupt:
+            click.echo("interrupted", err=True)
+            raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
 
 
 def _fail(message: str, code: int) -> None:
@@ -649,29 +660,56 @@ def _g(value: Any) -> str:
               help="Directory for the plots (default: next to RESULTS).")
 @_common_options
 def plot(results: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
-    """Plot the configuration saved in a statics RESULTS file (statics.nc)."""
-    _configure_logging(verbose)
-    import xarray as xr
+    """Plot a saved RESULTS file (results.nc) again.
 
-    from .plot import plot_configuration
+    Statics groups give configuration_xz.png and configuration_3d.png, dynamics groups
+    tension_history.png and motion_history.png (prefixed with the group name when a kind
+    repeats).
+    """
+    _configure_logging(verbose)
+    from .io.writers import read_group, result_groups
 
     if not results.is_file():
         raise CaseError("no such file", str(results))
     try:
-        with xr.open_dataset(results, engine="netcdf4") as opened:
-            ds = opened.load()
+        groups = result_groups(results)
+        datasets = {name: read_group(results, name) for name, kind in groups.items()
+                    if kind in ("statics", "dynamics")}
     except (OSError, ValueError) as exc:
         reason = getattr(exc, "strerror", None) or str(exc)
         raise CaseError(f"cannot read as a NetCDF results file ({reason})", str(results)) from exc
-    missing = [v for v in ("position", "element_nodes", "tension") if v not in ds.variables]
-    if missing or ds.attrs.get("analysis", "statics") != "statics":
-        raise CaseError(f"not a statics result (missing {', '.join(missing) or 'statics'})",
+    if not datasets:
+        raise CaseError("not a moorline results file (no statics or dynamics group)",
                         str(results))
     directory = out if out is not None else results.parent
-    xz, view3d = directory / "configuration_xz.png", directory / "configuration_3d.png"
+    files: list[Path] = []
     with _status("plotting ...", quiet):
-        plot_configuration(ds, xz, view3d)
-    _note(f"wrote {xz}, {view3d}", quiet)
+        for name, ds in datasets.items():
+            files.extend(_plot_group(ds, groups[name], name or groups[name], directory))
+    _note(f"wrote {', '.join(str(f) for f in files)}", quiet)
+
+
+def _plot_group(ds: Any, kind: str, label: str, directory: Path) -> list[Path]:
+    """The plots of one analysis group; returns the files written."""
+    from .plot import plot_configuration, plot_motion_history, plot_tension_history
+
+    prefix = _prefix(label, kind)
+    if kind == "statics":
+        missing = [v for v in ("position", "element_nodes", "tension") if v not in ds.variables]
+        if missing:
+            raise CaseError(f"group {label}: not a statics result (missing "
+                            f"{', '.join(missing)})")
+        files = [directory / f"{prefix}configuration_xz.png",
+                 directory / f"{prefix}configuration_3d.png"]
+        plot_configuration(ds, *files)
+        return files
+    if not ds.sizes.get("time", 0):
+        return []
+    files = [directory / f"{prefix}tension_history.png",
+             directory / f"{prefix}motion_history.png"]
+    plot_tension_history(ds, files[0])
+    plot_motion_history(ds, files[1])
+    return files
 
 
 def main() -> None:

@@ -140,8 +140,8 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
     env = system.environment
     lines = list(system.lines.values())
     props: dict[str, list[float]] = {k: [] for k in (
-        "EA", "EA1", "tau", "slack_ratio", "slack_smoothing", "BA", "viscoelastic", "mass_per_length",
-        "weight_per_length", "diameter", "Cd", "Ca", "Ct", "Cat")}
+        "EA", "EA1", "tau", "slack_ratio", "slack_smoothing", "BA", "viscoelastic",
+        "mass_per_length", "weight_per_length", "diameter", "Cd", "Ca", "Ct", "Cat")}
     for line in lines:
         lt = system.line_types[line.line_type]
         weight = (lt.mass_per_length - env.water_density * lt.area_displaced) * env.gravity

@@ -70,7 +70,7 @@ def start_positions(system: System) -> np.ndarray:
     x = mesh.node_position.copy()
     mass = mesh.point_node[mesh.point_index("mass")]
     x[mass, 2] = -D0
-    for k, nodes in enumerate(mesh.line_nodes):
+    for nodes in mesh.line_nodes:
         a, b = x[nodes[0]], x[nodes[-1]]
         s = np.linspace(0.0, 1.0, len(nodes))[:, None]
         x[nodes] = a + s * (b - a)
