@@ -22,7 +22,7 @@ ROOT = Path(__file__).resolve().parents[1]
 OC3 = ROOT / "cases" / "oc3_line.yaml"
 BAD = Path(__file__).resolve().parent / "data" / "bad"
 BAD_FILES = sorted(BAD.glob("*.yaml")) if BAD.is_dir() else []
-STATICS_FILES = ("statics.nc", "summary.json", "summary.txt", "configuration_xz.png",
+STATICS_FILES = ("results.nc", "summary.json", "summary.txt", "configuration_xz.png",
                  "configuration_3d.png")
 
 needs_oc3 = pytest.mark.skipif(not OC3.is_file(), reason="cases/oc3_line.yaml not present")
@@ -50,10 +50,17 @@ def test_statics_writes_results_summary_and_plots(statics_run: tuple[Result, Pat
         assert (directory / name).stat().st_size > 0, name
     assert json.loads((directory / "summary.json").read_text()) == json.loads(result.stdout)
     assert "line1" in (directory / "summary.txt").read_text()
-    with xr.open_dataset(directory / "statics.nc") as ds:
+    assert not (directory / "statics.nc").exists()
+    with xr.open_dataset(directory / "results.nc", group="statics") as ds:
         assert ds.attrs["case"] == "oc3-line"
         assert ds["position"].dims == ("node", "xyz")
         assert ds["tension"].sizes["element"] == 20
+        assert ds.attrs["seabed_z"] == pytest.approx(-320.0)
+        assert list(ds["point_kind"].values) == ["fixed", "prescribed"]
+        # max_tension includes the end tensions, as the JSON summary does
+        line = json.loads(result.stdout)["lines"]["line1"]
+        assert float(ds["max_tension"].sel(line="line1")) == pytest.approx(line["max_tension"])
+        assert float(ds["max_tension"].sel(line="line1")) >= line["end_b"]["tension"]
 
 
 @needs_oc3
@@ -114,15 +121,15 @@ def test_run_rejects_an_analysis_kind_without_runner(tmp_path: Path,
     from moorline import io as case_io
 
     @dataclasses.dataclass(frozen=True)
-    class Dynamics:
-        kind: str = "dynamics"
+    class Modes:
+        kind: str = "modes"
 
     system = case_io.load_case(OC3)
-    odd = dataclasses.replace(system, analyses=(*system.analyses, Dynamics()))
+    odd = dataclasses.replace(system, analyses=(*system.analyses, Modes()))
     monkeypatch.setattr(case_io, "load_case", lambda path: odd)
     result = _invoke("run", OC3, "--out", tmp_path)
     assert result.exit_code == 2
-    assert "'dynamics'" in result.stderr and "supported: statics" in result.stderr
+    assert "'modes'" in result.stderr and "supported: statics, dynamics" in result.stderr
     assert "Traceback" not in result.stderr
     assert not any(tmp_path.iterdir())  # checked before anything runs
 
@@ -130,7 +137,7 @@ def test_run_rejects_an_analysis_kind_without_runner(tmp_path: Path,
 @needs_oc3
 def test_plot_replots_a_saved_result(statics_run: tuple[Result, Path], tmp_path: Path) -> None:
     _, out = statics_run
-    result = _invoke("plot", out / "oc3-line" / "statics.nc", "--out", tmp_path, "--quiet")
+    result = _invoke("plot", out / "oc3-line" / "results.nc", "--out", tmp_path, "--quiet")
     assert result.exit_code == 0, result.stderr
     assert (tmp_path / "configuration_xz.png").stat().st_size > 0
     assert (tmp_path / "configuration_3d.png").stat().st_size > 0
@@ -147,6 +154,28 @@ def test_plot_rejects_a_file_that_is_not_netcdf(statics_run: tuple[Result, Path]
 
 
 @needs_oc3
+def test_plot_reads_a_single_statics_dataset(tmp_path: Path) -> None:
+    """A file of one statics dataset without groups (``ds.to_netcdf``) plots too."""
+    from moorline import io as case_io
+    from moorline.solvers.statics import solve_statics
+
+    path = tmp_path / "statics.nc"
+    solve_statics(case_io.load_case(OC3)).to_xarray().to_netcdf(path)
+    result = _invoke("plot", path, "--quiet")
+    assert result.exit_code == 0, result.stderr
+    assert (tmp_path / "configuration_xz.png").stat().st_size > 0
+
+
+def test_plot_rejects_netcdf_without_results(tmp_path: Path) -> None:
+    path = tmp_path / "other.nc"
+    xr.Dataset({"a": ("x", [1.0, 2.0])}).to_netcdf(path)
+    result = _invoke("plot", path)
+    assert result.exit_code == 2
+    assert result.stderr.strip() == (f"error: {path}: not a moorline results file "
+                                     "(no statics or dynamics group)")
+
+
+@needs_oc3
 def test_failed_solve_exits_1_with_message(tmp_path: Path) -> None:
     case = yaml.safe_load(OC3.read_text())
     case["analyses"] = [{"kind": "statics", "method": "newton", "max_iterations": 1,
@@ -159,7 +188,9 @@ def test_failed_solve_exits_1_with_message(tmp_path: Path) -> None:
     message = result.stderr.strip().splitlines()
     assert len(message) == 1 and message[0].startswith(f"error: {path}: statics failed: ")
     assert "did not converge" in message[0]
-    assert (tmp_path / "out" / "oc3-line" / "statics.nc").is_file()  # written for diagnosis
+    path = tmp_path / "out" / "oc3-line" / "results.nc"  # written for diagnosis
+    with xr.open_dataset(path, group="statics") as ds:
+        assert ds.attrs["converged"] == 0
 
 
 def test_verify_json_is_a_list_of_rows() -> None:
@@ -234,4 +265,4 @@ def test_summary_json_is_strict() -> None:
 
 def test_cli_module_exposes_main() -> None:
     assert callable(cli_module.main)
-    assert "statics" in cli_module.RUNNERS
+    assert {"statics", "dynamics"} <= set(cli_module.RUNNERS)

@@ -52,18 +52,34 @@ def test_tension_is_linear_in_stretch_and_tiny_in_compression():
     assert T[1] == pytest.approx(-100.0 * 1e-6 * 0.1, rel=1e-12)
 
 
-def test_seabed_tangent_matches_finite_differences():
-    x = np.array([[0.0, 0.0, -10.01], [1.0, 0.0, -9.5]])
-    k = np.array([5.0, 5.0])
-    f, kt = seabed.contact_forces(x, -10.0, k)
-    h = 1e-7
-    xp, xm = x.copy(), x.copy()
-    xp[0, 2] += h
-    xm[0, 2] -= h
-    fd = -(seabed.contact_forces(xp, -10.0, k)[0][0, 2]
-           - seabed.contact_forces(xm, -10.0, k)[0][0, 2]) / (2 * h)
-    assert fd == pytest.approx(kt[0], rel=1e-6)
-    assert f[0, 2] == pytest.approx(5.0 * 0.01, rel=1e-9) and f[1, 2] == 0.0
+@pytest.mark.parametrize("depth_in", [0.0005, 0.002, 0.05])  # in the blend band and beyond
+def test_seabed_contact_derivatives_and_energy_match_finite_differences(depth_in):
+    height, vz = np.array([-depth_in]), np.array([-0.3])
+    k, c, ramp = np.array([5.0e4]), np.array([2.0e3]), np.array([0.001])
+    f, dz, dv = seabed.contact_force(height, vz, k, c, ramp)
+    h = 1e-8
+    fd_z = (seabed.contact_force(height + h, vz, k, c, ramp)[0]
+            - seabed.contact_force(height - h, vz, k, c, ramp)[0]) / (2 * h)
+    fd_v = (seabed.contact_force(height, vz + h, k, c, ramp)[0]
+            - seabed.contact_force(height, vz - h, k, c, ramp)[0]) / (2 * h)
+    assert dz[0] == pytest.approx(fd_z[0], rel=1e-6)
+    assert dv[0] == pytest.approx(fd_v[0], rel=1e-6)
+    # the spring is the derivative of the stored energy (no damping)
+    zero = np.zeros(1)
+    spring = seabed.contact_force(height, zero, k, zero, ramp)[0][0]
+    dE = (seabed.contact_energy(height - h, k, ramp)
+          - seabed.contact_energy(height + h, k, ramp)) / (2 * h)
+    assert spring == pytest.approx(dE, rel=1e-5)
+    # beyond the band: MoorDyn's spring, shifted by half the band
+    if depth_in > ramp[0]:
+        assert spring == pytest.approx(k[0] * (depth_in - ramp[0] / 2), rel=1e-12)
+
+
+def test_seabed_force_is_continuous_at_touchdown():
+    k, c, ramp = np.array([5.0e4]), np.array([2.0e3]), np.array([0.001])
+    f_out = seabed.contact_force(np.array([1e-12]), np.array([-1.0]), k, c, ramp)[0]
+    f_in = seabed.contact_force(np.array([-1e-12]), np.array([-1.0]), k, c, ramp)[0]
+    assert abs(f_in[0] - f_out[0]) < 1e-5
 
 
 def test_consistent_and_lumped_mass_carry_the_element_mass():

@@ -6,8 +6,9 @@ group per analysis (see :mod:`moorline.io.writers`), plots, ``summary.json`` and
 
 Exit codes: 0 success; 1 the analysis failed (no convergence, a verification row out of
 tolerance); 2 bad input (a case file that does not validate, a missing or unreadable file, an
-unknown name); 130 interrupted (Ctrl-C: the results file keeps what was computed). Expected errors print ``error: <file>: <key path>: <reason>`` on stderr, never a
-traceback; unexpected exceptions are bugs and keep their traceback.
+unknown name); 130 interrupted (Ctrl-C: the results file keeps what was computed). Expected
+errors print ``error: <file>: <key path>: <reason>`` on stderr, never a traceback; unexpected
+exceptions are bugs and keep their traceback.
 
 With ``--json`` a command prints exactly one JSON document on stdout and nothing else; logs,
 progress and errors go to stderr. This is the only module that configures ``logging``.
@@ -58,7 +59,7 @@ class _Cli(click.Group):
             _fail(str(exc), EXIT_FAILED)
         except OSError as exc:
             _fail(_describe_os_error(exc), EXIT_BAD_INPUT)
-        except _Interrupted as exc:
+        except _RunInterruptedError as exc:
             click.echo(str(exc), err=True)
             raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
         except KeyboardInterrupt:
@@ -275,7 +276,7 @@ class RunContext:
         return next((o for o in reversed(self.outcomes) if o.kind == kind), None)
 
 
-class _Interrupted(Exception):
+class _RunInterruptedError(Exception):
     """Ctrl-C during a run, with the line to print (exit code 130)."""
 
 
@@ -314,9 +315,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     Starts from the preceding statics result of the run when there is one (otherwise the
     solver solves statics itself). A :class:`~moorline.errors.ConvergenceError` ends the
     analysis as failed: the group keeps the records computed so far (``complete = 0``).
-    Ctrl-C closes the group the same way and raises :class:`_Interrupted`.
+    Ctrl-C closes the group the same way and raises :class:`_RunInterruptedError`.
     """
-    from .errors import ConvergenceError
     from .io.writers import read_group
     from .mesh import discretize
     from .plot import plot_motion_history, plot_tension_history
@@ -480,7 +480,7 @@ def _analysis_kind(analysis: Any) -> str:
 
 def _run_analyses(context: RunContext, analyses: list[Any], kinds: list[str]) -> None:
     """Run the analyses in order into ``context`` (stopping after one that fails), then mark
-    the results file complete or not; Ctrl-C becomes :class:`_Interrupted`."""
+    the results file complete or not; Ctrl-C becomes :class:`_RunInterruptedError`."""
     from .io.writers import start_results, update_results
 
     system = context.system
@@ -497,7 +497,7 @@ def _run_analyses(context: RunContext, analyses: list[Any], kinds: list[str]) ->
     except KeyboardInterrupt:
         when = f"at t = {context.time:.6g} s" if context.time is not None else f"in {label}"
         update_results(context.results, {"complete": 0, "status": f"interrupted {when}"})
-        raise _Interrupted(f"interrupted {when}; results so far in "
+        raise _RunInterruptedError(f"interrupted {when}; results so far in "
                            f"{context.results}") from None
     failed = [o for o in context.outcomes if not o.success]
     status = f"{failed[0].kind} failed: {failed[0].message}" if failed else "complete"

@@ -34,10 +34,11 @@ def plot_configuration(dataset: xr.Dataset, path_xz: str | Path, path_3d: str | 
     Parameters
     ----------
     dataset
-        A statics dataset (:meth:`moorline.results.StaticResult.to_xarray` or a ``statics.nc``
-        read back) with variables ``position(node, xyz)``, ``element_nodes(element, pair)``,
-        ``tension(element)``, optionally ``point_position(point, xyz)`` and the coordinates
-        ``element_line`` and ``point_kind``; attributes ``units`` (``SI`` or ``US``), ``case`` and
+        A statics dataset (:meth:`moorline.results.StaticResult.to_xarray` or the ``statics``
+        group of a ``results.nc`` read back) with variables ``position(node, xyz)``,
+        ``element_nodes(element, pair)``, ``tension(element)``, optionally
+        ``point_position(point, xyz)`` and the coordinates ``element_line`` and
+        ``point_kind``; attributes ``units`` (``SI`` or ``US``), ``case`` and
         optionally ``seabed_z`` (drawn when finite).
     path_xz, path_3d
         PNG files to write (parent directories are created).
@@ -224,7 +225,7 @@ def plot_tension_history(dataset: xr.Dataset, path: str | Path) -> None:
     ax.set_title(_history_title(dataset, "line tension at end B"))
     ax.grid(True, linewidth=0.3)
     if len(dataset["line"]):
-        ax.legend(loc="best", fontsize=8)
+        fig.legend(loc="outside right upper", fontsize=8)
     _save(fig, Path(path))
 
 
@@ -244,7 +245,7 @@ def plot_motion_history(dataset: xr.Dataset, path: str | Path) -> None:
     position = np.asarray(dataset["position"].values, dtype=float)
     names = [str(n) for n in dataset["point"].values]
     kinds = ([str(k) for k in dataset["point_kind"].values] if "point_kind" in dataset.coords
-             else list(_MOVING[:1]) * len(names))
+             else [_MOVING[0]] * len(names))
     nodes = (np.asarray(dataset["point_node"].values, dtype=int) if "point_node" in dataset
              else np.arange(len(names)))
     fig = Figure(figsize=(9.0, 6.0), layout="constrained")
@@ -263,7 +264,7 @@ def plot_motion_history(dataset: xr.Dataset, path: str | Path) -> None:
     axes[1].set_xlabel("time [s]")
     axes[0].set_title(_history_title(dataset, "motion of free and prescribed points"))
     if drawn:
-        axes[0].legend(loc="best", fontsize=8)
+        fig.legend(*axes[0].get_legend_handles_labels(), loc="outside right upper", fontsize=8)
     else:
         axes[0].text(0.5, 0.5, "no free or prescribed points", transform=axes[0].transAxes,
                      ha="center", va="center")

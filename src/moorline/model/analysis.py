@@ -80,7 +80,8 @@ class DynamicsSettings:
         (eq. 4.2.10) is below tolerance; ``residual_feedback``: one solve per step, the
         residual carried into the next; ``incremental``: one solve per step, no correction.
     tolerance
-        Residual tolerance relative to the largest nodal load.
+        Residual tolerance relative to the force scale: the larger of the largest nodal load
+        and the largest initial tension.
     max_iterations
         Newton iterations per step before the step is cut.
     stiffness_update

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..physics import element, hydro, material
+from ..physics import element, hydro, material, seabed
 from .equilibrium import StaticModel
 
 FloatArray = NDArray[np.float64]
@@ -83,11 +83,7 @@ class DynamicModel:
                                     or np.any(m.node_Ca * m.node_volume > 0))
         self.any_viscoelastic = bool(np.any(m.viscoelastic))
         self.viscoelastic_update = viscoelastic_update
-        # depth over which seabed damping builds up: a lying line's static penetration
-        weight = np.maximum(static.external[:, 2] * -1.0, 0.0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ramp = np.where(self.k_seabed > 0, weight / self.k_seabed, 0.0)
-        self.seabed_ramp = np.maximum(ramp, 1e-3 * float(np.max(m.diameter, initial=1.0)))
+        self.seabed_ramp = static.seabed_ramp
 
     def initial_material(self, x: FloatArray) -> MaterialState:
         """Material state in equilibrium at positions ``x`` (relaxed Maxwell branch)."""
@@ -197,8 +193,9 @@ class DynamicModel:
         node_C = np.zeros((n, 3, 3)) if tangent else None
         node_M = None
         if np.isfinite(m.seabed_z):
-            fz, dfz_dz, dfz_dv = _seabed_contact(x[:, 2] - m.seabed_z, v[:, 2], self.k_seabed,
-                                                 self.c_seabed, self.seabed_ramp)
+            fz, dfz_dz, dfz_dv = seabed.contact_force(x[:, 2] - m.seabed_z, v[:, 2],
+                                                      self.k_seabed, self.c_seabed,
+                                                      self.seabed_ramp)
             nodal[:, 2] += fz
             if tangent:
                 node_K[:, 2, 2] = -dfz_dz
@@ -216,31 +213,6 @@ class DynamicModel:
         if tangent:
             out.update(node_K=node_K, node_C=node_C, node_M=node_M)
         return nodal, inertial, out
-
-
-def _seabed_contact(height: FloatArray, vz: FloatArray, k: FloatArray, c: FloatArray,
-                    ramp: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Vertical seabed reaction on nodes at ``height`` above the seabed (negative: inside).
-
-    A penalty spring ``k p`` (MoorDyn's kBot times the contact area) and a damper ``-c v_z``
-    (cBot) whose strength builds up linearly over the first ``ramp`` of penetration. MoorDyn
-    switches the damper on at first contact, which makes the force jump by ``c v_z`` as a node
-    lands; an implicit Newton iteration cannot converge across such a jump, so the damper is
-    ramped in (over the static penetration of a lying line, a few millimetres for chain).
-
-    Returns
-    -------
-    force, dforce_dz, dforce_dvz
-        Upward force and its derivatives (n_nodes,).
-    """
-    p = -height
-    touching = p > 0
-    share = np.clip(p / ramp, 0.0, 1.0)
-    in_ramp = touching & (p < ramp)
-    force = np.where(touching, k * p - c * share * vz, 0.0)
-    d_dz = np.where(touching, -k + np.where(in_ramp, c * vz / ramp, 0.0), 0.0)
-    d_dv = np.where(touching, -c * share, 0.0)
-    return force, d_dz, d_dv
 
 
 def _axial_damping_blocks(unit: FloatArray, c: FloatArray) -> FloatArray:

@@ -77,8 +77,9 @@ def simulate(
     model = DynamicModel(mesh, fluid, settings.viscoelastic_update)
     excitation = Excitation(system, mesh, x0)
     state = _initial_state(model, excitation, x0, settings.dt, maxwell)
+    # force scale of the residual tolerance: the larger of the nodal loads and the tensions
     scale = max(float(np.abs(model.external).max(initial=0.0)),
-                float(np.abs(state.evaluation.tension).max(initial=0.0)) * 1e-3, 1e-12)
+                float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
     tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
     stepper = Stepper(model, Coefficients.for_scheme(settings.scheme, settings.alpha),
                       settings.variant, tolerance, settings.max_iterations,

@@ -42,6 +42,8 @@ class StaticModel:
         ext[:, 2] += (rho * mesh.node_volume - mesh.node_mass) * g
         self.external = ext + mesh.node_force
         self.node_seabed_stiffness = mesh.seabed_stiffness_per_area * mesh.node_contact_area
+        self.seabed_ramp = seabed.contact_ramp(-ext[:, 2], self.node_seabed_stiffness,
+                                               float(np.max(mesh.diameter, initial=0.0)))
 
     def forces(self, x: FloatArray, lam: float = 1.0) -> ForceState:
         """All nodal forces at positions ``x`` (n_nodes, 3) with the loads scaled by ``lam``."""
@@ -53,7 +55,7 @@ class StaticModel:
         nodal = lam * self.external
         nodal = nodal + _sum_to_nodes(el_forces, m.elements, m.n_nodes)
         if np.isfinite(m.seabed_z):
-            nodal = nodal + seabed.contact_forces(x, m.seabed_z, self.node_seabed_stiffness)[0]
+            nodal[:, 2] += self._seabed(x)[0]
         return ForceState(tension, el_forces, nodal, length)
 
     def residual(self, x: FloatArray, lam: float = 1.0) -> tuple[FloatArray, ForceState]:
@@ -70,10 +72,14 @@ class StaticModel:
         blocks = element.tangent_blocks(length, unit, tension, dT)
         node_blocks = None
         if np.isfinite(m.seabed_z):
-            k_sb = seabed.contact_forces(x, m.seabed_z, self.node_seabed_stiffness)[1]
             node_blocks = np.zeros((m.n_nodes, 3, 3))
-            node_blocks[:, 2, 2] = k_sb
+            node_blocks[:, 2, 2] = -self._seabed(x)[1]
         return (pattern or self.pattern).assemble(blocks, node_blocks)
+
+    def _seabed(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        zero = np.zeros(self.mesh.n_nodes)
+        return seabed.contact_force(x[:, 2] - self.mesh.seabed_z, zero,
+                                    self.node_seabed_stiffness, zero, self.seabed_ramp)
 
     def potential_energy(self, x: FloatArray, lam: float = 1.0) -> float:
         """Total potential energy: strain and seabed energy minus the work of the loads.
@@ -86,7 +92,8 @@ class StaticModel:
         energy = float(element.strain_energy(length, m.length0, m.EA, m.slack_ratio,
                                                       m.slack_smoothing).sum())
         if np.isfinite(m.seabed_z):
-            energy += seabed.contact_energy(x, m.seabed_z, self.node_seabed_stiffness)
+            energy += seabed.contact_energy(x[:, 2] - m.seabed_z, self.node_seabed_stiffness,
+                                            self.seabed_ramp)
         return energy - lam * float(np.sum(self.external * x))
 
     def load_scale(self) -> float:

@@ -1,0 +1,405 @@
+"""Run MoorDyn-C (through its ``moordyn`` Python package) on a moorline :class:`System`.
+
+The system is written as a MoorDyn v2 deck (:func:`moorline.io.moordyn.write_moordyn`) in a
+temporary directory; its prescribed points become MoorDyn ``Coupled`` points and are driven
+along their :attr:`Point.motion` through the coupling interface:
+
+- ``moordyn.Create(deck)``, ``moordyn.Init(md, x0, 0)``: MoorDyn's own initial condition (a
+  stationary solve, tightened through ``threshIC`` so both codes start from equilibrium). The
+  velocity passed to ``Init`` must be zero: MoorDyn moves coupled points with it during the
+  initial-condition solve, which then ends far from the static state,
+- ``moordyn.Step(md, x, v, t, h)`` once per coupling interval ``h``: MoorDyn sub-steps with its
+  ``dtM`` and moves each coupled point linearly, ``x + v (t' - t)``, within the interval (as
+  when coupled to a floating-body code); it returns the forces on the coupled points,
+- ``moordyn.GetLine``, ``GetLineN``, ``GetLineNodeForce`` (net force on an end node = force
+  the line exerts on its end point, the same quantity as moorline's
+  :meth:`~moorline.results.StaticResult.end_force`), ``GetLineFairTen`` (MoorDyn's own
+  ``FairTen``: the top segment's tension, without the end node's weight),
+  ``GetPoint``/``GetPointForce``, ``moordyn.Close``.
+
+MoorDyn prints a banner on the C ``stdout`` when it is created; ``quiet=True`` sends it to
+``/dev/null`` while ``Create`` and ``Init`` run.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import math
+import os
+import sys
+import tempfile
+import time
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import CaseError
+from ..io.moordyn import unsupported_features, write_moordyn
+from ..model import Motion, System
+from ..solvers.excitation import motion_value
+
+FloatArray = NDArray[np.float64]
+Kinematics = Callable[[float], tuple[Any, Any]]
+logger = logging.getLogger(__name__)
+
+
+@dataclass
+class _Coupled:
+    """A coupled (prescribed) point: name, base position and how it moves."""
+
+    name: str
+    base: FloatArray
+    motion: Motion | Kinematics | None
+
+    def state(self, t: float) -> tuple[FloatArray, FloatArray]:
+        if self.motion is None:
+            return self.base, np.zeros(3)
+        if isinstance(self.motion, Motion):
+            d, v, _ = motion_value(self.motion, t)
+            return self.base + d, v
+        x, v = self.motion(t)
+        return np.asarray(x, dtype=float), np.asarray(v, dtype=float)
+
+
+def _import_moordyn() -> Any:
+    try:
+        import moordyn
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise ImportError("the MoorDyn comparison needs the 'moordyn' package "
+                          "(pip install moorline[compare])") from exc
+    return moordyn
+
+
+@contextlib.contextmanager
+def _silenced_stdout(active: bool) -> Iterator[None]:
+    """Send the process's file descriptor 1 to /dev/null (MoorDyn writes there from C++)."""
+    if not active:
+        yield
+        return
+    try:
+        sys.stdout.flush()
+        saved = os.dup(1)
+    except (OSError, ValueError, AttributeError):
+        yield
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+        os.close(devnull)
+
+
+def _coupled_points(system: System, prescribed: Mapping[str, Motion | Kinematics] | None
+                    ) -> list[_Coupled]:
+    prescribed = dict(prescribed or {})
+    unknown = [n for n in prescribed
+               if n not in system.points or system.points[n].kind != "prescribed"]
+    if unknown:
+        raise CaseError(f"prescribed motion given for {', '.join(unknown)}, which are not "
+                        "prescribed points", file=system.source, field="points")
+    return [_Coupled(p.name, np.asarray(p.position, dtype=float),
+                     prescribed.get(p.name, p.motion))
+            for p in system.points.values() if p.kind == "prescribed"]
+
+
+def _check_system(system: System) -> None:
+    errors, omissions = unsupported_features(system)
+    dynamic = [o for o in omissions if o in ("current", "waves") or "force_history" in o]
+    if errors or dynamic:
+        raise CaseError("MoorDyn comparison cannot represent: " + "; ".join(errors + dynamic),
+                        file=system.source)
+
+
+def _steps(duration: float, step: float, what: str) -> int:
+    n = int(round(duration / step))
+    if n < 1 or abs(n * step - duration) > 1e-6 * step:
+        raise ValueError(f"{what} ({duration:g}) must be a positive multiple of the coupling "
+                         f"interval ({step:g})")
+    return n
+
+
+class _Recorder:
+    """Collects end forces of every line and the forces on the coupled points."""
+
+    def __init__(self, md: Any, moordyn: Any, system: System, coupled: list[_Coupled],
+                 capacity: int) -> None:
+        self._md = moordyn
+        self.lines = [moordyn.GetLine(md, i) for i in range(1, len(system.lines) + 1)]
+        self.n_seg = [moordyn.GetLineN(line) for line in self.lines]
+        ids = {name: i for i, name in enumerate(system.points, start=1)}
+        self.points = [moordyn.GetPoint(md, ids[c.name]) for c in coupled]
+        self.time = np.full(capacity, np.nan)
+        self.end_force = np.full((capacity, len(self.lines), 2, 3), np.nan)
+        self.fair_ten = np.full((capacity, len(self.lines)), np.nan)
+        self.point_force = np.full((capacity, len(coupled), 3), np.nan)
+        self.count = 0
+
+    def record(self, t: float, point_forces: Any | None = None) -> bool:
+        """Store one sample; False when a value is not finite."""
+        md, k = self._md, self.count
+        self.time[k] = t
+        for j, (line, n) in enumerate(zip(self.lines, self.n_seg, strict=True)):
+            self.end_force[k, j, 0] = md.GetLineNodeForce(line, 0)
+            self.end_force[k, j, 1] = md.GetLineNodeForce(line, n)
+            self.fair_ten[k, j] = md.GetLineFairTen(line)
+        if point_forces is None:
+            point_forces = [c for p in self.points for c in md.GetPointForce(p)]
+        self.point_force[k] = np.asarray(point_forces, dtype=float).reshape(-1, 3)
+        self.count += 1
+        return bool(np.isfinite(self.end_force[k]).all() and np.isfinite(self.point_force[k]).all())
+
+
+def run_moordyn(system: System, duration: float, dt: float, output_every: float,
+                prescribed: Mapping[str, Motion | Kinematics] | None = None, *,
+                coupling_dt: float | None = None, tmax_ic: float = 1000.0,
+                thresh_ic: float = 1.0e-5, time_scheme: str | None = None,
+                workdir: str | Path | None = None, quiet: bool = True) -> dict[str, Any]:
+    """Simulate ``system`` with MoorDyn from its static equilibrium.
+
+    Parameters
+    ----------
+    system
+        The problem (fixed, free and prescribed points, lines; no current or waves).
+    duration
+        Simulated time [s]; a multiple of the coupling interval.
+    dt
+        MoorDyn's internal time step ``dtM`` [s] (explicit ``RK2`` unless ``time_scheme``).
+    output_every
+        Sampling interval of the returned histories [s]; a multiple of the coupling interval.
+    prescribed
+        Optional motions overriding :attr:`Point.motion` of named prescribed points: a
+        :class:`~moorline.model.Motion` (displacement added to the point's position, evaluated
+        with :func:`moorline.solvers.excitation.motion_value`) or a callable ``t -> (position,
+        velocity)`` (absolute). Points with neither stay still.
+    coupling_dt
+        Interval between ``moordyn.Step`` calls [s]; default ``output_every``. Within it MoorDyn
+        moves the coupled points with constant velocity (error ``a h^2 / 2``: 2.5 mm for 5 m at
+        10 s and ``h = 0.05``). ``coupling_dt = dt`` gives exact kinematics every step at the
+        price of one Python call per step.
+    tmax_ic, thresh_ic
+        MoorDyn initial-condition options (see :func:`~moorline.io.moordyn.write_moordyn`).
+    time_scheme
+        MoorDyn ``tScheme`` (default ``RK2``).
+    workdir
+        Directory to write the deck (and MoorDyn's outputs) into and keep; default: a
+        temporary directory, removed afterwards.
+    quiet
+        Silence MoorDyn's console output.
+
+    Returns
+    -------
+    dict
+        ``time`` (n_t,); ``end_force`` (n_t, n_lines, 2, 3): force each line exerts on its end
+        points A and B; ``fairlead_tension`` (n_t, n_lines): ``|end_force[..., 1, :]|`` (as
+        moorline's ``fairlead_tension``); ``fairlead_tension_segment`` (n_t, n_lines):
+        MoorDyn's ``FairTen`` (top segment); ``point_force``: ``{name: (n_t, 3)}`` force on
+        each coupled point; ``lines``, ``coupled_points``: names in order; ``success``,
+        ``message``; ``wall_time_loop`` (the stepping loop only), ``wall_time_init``
+        (``Create`` + ``Init``: reading and the static solve), ``wall_time_total`` (deck
+        writing to ``Close``); ``dtM``, ``coupling_dt``, ``n_steps`` (MoorDyn steps),
+        ``deck`` (path, or None when the directory was temporary).
+    """
+    moordyn = _import_moordyn()
+    _check_system(system)
+    coupling_dt = float(output_every if coupling_dt is None else coupling_dt)
+    n_couple = _steps(duration, coupling_dt, "duration")
+    stride = _steps(output_every, coupling_dt, "output_every")
+    coupled = _coupled_points(system, prescribed)
+    start = time.perf_counter()
+    with contextlib.ExitStack() as stack:
+        folder = Path(workdir) if workdir is not None else Path(
+            stack.enter_context(tempfile.TemporaryDirectory(prefix="moorline-moordyn-")))
+        folder.mkdir(parents=True, exist_ok=True)
+        deck = write_moordyn(system, folder / "moorline.dat", dt, tmax_ic=tmax_ic,
+                             thresh_ic=thresh_ic, time_scheme=time_scheme)
+        result = _simulate(moordyn, system, deck, coupled, n_couple, stride, coupling_dt, quiet)
+    result.update(dtM=float(dt), coupling_dt=coupling_dt,
+                  n_steps=n_couple * max(1, math.ceil(coupling_dt / dt - 1e-9)),
+                  wall_time_total=time.perf_counter() - start,
+                  deck=str(deck) if workdir is not None else None)
+    return result
+
+
+def _simulate(moordyn: Any, system: System, deck: Path, coupled: list[_Coupled],
+              n_couple: int, stride: int, h: float, quiet: bool) -> dict[str, Any]:
+    start = time.perf_counter()
+    with _silenced_stdout(quiet):
+        md = moordyn.Create(str(deck))
+        try:
+            if quiet:
+                moordyn.SetVerbosity(md, moordyn.LEVEL_ERR)
+            expected = 3 * len(coupled)
+            if moordyn.NCoupledDOF(md) != expected:
+                raise RuntimeError(f"MoorDyn expects {moordyn.NCoupledDOF(md)} coupled degrees "
+                                   f"of freedom, moorline has {expected}")
+            # zero velocity: MoorDyn moves coupled points with it during its IC solve
+            x0, _ = _coupled_state(coupled, 0.0)
+            status = moordyn.Init(md, x0, [0.0] * len(x0))
+        except BaseException:
+            moordyn.Close(md)
+            raise
+    try:
+        if status:
+            raise RuntimeError(f"moordyn.Init failed with error code {status}")
+        init_time = time.perf_counter() - start
+        recorder = _Recorder(md, moordyn, system, coupled, n_couple // stride + 1)
+        ok = recorder.record(0.0)
+        message, loop_time = "completed", 0.0
+        if not ok:
+            message = "non-finite forces after the initial condition"
+        else:
+            message, loop_time = _loop(moordyn, md, recorder, coupled, n_couple, stride, h)
+    finally:
+        moordyn.Close(md)
+    return _collect(system, coupled, recorder, message, init_time, loop_time)
+
+
+def _coupled_state(coupled: list[_Coupled], t: float) -> tuple[list[float], list[float]]:
+    x, v = [], []
+    for c in coupled:
+        xi, vi = c.state(t)
+        x.extend(float(a) for a in xi)
+        v.extend(float(a) for a in vi)
+    return x, v
+
+
+def _loop(moordyn: Any, md: Any, recorder: _Recorder, coupled: list[_Coupled], n_couple: int,
+          stride: int, h: float, chunk: int = 2048) -> tuple[str, float]:
+    """Step MoorDyn; kinematics are evaluated in chunks outside the timed region."""
+    loop_time = 0.0
+    for first in range(0, n_couple, chunk):
+        states = [_coupled_state(coupled, i * h) for i in range(first, min(first + chunk,
+                                                                            n_couple))]
+        tic = time.perf_counter()
+        for offset, (x, v) in enumerate(states):
+            i = first + offset
+            try:
+                forces = moordyn.Step(md, x, v, i * h, h)
+            except Exception as exc:  # MoorDyn raises on NaN / integration failure
+                loop_time += time.perf_counter() - tic
+                return f"MoorDyn failed at t = {i * h:.6g} s: {exc}", loop_time
+            if (i + 1) % stride == 0 and not recorder.record((i + 1) * h, forces):
+                loop_time += time.perf_counter() - tic
+                return f"non-finite forces at t = {(i + 1) * h:.6g} s", loop_time
+        loop_time += time.perf_counter() - tic
+    return "completed", loop_time
+
+
+def _collect(system: System, coupled: list[_Coupled], recorder: _Recorder, message: str,
+             init_time: float, loop_time: float) -> dict[str, Any]:
+    k = recorder.count
+    end_force = recorder.end_force[:k]
+    return {
+        "time": recorder.time[:k],
+        "end_force": end_force,
+        "fairlead_tension": np.linalg.norm(end_force[:, :, 1], axis=-1),
+        "fairlead_tension_segment": recorder.fair_ten[:k],
+        "point_force": {c.name: recorder.point_force[:k, i] for i, c in enumerate(coupled)},
+        "lines": list(system.lines),
+        "coupled_points": [c.name for c in coupled],
+        "success": message == "completed",
+        "message": message,
+        "wall_time_init": init_time,
+        "wall_time_loop": loop_time,
+    }
+
+
+def _axial_time(system: System) -> float:
+    """Shortest axial wave transit time of a segment, ``min L_seg / sqrt(EA / m)`` [s]."""
+    times = []
+    for line in system.lines.values():
+        lt = system.line_types[line.line_type]
+        times.append(line.length / line.segments / math.sqrt(lt.EA / lt.mass_per_length))
+    return min(times)
+
+
+def largest_stable_dt(system: System, duration: float = 20.0, *, growth_limit: float = 10.0,
+                      rel_tol: float = 0.05, dt_start: float | None = None,
+                      dt_min: float = 1.0e-6, dt_max: float = 1.0,
+                      thresh_ic: float = 1.0e-4, **run_options: Any) -> dict[str, Any]:
+    """Largest MoorDyn time step ``dtM`` that runs ``system`` without blowing up.
+
+    Criterion: a trial ``dtM`` is *stable* when :func:`run_moordyn` completes ``duration``
+    seconds of the system's prescribed motion without MoorDyn raising an error, every sampled
+    end force is finite, and the largest sampled fairlead tension stays below ``growth_limit``
+    times the largest static (t = 0, after MoorDyn's initial condition) fairlead tension.
+    Samples are taken at every coupling interval, ``h = dtM * max(1, floor(0.05 / dtM))``.
+
+    Search: from ``dt_start`` (default: the shortest axial wave transit time of a segment,
+    ``L_seg / sqrt(EA / m)``) the step is doubled until unstable or halved until stable, then
+    the bracket is bisected geometrically until ``unstable / stable <= 1 + rel_tol``. Stability
+    of an explicit scheme is not strictly monotone in ``dt``; the result is the largest step
+    seen to be stable next to one seen to be unstable.
+
+    Parameters
+    ----------
+    system
+        The problem, with the motions to apply.
+    duration
+        Length of each trial run [s].
+    growth_limit
+        Blow-up threshold on the fairlead tension, relative to its static value.
+    rel_tol
+        Relative width of the final bracket.
+    dt_start, dt_min, dt_max
+        First trial and search limits [s].
+    thresh_ic
+        ``threshIC`` of the trials (the initial condition only sets the reference tension).
+    **run_options
+        Passed to :func:`run_moordyn` (``time_scheme``, ``prescribed``, ...).
+
+    Returns
+    -------
+    dict
+        ``dt`` (largest stable step), ``unstable_dt`` (smallest unstable one), ``trials``
+        (list of ``{"dt", "stable", "peak_ratio", "message"}``), ``criterion`` (text).
+    """
+    trials: list[dict[str, Any]] = []
+
+    def stable(dt: float) -> bool:
+        k = max(1, math.floor(0.05 / dt))
+        h = dt * k
+        span = h * max(1, math.ceil(duration / h - 1e-9))
+        run = run_moordyn(system, span, dt, h, coupling_dt=h, thresh_ic=thresh_ic,
+                          **run_options)
+        tension = run["fairlead_tension"]
+        static = float(np.nanmax(tension[0])) if len(tension) else float("nan")
+        peak = float(np.nanmax(tension)) / static if static > 0 else float("inf")
+        ok = bool(run["success"] and np.isfinite(peak) and peak <= growth_limit)
+        trials.append({"dt": dt, "stable": ok, "peak_ratio": peak, "message": run["message"]})
+        logger.info("dtM = %.4g s: %s (peak/static %.3g)", dt, "stable" if ok else "unstable",
+                    peak)
+        return ok
+
+    lo, hi = _bracket(stable, dt_start or _axial_time(system), dt_min, dt_max)
+    while hi is not None and lo is not None and hi / lo > 1.0 + rel_tol:
+        mid = math.sqrt(lo * hi)
+        lo, hi = (mid, hi) if stable(mid) else (lo, mid)
+    return {"dt": lo, "unstable_dt": hi, "trials": trials,
+            "criterion": (f"completes {duration:g} s, finite forces, fairlead tension <= "
+                          f"{growth_limit:g} x static")}
+
+
+def _bracket(stable: Callable[[float], bool], dt: float, dt_min: float, dt_max: float
+             ) -> tuple[float | None, float | None]:
+    """A stable and an unstable step a factor of 2 apart (None where a limit was reached)."""
+    dt = min(max(dt, dt_min), dt_max)
+    if stable(dt):
+        while dt * 2 <= dt_max:
+            if not stable(dt * 2):
+                return dt, dt * 2
+            dt *= 2
+        return dt, None
+    while dt / 2 >= dt_min:
+        if stable(dt / 2):
+            return dt / 2, dt
+        dt /= 2
+    return None, dt

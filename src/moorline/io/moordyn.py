@@ -1,0 +1,645 @@
+"""MoorDyn input files: read a MoorDyn deck into a :class:`~moorline.model.System` and write
+one back.
+
+Format (MoorDyn documentation, ``docs/inputs.rst``): sections start at header lines made of a
+key phrase between dashes (``---- LINE TYPES ----``). Table sections (line types, points,
+lines) begin with two header rows (column names and units) that MoorDyn does not read; every
+further row is one entry. ``OPTIONS`` rows are ``value key [description]``. ``!``, ``#`` and
+``%`` start comments.
+
+Supported (v2 names first, v1 names in parentheses):
+
+- ``LINE TYPES`` (``LINE DICTIONARY``): v2 rows ``Name Diam MassDen EA BA/-zeta EI Cd Ca CdAx
+  CaAx [Cl dF cF]``; v1 rows (nine columns) ``Name Diam MassDen EA BA/-zeta Can Cat Cdn Cdt``.
+  MoorDyn's ``CdAx`` is relative to the surface ``pi d l`` like moorline's ``Ct``.
+- ``POINTS`` (``POINT PROPERTIES``, ``CONNECTION PROPERTIES``, ``NODE PROPERTIES``): v2 rows
+  ``ID Attachment X Y Z Mass Volume CdA Ca``; v1 rows (twelve columns) ``ID Type X Y Z M V FX FY
+  FZ CdA Ca``. ``Fixed``/``Anchor`` points become ``fixed``, ``Coupled``/``Vessel`` become
+  ``prescribed`` and ``Free``/``Connect``/``Point`` become ``free``; ``CdA`` becomes
+  ``drag_area`` with ``Cd = 1``.
+- ``LINES`` (``LINE PROPERTIES``, ``LINE LIST``): v2 rows ``ID LineType AttachA AttachB
+  UnstrLen NumSegs [Outputs]``; v1 rows ``ID LineType UnstrLen NumSegs NodeAnch NodeFair
+  [Flags]`` (recognized by a column header ``UnstrLen``/``Length`` in third place, or by a v1
+  points table).
+- ``OPTIONS`` (``SOLVER OPTIONS``): ``WtrDpth`` (alias ``depth``), ``rho`` (``WtrDnsty``,
+  ``rhoW``), ``g`` (``gravity``), ``kBot`` (``kb``), ``cBot`` (``cb``), ``FrictionCoefficient``.
+  MoorDyn's numerical settings (``dtM``, ``tScheme``, ``TmaxIC``, ``threshIC``, ...) do not
+  describe the physics and are kept only in :attr:`MoorDynDeck.options`; unknown options are
+  kept there too and logged as warnings. Option keys are case-insensitive, as in MoorDyn.
+
+Names: MoorDyn numbers points and lines. A point or line row may end with a comment holding one
+word (``1 Fixed -853.87 0 -320 0 0 0 0  # anchor1``); that word becomes its name, otherwise the
+names are ``point<ID>`` and ``line<ID>``. :func:`write_moordyn` writes names that way, so that
+``read_moordyn(write_moordyn(system))`` gives back the same names.
+
+Missing ``WtrDpth``: MoorDyn-C starts from 0 and lowers the seabed to any point defined below
+it; the reader does the same (with a warning). Bodies, rods, seabed files and wave or current
+files are not supported (``CaseError``).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal
+
+from ..errors import CaseError
+from ..model import Environment, Line, LineType, Point, Seabed, System
+
+logger = logging.getLogger(__name__)
+
+Version = Literal["v1", "v2"]
+_COMMENT = re.compile(r"[!#%]")
+_NAME = re.compile(r"^[A-Za-z_][\w.\-]*$")
+_INF_DEPTH_TAG = "moorline: no seabed"
+
+#: Default values MoorDyn-C v2.7 uses when an option is absent.
+MOORDYN_DEFAULTS: dict[str, float] = {
+    "g": 9.80665, "rho": 1025.0, "WtrDpth": 0.0, "kBot": 3.0e6, "cBot": 3.0e5,
+    "FrictionCoefficient": 0.0,
+}
+_PHYSICAL_OPTIONS = {
+    "wtrdpth": "WtrDpth", "depth": "WtrDpth", "rho": "rho", "wtrdnsty": "rho", "rhow": "rho",
+    "g": "g", "gravity": "g", "kbot": "kBot", "kb": "kBot", "cbot": "cBot", "cb": "cBot",
+    "frictioncoefficient": "FrictionCoefficient",
+}
+_NUMERICAL_OPTIONS = {
+    "dtm", "cfl", "tscheme", "dtic", "tmaxic", "cdscaleic", "threshic", "icgendynamic",
+    "writelog", "dtout", "writeunits", "disableoutput", "disableouttime", "fileic", "fricdamp",
+    "statdynfricscale", "echo", "icdfac", "icthresh", "ictmax", "dtwave", "wavekin_rampt",
+    "unifycurrentgrid",
+}
+_UNSUPPORTED_OPTIONS = {"seafloorfile": "seabed (bathymetry) files",
+                        "wavekin": "MoorDyn wave kinematics", "currents": "MoorDyn currents",
+                        "waterkin": "MoorDyn water kinematics files"}
+_POINT_KINDS = {"fixed": "fixed", "anchor": "fixed", "coupled": "prescribed",
+                "vessel": "prescribed", "cpld": "prescribed", "free": "free",
+                "connect": "free", "point": "free"}
+
+
+@dataclass(frozen=True)
+class MoorDynDeck:
+    """What a MoorDyn file holds beyond the :class:`System`.
+
+    Attributes
+    ----------
+    system
+        The cable system (``source`` is the file path).
+    version
+        ``v1`` or ``v2`` table layout (v1 only when every table said so).
+    options
+        All ``OPTIONS`` rows as written, ``{key: value}`` (keys as in the file).
+    notes
+        Warnings raised while reading (ignored options, defaults applied, ...).
+    point_ids, line_ids
+        MoorDyn's number of each point and line, by moorline name.
+    """
+
+    system: System
+    version: Version
+    options: dict[str, str] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
+    point_ids: dict[str, int] = field(default_factory=dict)
+    line_ids: dict[str, int] = field(default_factory=dict)
+
+
+@dataclass
+class _Row:
+    lineno: int
+    tokens: list[str]
+    comment: str
+
+
+@dataclass
+class _Section:
+    kind: str
+    title: str
+    lineno: int
+    header: list[str] = field(default_factory=list)
+    rows: list[_Row] = field(default_factory=list)
+
+
+@dataclass
+class _Reader:
+    file: str
+    notes: list[str] = field(default_factory=list)
+
+    def fail(self, reason: str, row: _Row | None = None, section: str | None = None,
+             lineno: int | None = None) -> CaseError:
+        where = []
+        if row is not None or lineno is not None:
+            where.append(f"line {row.lineno if row is not None else lineno}")
+        if section:
+            where.append(section)
+        return CaseError(reason, file=self.file, field=", ".join(where) or None)
+
+    def warn(self, message: str) -> None:
+        self.notes.append(message)
+        logger.warning("%s: %s", self.file, message)
+
+
+# --------------------------------------------------------------------------- reading
+
+
+def read_moordyn(path: str | Path) -> System:
+    """Read a MoorDyn v2 (or v1) input file into a :class:`System`.
+
+    Parameters
+    ----------
+    path
+        The MoorDyn input file.
+
+    Returns
+    -------
+    System
+        SI units, named after the file; ``source`` is the path. The analyses are the default
+        (one static analysis): MoorDyn's time step and IC settings do not carry over (see
+        :func:`read_moordyn_deck` for them).
+
+    Raises
+    ------
+    CaseError
+        Naming the file, the line number and section, and what is wrong.
+    """
+    return read_moordyn_deck(path).system
+
+
+def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
+    """Read a MoorDyn input file, keeping its options, IDs and reading notes.
+
+    Parameters
+    ----------
+    path
+        The MoorDyn input file.
+
+    Returns
+    -------
+    MoorDynDeck
+        The system and what else the file says.
+    """
+    path = Path(path)
+    reader = _Reader(str(path))
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+    except OSError as exc:
+        raise CaseError(f"cannot read MoorDyn file: {exc.strerror or exc}", file=str(path)) from exc
+    sections = _split_sections(text.splitlines(), reader)
+    for kind, title in (("types", "LINE TYPES"), ("points", "POINTS"), ("lines", "LINES")):
+        if kind not in sections:
+            raise reader.fail(f"missing section {title} (a '--- {title} ---' header line)")
+        if not sections[kind].rows:
+            raise reader.fail(f"section {sections[kind].title} has no entries",
+                              lineno=sections[kind].lineno, section=sections[kind].title)
+    for kind, what in (("bodies", "bodies"), ("rods", "rods"), ("rodtypes", "rod types")):
+        if kind in sections and sections[kind].rows:
+            raise reader.fail(f"{what} are not supported", row=sections[kind].rows[0],
+                              section=sections[kind].title)
+    types, v_types = _parse_line_types(sections["types"], reader)
+    points, ids, v_points = _parse_points(sections["points"], reader)
+    lines, line_ids, v_lines = _parse_lines(sections["lines"], types, ids, v_points, reader)
+    options = sections.get("options", _Section("options", "OPTIONS", 0))
+    raw, env_values = _parse_options(options, reader)
+    environment = _environment(env_values, points, reader)
+    versions = {v_types, v_points, v_lines}
+    system = System(name=path.stem, units="SI", environment=environment, line_types=types,
+                    points=points, lines=lines, source=str(path))
+    return MoorDynDeck(system=system, version="v1" if versions == {"v1"} else "v2",
+                       options=raw, notes=tuple(reader.notes),
+                       point_ids={name: i for i, name in ids.items()}, line_ids=line_ids)
+
+
+def _section_kind(title: str) -> str:
+    """Classify a header line's key phrase (upper case, dashes removed)."""
+    checks = (
+        ("LINE TYPE", "types"), ("LINE DICTIONARY", "types"), ("ROD TYPE", "rodtypes"),
+        ("ROD DICTIONARY", "rodtypes"), ("BOD", "bodies"), ("ROD", "rods"),
+        ("POINT", "points"), ("CONNECTION", "points"), ("NODE", "points"),
+        ("LINE", "lines"), ("OPTION", "options"), ("SOLVER OPTION", "options"),
+        ("OUTPUT", "outputs"),
+        ("FAIL", "ignored"), ("CONTROL", "ignored"), ("EXTERNAL", "ignored"),
+    )
+    for key, kind in checks:
+        if title.startswith(key):
+            return kind
+    return "other"
+
+
+def _split_sections(lines: list[str], reader: _Reader) -> dict[str, _Section]:
+    sections: dict[str, _Section] = {}
+    current: _Section | None = None
+    for lineno, raw in enumerate(lines, start=1):
+        stripped = raw.strip()
+        if stripped.startswith("--"):
+            title = " ".join(stripped.strip("- \t").upper().split())
+            kind = _section_kind(title)
+            current = _Section(kind, title, lineno)
+            if kind in sections and kind not in ("other", "ignored", "outputs"):
+                raise reader.fail(f"section {title} appears twice", lineno=lineno, section=title)
+            if kind == "ignored":
+                reader.warn(f"section {title} (line {lineno}) is not supported and is ignored")
+            sections.setdefault(kind, current)
+            continue
+        if current is None or not stripped or current.kind in ("other", "ignored", "outputs"):
+            continue
+        table = current.kind != "options"
+        if table and len(current.header) < 2:
+            current.header.append(stripped)
+            continue
+        match = _COMMENT.search(stripped)
+        body, comment = (stripped[:match.start()], stripped[match.end():].strip()) if match \
+            else (stripped, "")
+        if body.strip():
+            current.rows.append(_Row(lineno, body.split(), comment))
+    return sections
+
+
+def _number(token: str, what: str, row: _Row, section: str, reader: _Reader) -> float:
+    try:
+        value = float(token)
+    except ValueError:
+        raise reader.fail(f"{what} must be a number, got {token!r}", row, section) from None
+    if not math.isfinite(value):
+        raise reader.fail(f"{what} must be finite, got {token!r}", row, section)
+    return value
+
+
+def _integer(token: str, what: str, row: _Row, section: str, reader: _Reader) -> int:
+    value = _number(token, what, row, section, reader)
+    if value != int(value):
+        raise reader.fail(f"{what} must be an integer, got {token!r}", row, section)
+    return int(value)
+
+
+def _columns(row: _Row, allowed: tuple[int, ...], layout: str, section: str,
+             reader: _Reader) -> None:
+    if len(row.tokens) not in allowed:
+        counts = " or ".join(str(n) for n in allowed)
+        raise reader.fail(f"expected {counts} columns ({layout}), found {len(row.tokens)}",
+                          row, section)
+
+
+def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineType], Version]:
+    types: dict[str, LineType] = {}
+    version: Version = "v2" if len(sec.rows[0].tokens) != 9 else "v1"
+    layout = ("v2: Name Diam MassDen EA BA/-zeta EI Cd Ca CdAx CaAx [Cl dF cF]" if version == "v2"
+              else "v1: Name Diam MassDen EA BA/-zeta Can Cat Cdn Cdt")
+    for row in sec.rows:
+        _columns(row, (10, 11, 12, 13) if version == "v2" else (9,), layout, sec.title, reader)
+        name, tok = row.tokens[0], row.tokens[1:]
+        if name in types:
+            raise reader.fail(f"line type {name!r} is defined twice", row, sec.title)
+        for index, what in ((2, "EA"), (3, "BA/-zeta")):
+            if "|" in tok[index] or not _is_number(tok[index]):
+                raise reader.fail(f"{what} {tok[index]!r}: only a constant {what} is supported "
+                                  "(no viscoelastic pairs or stress-strain tables)", row, sec.title)
+        values = [_number(t, f"column {i + 2}", row, sec.title, reader)
+                  for i, t in enumerate(tok)]
+        if version == "v2":
+            d, m, EA, BA, EI, Cd, Ca, Ct, Cat = values[:9]
+            if EI:
+                reader.warn(f"line type {name!r}: bending stiffness EI = {EI:g} is ignored")
+            if len(values) > 9 and values[9]:
+                reader.warn(f"line type {name!r}: VIV lift coefficient Cl is ignored")
+        else:
+            d, m, EA, BA, Ca, Cat, Cd, Ct = values
+        for what, value in (("Diam", d), ("MassDen", m), ("EA", EA)):
+            if value <= 0:
+                raise reader.fail(f"{what} must be positive, got {value:g}", row, sec.title)
+        types[name] = LineType(name=name, diameter=d, mass_per_length=m, EA=EA, Cd=Cd, Ca=Ca,
+                               Ct=Ct, Cat=Cat, BA=BA)
+    return types, version
+
+
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def _row_name(row: _Row, default: str, taken: Mapping[str, object], section: str,
+              reader: _Reader) -> str:
+    name = row.comment.strip()
+    if not _NAME.match(name):
+        name = default
+    if name in taken:
+        raise reader.fail(f"name {name!r} is used twice (names come from a one-word comment "
+                          "at the end of the row, else from the ID)", row, section)
+    return name
+
+
+def _check_id(row: _Row, expected: int, section: str, reader: _Reader) -> None:
+    got = _integer(row.tokens[0], "ID", row, section, reader)
+    if got != expected:
+        raise reader.fail(f"IDs must run 1, 2, 3, ...: expected {expected}, got {got}",
+                          row, section)
+
+
+def _parse_points(sec: _Section, reader: _Reader
+                  ) -> tuple[dict[str, Point], dict[int, str], Version]:
+    version: Version = "v1" if len(sec.rows[0].tokens) == 12 else "v2"
+    layout = ("v2: ID Attachment X Y Z Mass Volume CdA Ca" if version == "v2"
+              else "v1: ID Type X Y Z M V FX FY FZ CdA Ca")
+    points: dict[str, Point] = {}
+    ids: dict[int, str] = {}
+    for number, row in enumerate(sec.rows, start=1):
+        _columns(row, (9,) if version == "v2" else (12,), layout, sec.title, reader)
+        _check_id(row, number, sec.title, reader)
+        attachment = row.tokens[1]
+        kind = _POINT_KINDS.get(attachment.lower())
+        if kind is None:
+            what = ("points attached to bodies or turbines are not supported"
+                    if re.match(r"(?i)(body|turbine)\d*", attachment) else
+                    "expected Fixed, Coupled (Vessel) or Free (Connect)")
+            raise reader.fail(f"unknown point attachment {attachment!r}: {what}", row, sec.title)
+        v = [_number(t, f"column {i + 3}", row, sec.title, reader)
+             for i, t in enumerate(row.tokens[2:])]
+        force = (v[5], v[6], v[7]) if version == "v1" else (0.0, 0.0, 0.0)
+        cda, ca = (v[-2], v[-1])
+        if v[3] < 0:
+            raise reader.fail(f"Mass must not be negative, got {v[3]:g}", row, sec.title)
+        name = _row_name(row, f"point{number}", points, sec.title, reader)
+        points[name] = Point(name=name, kind=kind, position=(v[0], v[1], v[2]), mass=v[3],
+                             volume=v[4], force=force, Cd=1.0 if cda else 0.0, drag_area=cda,
+                             Ca=ca)
+        ids[number] = name
+    return points, ids, version
+
+
+def _lines_layout(sec: _Section, points_version: Version) -> Version:
+    """v1 line rows put UnstrLen third; decide from the column-name row, else the points."""
+    names = sec.header[0].split() if sec.header else []
+    if len(names) > 2 and re.match(r"(?i)(unstr|len)", names[2]):
+        return "v1"
+    if len(names) > 2 and re.match(r"(?i)(attach|end|node|con|point|anch)", names[2]):
+        return "v2"
+    return points_version
+
+
+def _parse_lines(sec: _Section, types: Mapping[str, LineType], ids: Mapping[int, str],
+                 points_version: Version, reader: _Reader
+                 ) -> tuple[dict[str, Line], dict[str, int], Version]:
+    version = _lines_layout(sec, points_version)
+    layout = ("v2: ID LineType AttachA AttachB UnstrLen NumSegs [Outputs]" if version == "v2"
+              else "v1: ID LineType UnstrLen NumSegs NodeAnch NodeFair [Flags]")
+    lines: dict[str, Line] = {}
+    line_ids: dict[str, int] = {}
+    for number, row in enumerate(sec.rows, start=1):
+        _columns(row, (6, 7), layout, sec.title, reader)
+        _check_id(row, number, sec.title, reader)
+        tok = row.tokens
+        type_name = tok[1]
+        if type_name not in types:
+            raise reader.fail(f"unknown line type {type_name!r}; defined: "
+                              f"{', '.join(types)}", row, sec.title)
+        a, b, length, segs = ((tok[2], tok[3], tok[4], tok[5]) if version == "v2"
+                              else (tok[4], tok[5], tok[2], tok[3]))
+        ends = [_attachment(t, which, ids, row, sec.title, reader)
+                for t, which in ((a, "AttachA"), (b, "AttachB"))]
+        length_value = _number(length, "UnstrLen", row, sec.title, reader)
+        n = _integer(segs, "NumSegs", row, sec.title, reader)
+        if length_value <= 0 or n < 1:
+            raise reader.fail("UnstrLen must be positive and NumSegs at least 1", row, sec.title)
+        if ends[0] == ends[1]:
+            raise reader.fail(f"both ends attach to point {a}", row, sec.title)
+        name = _row_name(row, f"line{number}", lines, sec.title, reader)
+        lines[name] = Line(name=name, line_type=type_name, length=length_value, segments=n,
+                           end_a=ends[0], end_b=ends[1])
+        line_ids[name] = number
+    return lines, line_ids, version
+
+
+def _attachment(token: str, which: str, ids: Mapping[int, str], row: _Row, section: str,
+                reader: _Reader) -> str:
+    if re.match(r"(?i)^r\d+[ab]$", token):
+        raise reader.fail(f"{which} {token!r}: lines attached to rods are not supported",
+                          row, section)
+    try:
+        number = int(token)
+    except ValueError:
+        number = None
+    if number is None or number not in ids:
+        raise reader.fail(f"unknown attachment {which} {token!r}: no point with that ID "
+                          f"(points are 1..{len(ids)})", row, section)
+    return ids[number]
+
+
+def _parse_options(sec: _Section, reader: _Reader) -> tuple[dict[str, str], dict[str, float]]:
+    raw: dict[str, str] = {}
+    physical: dict[str, float] = {}
+    for row in sec.rows:
+        if len(row.tokens) < 2:
+            raise reader.fail("an option row needs a value and a key ('value key')", row,
+                              sec.title)
+        value, key = row.tokens[0], row.tokens[1]
+        raw[key] = value
+        low = key.lower()
+        if low in _UNSUPPORTED_OPTIONS:
+            if not (_is_number(value) and float(value) == 0):
+                raise reader.fail(f"option {key} = {value}: {_UNSUPPORTED_OPTIONS[low]} are not "
+                                  "supported", row, sec.title)
+        elif low in _PHYSICAL_OPTIONS:
+            canonical = _PHYSICAL_OPTIONS[low]
+            if canonical == "WtrDpth" and row.comment.strip().lower() == _INF_DEPTH_TAG:
+                physical[canonical] = math.inf
+                continue
+            physical[canonical] = _number(value, f"option {key}", row, sec.title, reader)
+        elif low not in _NUMERICAL_OPTIONS:
+            reader.warn(f"unknown option {key!r} (line {row.lineno}) ignored")
+    return raw, physical
+
+
+def _environment(values: Mapping[str, float], points: Mapping[str, Point],
+                 reader: _Reader) -> Environment:
+    get = {**MOORDYN_DEFAULTS, **values}
+    depth = get["WtrDpth"]
+    deepest = max((-p.position[2] for p in points.values()), default=0.0)
+    if deepest > depth:
+        reader.warn(f"water depth set to {deepest:g} (the deepest point), as MoorDyn does: "
+                    f"WtrDpth {'is missing' if 'WtrDpth' not in values else f'= {depth:g}'}")
+        depth = deepest
+    for key in ("g", "rho"):
+        if get[key] <= 0:
+            raise reader.fail(f"option {key} must be positive, got {get[key]:g}",
+                              section="OPTIONS")
+    return Environment(depth=depth, water_density=get["rho"], gravity=get["g"],
+                       seabed=Seabed(stiffness=get["kBot"], damping=get["cBot"],
+                                     friction=get["FrictionCoefficient"]))
+
+
+# --------------------------------------------------------------------------- writing
+
+
+def unsupported_features(system: System) -> tuple[list[str], list[str]]:
+    """What of ``system`` a MoorDyn deck cannot express.
+
+    Returns
+    -------
+    errors, omissions
+        ``errors``: features that make a deck wrong (non-elastic materials, horizontal point
+        forces); ``omissions``: features left out of the deck but harmless for statics
+        (current, waves, point force histories, a displaced area other than ``pi d^2 / 4``,
+        initial line shapes). Point ``motion`` is neither: it is the coupling input (see
+        :func:`moorline.compare.moordyn_runner.run_moordyn`).
+    """
+    errors, omissions = [], []
+    env = system.environment
+    if env.current.speed:
+        omissions.append("current")
+    if env.waves.kind != "none" and env.waves.height:
+        omissions.append("waves")
+    for lt in system.line_types.values():
+        if lt.material != "elastic":
+            errors.append(f"line type {lt.name}: {lt.material} material")
+        if lt.displaced_area is not None and not math.isclose(
+                lt.displaced_area, math.pi * lt.diameter**2 / 4.0):
+            omissions.append(f"line type {lt.name}: displaced_area (MoorDyn uses pi d^2 / 4)")
+    for p in system.points.values():
+        if p.force[0] or p.force[1]:
+            errors.append(f"point {p.name}: horizontal force")
+        if p.force_history is not None:
+            omissions.append(f"point {p.name}: force_history")
+    for ln in system.lines.values():
+        if ln.initial_shape is not None:
+            omissions.append(f"line {ln.name}: initial_shape")
+    return errors, omissions
+
+
+def _fmt(value: float) -> str:
+    return repr(float(value))
+
+
+def _point_rows(system: System) -> list[str]:
+    kinds = {"fixed": "Fixed", "prescribed": "Coupled", "free": "Free"}
+    rho_g = system.environment.water_density * system.environment.gravity
+    rows = []
+    for i, p in enumerate(system.points.values(), start=1):
+        volume = p.volume
+        if p.force[2]:
+            volume += p.force[2] / rho_g
+            logger.warning("point %s: vertical force %g written as %g of extra volume (MoorDyn "
+                           "points have no force input)", p.name, p.force[2], volume - p.volume)
+        cda = p.Cd * p.drag_area
+        values = [*p.position, p.mass, volume, cda, p.Ca]
+        rows.append(f"{i:<4d} {kinds[p.kind]:<8s} " + " ".join(_fmt(v) for v in values)
+                    + f"   # {p.name}")
+    return rows
+
+
+def _line_type_rows(system: System) -> list[str]:
+    rows = []
+    for lt in system.line_types.values():
+        values = [lt.diameter, lt.mass_per_length, lt.EA, lt.BA, 0.0, lt.Cd, lt.Ca, lt.Ct, lt.Cat]
+        rows.append(f"{lt.name:<10s} " + " ".join(_fmt(v) for v in values))
+    return rows
+
+
+def _line_rows(system: System) -> list[str]:
+    ids = {name: i for i, name in enumerate(system.points, start=1)}
+    rows = []
+    for i, ln in enumerate(system.lines.values(), start=1):
+        rows.append(f"{i:<4d} {ln.line_type:<10s} {ids[ln.end_a]:<4d} {ids[ln.end_b]:<4d} "
+                    f"{_fmt(ln.length)} {ln.segments:d} -   # {ln.name}")
+    return rows
+
+
+def _option_rows(system: System, dt: float, settings: Mapping[str, object]) -> list[str]:
+    env = system.environment
+    depth = env.depth
+    deepest = max((-p.position[2] for p in system.points.values()), default=0.0)
+    rows = [f"{_fmt(dt):<14s} dtM", f"{_fmt(env.gravity):<14s} g",
+            f"{_fmt(env.water_density):<14s} rho"]
+    if math.isfinite(depth):
+        rows.append(f"{_fmt(depth):<14s} WtrDpth")
+    else:  # no seabed: one far below everything, tagged so that the reader restores inf
+        rows.append(f"{_fmt(max(1.0e4, 10.0 * deepest)):<14s} WtrDpth   # {_INF_DEPTH_TAG}")
+    rows += [f"{_fmt(env.seabed.stiffness):<14s} kBot", f"{_fmt(env.seabed.damping):<14s} cBot"]
+    if env.seabed.friction:
+        rows.append(f"{_fmt(env.seabed.friction):<14s} FrictionCoefficient")
+    for key, value in settings.items():
+        text = _fmt(value) if isinstance(value, float) else str(value)
+        rows.append(f"{text:<14s} {key}")
+    return rows
+
+
+def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float = 1000.0,
+                  thresh_ic: float = 1.0e-5, dt_ic: float = 1.0,
+                  time_scheme: str | None = None,
+                  extra_options: Mapping[str, object] | None = None) -> Path:
+    """Write ``system`` as a MoorDyn v2 input file.
+
+    Fixed points become ``Fixed``, prescribed points ``Coupled`` (driven through MoorDyn's
+    coupling interface) and free points ``Free`` (``CdA = Cd * drag_area``). A vertical
+    constant point force becomes extra ``Volume`` (MoorDyn points have no force column).
+
+    Parameters
+    ----------
+    system
+        The problem; its units are used as they are (``g`` and ``rho`` are always written).
+    path
+        Output file.
+    dt
+        MoorDyn's internal time step ``dtM`` [time]. No ``CFL`` option is written, so MoorDyn
+        uses ``dtM`` as given.
+    tmax_ic, thresh_ic, dt_ic
+        Initial-condition options ``TmaxIC``, ``threshIC``, ``dtIC``. MoorDyn-C v2.7 finds
+        its initial condition with a stationary (static) solver that stops when the largest
+        residual node acceleration falls below ``threshIC`` [m/s^2] or after ``TmaxIC``
+        pseudo-seconds. Its default ``threshIC = 1e-3`` leaves the OC3 fairlead tension about
+        0.01 % short of equilibrium; ``1e-5`` (default here) agrees with moorline's static
+        solution to within 1e-6 at a cost of about 0.5 s for 20 segments. ``TmaxIC`` is only
+        a cap.
+    time_scheme
+        MoorDyn ``tScheme`` (``RK2`` when omitted, MoorDyn's default).
+    extra_options
+        More ``{key: value}`` option rows (written after the others, so they win).
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    CaseError
+        If the system holds something MoorDyn cannot express (the ``errors`` of
+        :func:`unsupported_features`; its ``omissions`` are only logged).
+    """
+    errors, omissions = unsupported_features(system)
+    if errors:
+        raise CaseError("cannot be written as a MoorDyn deck: " + "; ".join(errors),
+                        file=str(path))
+    for omission in omissions:
+        logger.warning("MoorDyn deck %s: %s not written", path, omission)
+    settings: dict[str, object] = {"dtIC": float(dt_ic), "TmaxIC": float(tmax_ic),
+                                   "threshIC": float(thresh_ic), "writeLog": 0,
+                                   "disableOutTime": 1}
+    if time_scheme:
+        settings["tScheme"] = time_scheme
+    settings.update(extra_options or {})
+    head = ["Diam", "MassDen", "EA", "BA/-zeta", "EI", "Cd", "Ca", "CdAx", "CaAx"]
+    units = ["(m)", "(kg/m)", "(N)", "(N-s/-)", "(N-m^2)", "(-)", "(-)", "(-)", "(-)"]
+    text = [
+        _rule("MoorDyn v2 input file"),
+        f"written by moorline for case {system.name!r} ({system.units} units)",
+        _rule("LINE TYPES"), "TypeName   " + " ".join(head), "(name)     " + " ".join(units),
+        *_line_type_rows(system),
+        _rule("POINTS"), "ID   Attachment  X  Y  Z  Mass  Volume  CdA  Ca",
+        "(#)  (-)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)", *_point_rows(system),
+        _rule("LINES"), "ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs",
+        "(#)  (name)  (#)  (#)  (m)  (-)  (-)", *_line_rows(system),
+        _rule("OPTIONS"), *_option_rows(system, dt, settings),
+        _rule("OUTPUTS"), _rule("need this line"),
+    ]
+    path = Path(path)
+    path.write_text("\n".join(text) + "\n", encoding="utf-8")
+    return path
+
+
+def _rule(title: str) -> str:
+    return f"{'-' * 22} {title} {'-' * max(4, 50 - len(title))}"
