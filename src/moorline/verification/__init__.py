@@ -13,5 +13,6 @@ register("tcheou-t1", "tcheou_t1:run")
 register("oc3-line", "oc3_line:run")
 register("tuah-ex3", "tuah_ex3:run")
 register("tuah-ex4", "tuah_ex4:run")
+register("steady-current", "steady_current:run")
 
 __all__ = ["CASES", "Row", "register", "run_cases"]
