@@ -190,6 +190,14 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
         raise CaseError(reason, file=file, field=field)
 
     env = spec.environment
+    levels = env.current.z_levels
+    if levels is not None or env.current.speeds is not None:
+        n = len(levels or [])
+        if n < 1 or len(env.current.speeds or []) != n:
+            fail(f"a current profile needs as many speeds as z_levels ({n}), got "
+                 f"{len(env.current.speeds or [])}", "environment.current.speeds")
+        if env.current.headings is not None and len(env.current.headings) != n:
+            fail(f"headings must have {n} entries like z_levels", "environment.current.headings")
     if env.waves.kind == "airy":
         for key in ("height", "period"):
             if getattr(env.waves, key) <= 0.0:
@@ -339,13 +347,18 @@ def _build(spec: CaseSpec, source: str | None) -> System:
             stiffness=default(env.seabed.stiffness, "seabed_stiffness"),
             damping=default(env.seabed.damping, "seabed_damping"),
             friction=env.seabed.friction,
+            friction_axial=env.seabed.friction_axial,
+            friction_transverse=env.seabed.friction_transverse,
+            slip_velocity=default(env.seabed.slip_velocity, "slip_velocity"),
         ),
-        current=Current(speed=env.current.speed, heading_deg=env.current.heading),
+        current=_current(env.current),
         waves=Waves(
             kind=env.waves.kind,
             height=env.waves.height,
             period=env.waves.period,
             heading_deg=env.waves.heading,
+            phase_deg=env.waves.phase,
+            stretching=env.waves.stretching,
         ),
     )
     line_types = {
@@ -384,6 +397,14 @@ def _build(spec: CaseSpec, source: str | None) -> System:
         output=OutputSettings(every=default(spec.output.every, "output_every")),
         source=source,
     )
+
+
+def _current(spec: Any) -> Current:
+    if not spec.z_levels:
+        return Current(speed=spec.speed, heading_deg=spec.heading)
+    headings = spec.headings if spec.headings else [spec.heading] * len(spec.z_levels)
+    return Current(speed=spec.speed, heading_deg=spec.heading, z_levels=tuple(spec.z_levels),
+                   speeds=tuple(spec.speeds), headings_deg=tuple(headings))
 
 
 def _line(name: str, line: LineSpec) -> Line:

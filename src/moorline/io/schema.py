@@ -142,13 +142,20 @@ class SeabedSpec(_Spec):
     stiffness: quantity("force/length^3", ge=0.0) | None = None
     damping: quantity("force*time/length^3", ge=0.0) | None = None
     friction: Coefficient = 0.0
+    friction_axial: Coefficient | None = None
+    friction_transverse: Coefficient | None = None
+    slip_velocity: quantity("velocity", gt=0.0) | None = None
 
 
 class CurrentSpec(_Spec):
-    """``environment.current``: uniform current towards ``heading`` [deg]."""
+    """``environment.current``: uniform current towards ``heading`` [deg], or a profile:
+    ``speeds`` and ``headings`` at heights ``z_levels`` (linear in z)."""
 
     speed: quantity("velocity", ge=0.0) = 0.0
     heading: quantity("angle") = 0.0
+    z_levels: list[quantity("length")] | None = None
+    speeds: list[quantity("velocity", ge=0.0)] | None = None
+    headings: list[quantity("angle")] | None = None
 
 
 class WavesSpec(_Spec):
@@ -158,6 +165,8 @@ class WavesSpec(_Spec):
     height: quantity("length", ge=0.0) = 0.0
     period: quantity("time", ge=0.0) = 0.0
     heading: quantity("angle") = 0.0
+    phase: quantity("angle") = 0.0
+    stretching: Literal["none", "wheeler"] = "none"
 
 
 class EnvironmentSpec(_Spec):

@@ -89,6 +89,7 @@ DEFAULTS: dict[str, tuple[float, str]] = {
     "relaxation_damping": (1.0e5, "N*s/m"),
     "pseudo_dt": (1.0, "s"),
     "output_every": (0.1, "s"),
+    "slip_velocity": (0.01, "m/s"),
 }
 """Defaults of dimensional quantities as physical values; converted to the case's system."""
 

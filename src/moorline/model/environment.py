@@ -17,31 +17,46 @@ class Seabed:
     damping
         Contact damping per unit of contact area [force*time/length^3] (MoorDyn ``cBot``).
     friction
-        Coulomb friction coefficient of the lying part (used by the closed-form catenary and,
-        later, by dynamics).
+        Coulomb friction coefficient of the lying part (the closed-form catenary, and the
+        default of both dynamic coefficients).
+    friction_axial, friction_transverse
+        Dynamics: friction coefficients along and across the line (``None``: ``friction``).
+    slip_velocity
+        Dynamics: regularization speed of the friction law [length/time].
     """
 
     stiffness: float = 3.0e6
     damping: float = 3.0e5
     friction: float = 0.0
+    friction_axial: float | None = None
+    friction_transverse: float | None = None
+    slip_velocity: float = 0.01
 
 
 @dataclass(frozen=True)
 class Current:
-    """Uniform current: ``speed`` [length/time] towards ``heading_deg`` (0 = +x, 90 = +y)."""
+    """Current: uniform ``speed`` [length/time] towards ``heading_deg`` (0 = +x, 90 = +y), or a
+    profile over depth: ``speeds`` and ``headings_deg`` at heights ``z_levels`` (linear in z,
+    constant beyond the ends; then ``speed`` is ignored)."""
 
     speed: float = 0.0
     heading_deg: float = 0.0
+    z_levels: tuple[float, ...] = ()
+    speeds: tuple[float, ...] = ()
+    headings_deg: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
 class Waves:
-    """Regular wave description; ``kind='none'`` for still water."""
+    """Regular wave description; ``kind='none'`` for still water. ``stretching='wheeler'``
+    evaluates the kinematics at Wheeler-stretched heights."""
 
     kind: Literal["none", "airy"] = "none"
     height: float = 0.0
     period: float = 0.0
     heading_deg: float = 0.0
+    phase_deg: float = 0.0
+    stretching: Literal["none", "wheeler"] = "none"
 
 
 @dataclass(frozen=True)

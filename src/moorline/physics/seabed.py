@@ -73,3 +73,75 @@ def contact_ramp(weight_per_node: FloatArray, k: FloatArray, diameter: float) ->
     with np.errstate(divide="ignore", invalid="ignore"):
         ramp = np.where(k > 0, np.maximum(weight_per_node, 0.0) / k, 0.0)
     return np.maximum(ramp, RAMP_DIAMETERS * max(diameter, 1e-3))
+
+
+def friction_force(
+    velocity: FloatArray, normal: FloatArray, axis: FloatArray, mu_axial: float,
+    mu_transverse: float, slip_velocity: float,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Regularized Coulomb friction on nodes resting on the seabed.
+
+    The horizontal velocity is split into its part along the line (``axis``, a horizontal unit
+    vector per node) and across it; each part is resisted by
+    ``mu N tanh(|v| / v_s) v / |v|``, a smooth stand-in for Coulomb friction (full friction
+    once sliding faster than a few ``v_s``; a viscous law near rest, so no stick-slip switch
+    upsets Newton), as MoorDyn's axial and transverse seabed friction. With equal coefficients
+    the law is isotropic, ``mu N tanh(|v| / v_s) v / |v|``, and independent of ``axis``; with
+    different ones the force depends on the line direction, whose change with the positions
+    the returned derivatives leave out.
+
+    Parameters
+    ----------
+    velocity
+        Node velocities (n, 3); only x and y are used.
+    normal
+        Seabed normal force per node (n,) (zero off the seabed).
+    axis
+        Horizontal unit vector along the line at each node (n, 3).
+    mu_axial, mu_transverse
+        Friction coefficients along and across the line.
+    slip_velocity
+        Regularization speed ``v_s`` [length/time].
+
+    Returns
+    -------
+    force, dforce_dv, dforce_dnormal
+        Friction force (n, 3), its derivative with respect to the velocity (n, 3, 3) and with
+        respect to the normal force (n, 3).
+    """
+    horizontal = velocity.copy()
+    horizontal[:, 2] = 0.0
+    if mu_axial == mu_transverse:
+        return _isotropic_friction(horizontal, normal, mu_axial, slip_velocity)
+    n = len(normal)
+    force = np.zeros((n, 3))
+    d_dv = np.zeros((n, 3, 3))
+    d_dn = np.zeros((n, 3))
+    across = np.cross(np.array([0.0, 0.0, 1.0]), axis)
+    for mu, direction in ((mu_axial, axis), (mu_transverse, across)):
+        if mu == 0.0:
+            continue
+        speed = np.einsum("ij,ij->i", horizontal, direction)
+        th = np.tanh(speed / slip_velocity)
+        f = -mu * normal * th
+        force += f[:, None] * direction
+        d_dn += (-mu * th)[:, None] * direction
+        slope = -mu * normal * (1.0 - th**2) / slip_velocity
+        d_dv += slope[:, None, None] * direction[:, :, None] * direction[:, None, :]
+    return force, d_dv, d_dn
+
+
+def _isotropic_friction(horizontal: FloatArray, normal: FloatArray, mu: float,
+                        slip_velocity: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    speed = np.linalg.norm(horizontal, axis=1)
+    th = np.tanh(speed / slip_velocity)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(speed > 0, th / speed, 1.0 / slip_velocity)  # tanh(s/vs)/s, s -> 0
+        unit = np.where(speed[:, None] > 0, horizontal / speed[:, None], 0.0)
+    force = (-mu * normal * ratio)[:, None] * horizontal
+    eye = np.diag([1.0, 1.0, 0.0])
+    uu = unit[:, :, None] * unit[:, None, :]
+    d_dv = (-mu * normal)[:, None, None] * (ratio[:, None, None] * (eye - uu)
+                                            + ((1 - th**2) / slip_velocity)[:, None, None] * uu)
+    d_dn = (-mu * ratio)[:, None] * horizontal
+    return force, d_dv, d_dn

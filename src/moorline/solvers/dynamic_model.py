@@ -64,9 +64,12 @@ class DynamicModel:
     viscoelastic_update
         ``exponential`` (exact for strain linear over a step) or ``incremental`` (Tuah eq.
         2.2.b.3, first order in dt).
+    seabed_model
+        The :class:`~moorline.model.Seabed` (for friction); None: frictionless.
     """
 
-    def __init__(self, mesh: Mesh, fluid, viscoelastic_update: str = "exponential") -> None:
+    def __init__(self, mesh: Mesh, fluid, viscoelastic_update: str = "exponential",
+                 seabed_model=None) -> None:
         self.mesh = mesh
         self.fluid = fluid
         static = StaticModel(mesh)
@@ -84,6 +87,7 @@ class DynamicModel:
         self.any_viscoelastic = bool(np.any(m.viscoelastic))
         self.viscoelastic_update = viscoelastic_update
         self.seabed_ramp = static.seabed_ramp
+        self.friction = _friction_coefficients(seabed_model) if seabed_model else None
 
     def initial_material(self, x: FloatArray) -> MaterialState:
         """Material state in equilibrium at positions ``x`` (relaxed Maxwell branch)."""
@@ -186,6 +190,30 @@ class DynamicModel:
                 out["Ma"] = Ma
         return forces, out
 
+    def _friction(self, x, v, fz, dfz_dz, dfz_dv, nodal, node_K, node_C, tangent):
+        """Seabed friction on resting nodes, driven by the contact force; the line direction
+        at a node is the mean of its elements' horizontal directions (its change with the
+        positions is left out of the tangent)."""
+        m = self.mesh
+        mu_a, mu_t, v_s = self.friction
+        pressing = fz > 0
+        normal = np.where(pressing, fz, 0.0)
+        chord = x[m.elements[:, 1]] - x[m.elements[:, 0]]
+        chord[:, 2] = 0.0
+        axis = np.zeros_like(x)
+        for k in range(2):
+            axis[:, k] = (np.bincount(m.elements[:, 0], chord[:, k], m.n_nodes)
+                          + np.bincount(m.elements[:, 1], chord[:, k], m.n_nodes))
+        norm = np.linalg.norm(axis, axis=1)
+        axis = np.where(norm[:, None] > 0, axis / np.maximum(norm, 1e-300)[:, None],
+                        np.array([1.0, 0.0, 0.0]))
+        f, df_dv, df_dn = seabed.friction_force(v, normal, axis, mu_a, mu_t, v_s)
+        nodal += f
+        if tangent:
+            node_C -= df_dv
+            node_K[:, :, 2] -= df_dn * np.where(pressing, dfz_dz, 0.0)[:, None]
+            node_C[:, :, 2] -= df_dn * np.where(pressing, dfz_dv, 0.0)[:, None]
+
     def _nodes(self, x, v, a, t, nodal, inertial, out, tangent):
         m = self.mesh
         n = m.n_nodes
@@ -200,6 +228,8 @@ class DynamicModel:
             if tangent:
                 node_K[:, 2, 2] = -dfz_dz
                 node_C[:, 2, 2] = -dfz_dv
+            if self.friction is not None:
+                self._friction(x, v, fz, dfz_dz, dfz_dv, nodal, node_K, node_C, tangent)
         if self.has_point_hydro:
             u_f, a_f, _ = self.fluid.kinematics(x, t)
             area = m.node_drag_area * m.node_Cd
@@ -213,6 +243,17 @@ class DynamicModel:
         if tangent:
             out.update(node_K=node_K, node_C=node_C, node_M=node_M)
         return nodal, inertial, out
+
+
+def _friction_coefficients(seabed_model) -> tuple[float, float, float] | None:
+    """(axial, transverse, slip velocity) of a :class:`~moorline.model.Seabed`, or None."""
+    mu = seabed_model.friction
+    mu_a = seabed_model.friction_axial if seabed_model.friction_axial is not None else mu
+    mu_t = (seabed_model.friction_transverse if seabed_model.friction_transverse is not None
+            else mu)
+    if mu_a == 0 and mu_t == 0:
+        return None
+    return mu_a, mu_t, seabed_model.slip_velocity
 
 
 def _axial_damping_blocks(unit: FloatArray, c: FloatArray) -> FloatArray:

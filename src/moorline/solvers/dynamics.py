@@ -74,7 +74,8 @@ def simulate(
                                    f"{initial.message}", time=0.0)
     x0 = initial.positions if isinstance(initial, StaticResult) else np.asarray(initial, float)
     fluid = fluid if fluid is not None else _fluid(system, settings)
-    model = DynamicModel(mesh, fluid, settings.viscoelastic_update)
+    model = DynamicModel(mesh, fluid, settings.viscoelastic_update,
+                         system.environment.seabed)
     excitation = Excitation(system, mesh, x0)
     state = _initial_state(model, excitation, x0, settings.dt, maxwell)
     # force scale of the residual tolerance: the larger of the nodal loads and the tensions

@@ -103,12 +103,18 @@ def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> Fl
                 heading_deg=waves.heading_deg,
                 depth=env.depth,
                 gravity=env.gravity,
+                phase=math.radians(waves.phase_deg),
                 ramp_time=ramp_time,
+                stretching=waves.stretching,
             )
     elif waves.kind != "none":
         raise ValueError(f"unknown wave kind {waves.kind!r}")
     current = None
-    if env.current.speed != 0.0 and math.isfinite(env.current.speed):
+    if env.current.z_levels:
+        c = env.current
+        current = CurrentProfile(tuple(c.z_levels), tuple(c.speeds), tuple(c.headings_deg),
+                                 ramp_time=ramp_time)
+    elif env.current.speed != 0.0 and math.isfinite(env.current.speed):
         speed, heading = env.current.speed, env.current.heading_deg
         if speed < 0.0:  # a negative speed flows the other way
             speed, heading = -speed, heading + 180.0
