@@ -247,6 +247,7 @@ def test_moordyn_oc3_initial_tension_matches_moorline_statics() -> None:
     system = _oc3_single(Motion("harmonic", amplitude=(5.0, 0.0, 0.0), period=10.0))
     run = run_moordyn(system, 20.0, 0.001, 0.05)
     assert run["success"], run["message"]
+    assert run["ic_residual"] < 1e-4  # MoorDyn's IC solve reached equilibrium
     static = solve_statics(system)
     assert static.success
     expected = static.end_force("line1", "b")

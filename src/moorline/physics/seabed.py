@@ -9,7 +9,9 @@ cycles across such switches instead of converging. Here both blend in over the f
     damper  -c v_z min(p / ramp, 1).
 
 The spring is C1 and the damper continuous; away from touchdown they are MoorDyn's, with the
-equilibrium penetration deeper by ``ramp / 2``.
+equilibrium penetration deeper by ``ramp / 2``. Unlike MoorDyn, the total never pulls: a node
+lifting off faster than the spring pushes feels no seabed force (MoorDyn's damper sucks it
+down; that suction also leaves implicit steps without a solution near the seabed).
 """
 
 from __future__ import annotations
@@ -49,11 +51,13 @@ def contact_force(
     share = np.clip(p / ramp, 0.0, 1.0)
     full = p >= ramp
     spring = np.where(full, k * (p - 0.5 * ramp), k * p * share * 0.5)
-    force = np.where(touching, spring - c * share * vz, 0.0)
+    total = spring - c * share * vz
+    pushing = touching & (total > 0)  # the seabed pushes, it never pulls a lifting node down
+    force = np.where(pushing, total, 0.0)
     d_spring = np.where(full, k, k * share)  # d(spring)/dp
-    d_damp = np.where(touching & ~full, c * vz / ramp, 0.0)  # d(c share vz)/dp
-    d_dz = np.where(touching, -d_spring + d_damp, 0.0)
-    d_dv = np.where(touching, -c * share, 0.0)
+    d_damp = np.where(~full, c * vz / ramp, 0.0)  # d(c share vz)/dp
+    d_dz = np.where(pushing, -d_spring + d_damp, 0.0)
+    d_dv = np.where(pushing, -c * share, 0.0)
     return force, d_dz, d_dv
 
 

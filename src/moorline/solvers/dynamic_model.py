@@ -12,6 +12,7 @@ derivatives are returned as element (6x6) and node (3x3) blocks: ``K = -dF/dx``,
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -66,10 +67,15 @@ class DynamicModel:
         2.2.b.3, first order in dt).
     seabed_model
         The :class:`~moorline.model.Seabed` (for friction); None: frictionless.
+    kernel
+        ``numba``: the element loads of a system without viscoelastic elements are computed by
+        the compiled kernel :class:`moorline.physics.fused.FusedLoads` (same results to
+        round-off, much faster); systems with viscoelastic elements, and ``numpy``, use the
+        numpy path (the reference). ``self.kernel`` is the one in use.
     """
 
     def __init__(self, mesh: Mesh, fluid, viscoelastic_update: str = "exponential",
-                 seabed_model=None) -> None:
+                 seabed_model=None, kernel: Literal["numpy", "numba"] = "numba") -> None:
         self.mesh = mesh
         self.fluid = fluid
         static = StaticModel(mesh)
@@ -88,6 +94,18 @@ class DynamicModel:
         self.viscoelastic_update = viscoelastic_update
         self.seabed_ramp = static.seabed_ramp
         self.friction = _friction_coefficients(seabed_model) if seabed_model else None
+        if kernel not in ("numpy", "numba"):
+            raise ValueError(f"kernel must be 'numpy' or 'numba', got {kernel!r}")
+        self._fused = None
+        if kernel == "numba" and not self.any_viscoelastic:
+            from ..physics import fused  # imports numba only when used
+
+            self._fused = fused.FusedLoads(
+                m.elements, m.n_nodes, m.length0, m.EA, m.slack_ratio, m.slack_smoothing, m.BA,
+                m.diameter, m.Cd, m.Ct, m.Ca, m.Cat, self.rho, with_drag=self.has_drag,
+                with_added_mass=self.has_added_mass)
+            self._midpoints = fused.midpoints
+        self.kernel = "numba" if self._fused is not None else "numpy"
 
     def initial_material(self, x: FloatArray) -> MaterialState:
         """Material state in equilibrium at positions ``x`` (relaxed Maxwell branch)."""
@@ -101,6 +119,21 @@ class DynamicModel:
         """Forces at a trial state ``(x, v, a)`` at time ``t``; tangents if ``tangent``."""
         m = self.mesh
         el = m.elements
+        if self._fused is not None:  # compiled element loads, elastic elements only
+            u_f = a_f = None
+            if self.has_drag or self.has_added_mass:
+                u_f, a_f, _ = self.fluid.kinematics(self._midpoints(x, el), t)
+            r = self._fused(x, v, a, u_f, a_f, tangent)
+            out = {}
+            if tangent:
+                out = {"K": r.K, "C": r.C, "Ma": r.Ma if self.has_added_mass else None}
+            inertial = r.nodal_added_mass if self.has_added_mass else np.zeros((m.n_nodes, 3))
+            nodal = r.nodal + self.external
+            if point_forces is not None:
+                nodal += point_forces
+            nodal, inertial, out = self._nodes(x, v, a, t, nodal, inertial, out, tangent)
+            return Evaluation(nodal, inertial, r.tension, MaterialState(r.strain,
+                              previous.maxwell), r.element_forces, **out)
         length, unit = element.element_geometry(x, el)
         dv = v[el[:, 1]] - v[el[:, 0]]
         T, dT_dl, state, taut = self._axial_tension(length, unit, dv, previous, dt)

@@ -1,0 +1,520 @@
+"""All element loads of an elastic cable in one compiled loop (numba).
+
+The numpy path of :meth:`moorline.solvers.dynamic_model.DynamicModel.evaluate` calls a few
+dozen small vectorized kernels per evaluation (:mod:`moorline.physics.element`,
+:mod:`moorline.physics.hydro` and the Kelvin-Voigt damping of the dynamic model); for the
+system sizes of mooring analysis (tens to hundreds of elements) its cost is almost entirely
+numpy call overhead. :func:`element_loads` does the same arithmetic in one ``numba.njit`` loop
+over the elements, in the same order of operations, so that it agrees with the numpy path to
+round-off (the tests hold it to 1e-12 relative):
+
+* axial: chord, length, unit vector ``n``; strain ``l / L0 - 1``; the tension with the smooth
+  slack band and its slope (:func:`moorline.physics.element.axial_tension`); the Kelvin-Voigt
+  damping ``BA * strain_rate`` where ``strain > -smoothing``; the nodal forces
+  (:func:`moorline.physics.element.nodal_forces`); with ``tangent`` the blocks ``K``
+  (geometric + material + the non-symmetric rotation term of the dashpot) and ``C`` (the
+  dashpot, ``BA / L0 n n^T``);
+* Morison drag on the relative velocity at the midpoint, normal and tangential, with its
+  exact derivatives (:func:`moorline.physics.hydro.drag_forces`);
+* added mass ``M_a``, the added-mass force ``-M_a a`` and its position derivative, and the
+  fluid-inertia force with its position derivative
+  (:func:`moorline.physics.hydro.added_mass_blocks`,
+  :func:`~moorline.physics.hydro.added_mass_position_derivative`,
+  :func:`~moorline.physics.hydro.fluid_inertia_forces`).
+
+Sign conventions are the dynamic model's: the blocks are ``K = -dF/dx``, ``C = -dF/dv`` and
+``M_a = -dF/da`` of the forces ``F`` on the element's nodes, ordered ``(x1, x2)``.
+
+Every element given to the kernel is treated as **elastic**. Viscoelastic (standard linear
+solid) elements stay on the numpy path: a caller with a mixed system either keeps the numpy
+path (what :class:`~moorline.solvers.dynamic_model.DynamicModel` does) or passes the elastic
+subset of the elements only; the hydrodynamic part is per element, so a subset is exact.
+
+The first call compiles the kernels (a few seconds); ``cache=True`` stores the machine code
+next to this file (or in ``NUMBA_CACHE_DIR``), so later processes only load it.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numba
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+BoolArray = NDArray[np.bool_]
+
+_TINY = float(np.finfo(float).tiny)
+
+# rows of the packed per-element property array
+_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO = range(11)
+_N_PROPS = 11
+
+
+class ElementLoads(NamedTuple):
+    """Outputs of :func:`element_loads` / :class:`FusedLoads`.
+
+    Attributes
+    ----------
+    element_forces
+        Axial force (tension incl. Kelvin-Voigt damping) of each element on its two nodes,
+        shape (n_el, 2, 3).
+    total_forces
+        Axial + drag + fluid inertia + added-mass force on each element's nodes, (n_el, 2, 3).
+    added_mass_force
+        ``-M_a a`` on each element's nodes, (n_el, 2, 3) (zero without added mass).
+    tension
+        Axial force including the damping term, (n_el,).
+    strain
+        ``l / L0 - 1``, (n_el,).
+    taut
+        ``strain > -smoothing``: where the dashpot acts, (n_el,).
+    K, C, Ma
+        ``-dF/dx``, ``-dF/dv``, ``-dF/da`` element blocks (n_el, 6, 6); their contents are
+        undefined (uninitialized) unless ``tangent`` (and, for ``Ma``, ``with_added_mass``).
+    nodal
+        ``total_forces`` summed to the nodes, (n_nodes, 3).
+    nodal_added_mass
+        ``added_mass_force`` summed to the nodes, (n_nodes, 3).
+    """
+
+    element_forces: FloatArray
+    total_forces: FloatArray
+    added_mass_force: FloatArray
+    tension: FloatArray
+    strain: FloatArray
+    taut: BoolArray
+    K: FloatArray
+    C: FloatArray
+    Ma: FloatArray
+    nodal: FloatArray
+    nodal_added_mass: FloatArray
+
+
+@numba.njit(cache=True, fastmath=False)
+def _projector(out, alpha, t, p):
+    """``out = alpha (I - t t^T) + t p^T`` (3x3), evaluated as hydro._projector_terms does:
+    ``t_a (p_b - alpha t_b) + alpha delta_ab``."""
+    for r in range(3):
+        for c in range(3):
+            out[r, c] = t[r] * (p[c] - alpha * t[c])
+        out[r, r] = out[r, r] + alpha
+
+
+@numba.njit(cache=True, fastmath=False)
+def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mass,
+            el_forces, total, f_am, tension, strain_out, taut_out, K, C, Ma, nodal, nodal_am):
+    """The fused loop; see :func:`element_loads`. Every operation is written in the order the
+    numpy path evaluates it, so that both agree to round-off."""
+    n_el = elements.shape[0]
+    t = np.empty(3)        # unit tangent
+    tr = np.empty(3)       # transverse relative velocity of the dashpot
+    w = np.empty(3)        # normal relative flow velocity
+    q = np.empty(3)
+    kax = np.empty((3, 3))  # axial k of [[k, -k], [-k, k]] (with the dashpot rotation term)
+    cax = np.empty((3, 3))  # dashpot c of [[c, -c], [-c, c]]
+    duv = np.zeros((3, 3))  # drag dF/dv, the same on all four node-node blocks
+    gd = np.zeros((3, 3))   # drag dF/dx2 (= -dF/dx1), both nodes
+    gi = np.zeros((3, 3))   # fluid inertia dF/dx2, both nodes
+    gk = np.zeros((2, 3, 3))  # added-mass force on node k, d/dx2
+    mab = np.zeros((3, 3))  # added-mass block of each node
+    for e in range(n_el):
+        i = elements[e, 0]
+        j = elements[e, 1]
+        L0 = props[_L0, e]
+        EA = props[_EA, e]
+        s_band = props[_SMOOTH, e]
+        BA = props[_BA, e]
+
+        # ---- geometry (element.element_geometry; hydro._tangent clamps the length) ----
+        d0 = x[j, 0] - x[i, 0]
+        d1 = x[j, 1] - x[i, 1]
+        d2 = x[j, 2] - x[i, 2]
+        length = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+        lc = max(length, _TINY)
+        t[0] = d0 / lc
+        t[1] = d1 / lc
+        t[2] = d2 / lc
+
+        # ---- axial tension with the smooth slack band (element.axial_tension) ----
+        strain = length / L0 - 1.0
+        safe_s = s_band if s_band > 0 else 1.0
+        shifted = strain + s_band
+        if strain >= s_band:
+            T = EA * strain
+            slope = EA
+        elif strain > -s_band:
+            T = EA * (shifted * shifted) / (4 * safe_s)
+            slope = EA * shifted / (2 * safe_s)
+        else:
+            sr = props[_SLACK, e]
+            T = sr * EA * shifted
+            slope = sr * EA
+        # the model converts dT/dl to dT/deps and back (DynamicModel._axial_tension)
+        dT_dl = ((slope / L0) * L0) / L0
+        # Kelvin-Voigt dashpot where strain > -smoothing
+        taut = strain > -s_band
+        ndv = 0.0
+        for c in range(3):
+            dvc = v[j, c] - v[i, c]
+            tr[c] = dvc
+            ndv += t[c] * dvc
+        T = T + (BA * (ndv / L0) if taut else 0.0)
+        tension[e] = T
+        strain_out[e] = strain
+        taut_out[e] = taut
+        for c in range(3):
+            fc = T * t[c]
+            el_forces[e, 0, c] = fc
+            el_forces[e, 1, c] = -fc
+            total[e, 0, c] = fc
+            total[e, 1, c] = -fc
+
+        if tangent:
+            # element.tangent_blocks + the rotation term (DynamicModel._axial_tangent) and the
+            # dashpot blocks (_axial_damping_blocks)
+            geo = T / length
+            damping = BA / (L0 * length) if taut else 0.0
+            cdash = BA / L0 if taut else 0.0
+            for c in range(3):
+                tr[c] = tr[c] - ndv * t[c]
+            for r in range(3):
+                for c in range(3):
+                    nn = t[r] * t[c]
+                    eye = 1.0 if r == c else 0.0
+                    k = dT_dl * nn + geo * (eye - nn)
+                    if damping != 0.0:
+                        k = k + damping * t[r] * tr[c]
+                    kax[r, c] = k
+                    cax[r, c] = cdash * t[r] * t[c]
+
+        if with_drag:
+            # ---- Morison drag (hydro.drag_forces) ----
+            u0 = uf[e, 0] - 0.5 * (v[i, 0] + v[j, 0])
+            u1 = uf[e, 1] - 0.5 * (v[i, 1] + v[j, 1])
+            u2 = uf[e, 2] - 0.5 * (v[i, 2] + v[j, 2])
+            s = u0 * t[0] + u1 * t[1] + u2 * t[2]
+            w[0] = u0 - s * t[0]
+            w[1] = u1 - s * t[1]
+            w[2] = u2 - s * t[2]
+            un = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+            abs_s = abs(s)
+            half = 0.25 * props[_RHO, e] * L0 * props[_DIAM, e]
+            cn = half * props[_CD, e]
+            ct = half * np.pi * props[_CT, e]
+            a_n = cn * un
+            a_t = ct * abs_s * s
+            for c in range(3):
+                fc = a_n * w[c] + a_t * t[c]
+                total[e, 0, c] += fc
+                total[e, 1, c] += fc
+            if tangent:
+                inv = 1.0 / un if un > 0.0 else 0.0
+                inv_l = 1.0 / lc
+                cnw = cn * un
+                beta = 2.0 * ct * abs_s - cnw
+                hb = -0.5 * beta
+                cw = -0.5 * cn * inv
+                hcnw = 0.5 * cnw
+                alpha = s * (ct * abs_s - cnw) * inv_l
+                bl = beta * inv_l
+                cx = -cn * s * inv * inv_l
+                for r in range(3):
+                    for c in range(3):
+                        val = t[r] * (hb * t[c]) + w[r] * (cw * w[c])
+                        gx = t[r] * (bl * w[c] - alpha * t[c])
+                        if r == c:
+                            val = val - hcnw
+                            gx = gx + alpha
+                        duv[r, c] = val
+                        gd[r, c] = gx + w[r] * (cx * w[c])
+
+        if with_added_mass:
+            # ---- fluid inertia, added mass and their position derivatives (hydro) ----
+            D = props[_DIAM, e]
+            m = 0.5 * props[_RHO, e] * 0.25 * np.pi * D * D * L0
+            ca = props[_CA, e]
+            cat = props[_CAT, e]
+            dc = m * (cat - ca)
+            mca = m * ca
+            sf = t[0] * af[e, 0] + t[1] * af[e, 1] + t[2] * af[e, 2]
+            m1 = m * (1.0 + ca)
+            for r in range(3):
+                for c in range(3):
+                    mab[r, c] = (mca if r == c else 0.0) + dc * (t[r] * t[c])
+            for c in range(3):
+                fc = m1 * af[e, c] + (dc * sf) * t[c]
+                total[e, 0, c] += fc
+                total[e, 1, c] += fc
+            for k in range(2):
+                node = i if k == 0 else j
+                for r in range(3):
+                    acc = mab[r, 0] * a[node, 0] + mab[r, 1] * a[node, 1]
+                    acc = acc + mab[r, 2] * a[node, 2]
+                    f_am[e, k, r] = -acc
+                    total[e, k, r] += -acc
+            if tangent:
+                # fluid inertia through t (hydro.fluid_inertia_forces)
+                cf = dc / lc
+                for c in range(3):
+                    q[c] = cf * (af[e, c] - sf * t[c])
+                _projector(gi, cf * sf, t, q)
+                # added-mass force -M_a(x) a_k through t (hydro.added_mass_position_derivative)
+                cm = -m * (cat - ca) / lc
+                for k in range(2):
+                    node = i if k == 0 else j
+                    sk = t[0] * a[node, 0] + t[1] * a[node, 1] + t[2] * a[node, 2]
+                    for c in range(3):
+                        q[c] = cm * (a[node, c] - sk * t[c])
+                    _projector(gk[k], cm * sk, t, q)
+
+        if tangent:
+            # K = -dF/dx, C = -dF/dv: the hydrodynamic position blocks are [-g, g] in every
+            # row (subtracting them adds g to the x1 columns); the drag velocity blocks are
+            # the same on all four node-node positions. Node-node blocks 00, 01, 10, 11.
+            for r in range(3):
+                for c in range(3):
+                    k = kax[r, c]
+                    k00 = k
+                    k01 = -k
+                    k10 = -k
+                    k11 = k
+                    cc = cax[r, c]
+                    c00 = cc
+                    c01 = -cc
+                    c10 = -cc
+                    c11 = cc
+                    if with_drag:
+                        g = gd[r, c]
+                        k00 = k00 + g
+                        k01 = k01 - g
+                        k10 = k10 + g
+                        k11 = k11 - g
+                        d = duv[r, c]
+                        c00 = c00 - d
+                        c01 = c01 - d
+                        c10 = c10 - d
+                        c11 = c11 - d
+                    if with_added_mass:
+                        g = gi[r, c]
+                        k00 = (k00 + g) + gk[0, r, c]
+                        k01 = (k01 - g) - gk[0, r, c]
+                        k10 = (k10 + g) + gk[1, r, c]
+                        k11 = (k11 - g) - gk[1, r, c]
+                        mb = mab[r, c]
+                        Ma[e, r, c] = mb
+                        Ma[e, r, c + 3] = 0.0
+                        Ma[e, r + 3, c] = 0.0
+                        Ma[e, r + 3, c + 3] = mb
+                    K[e, r, c] = k00
+                    K[e, r, c + 3] = k01
+                    K[e, r + 3, c] = k10
+                    K[e, r + 3, c + 3] = k11
+                    C[e, r, c] = c00
+                    C[e, r, c + 3] = c01
+                    C[e, r + 3, c] = c10
+                    C[e, r + 3, c + 3] = c11
+
+    # ---- sum to the nodes, in the order of hydro.sum_to_nodes (np.bincount) ----
+    nodal[:, :] = 0.0
+    nodal_am[:, :] = 0.0
+    for e in range(n_el):
+        for k in range(2):
+            node = elements[e, k]
+            for c in range(3):
+                nodal[node, c] += total[e, k, c]
+                nodal_am[node, c] += f_am[e, k, c]
+
+
+@numba.njit(cache=True, fastmath=False)
+def sum_to_nodes(forces: FloatArray, elements: IntArray, n_nodes: int) -> FloatArray:
+    """Add the forces each element exerts on its nodes into a nodal array (compiled).
+
+    Same result, in the same order of summation, as
+    :func:`moorline.physics.hydro.sum_to_nodes`.
+
+    Parameters
+    ----------
+    forces
+        Forces on the two nodes of every element, shape (n_elements, 2, 3).
+    elements
+        Node indices of each element, shape (n_elements, 2).
+    n_nodes
+        Number of nodes.
+
+    Returns
+    -------
+    FloatArray
+        Nodal forces, shape (n_nodes, 3).
+    """
+    out = np.zeros((n_nodes, 3))
+    for e in range(elements.shape[0]):
+        for k in range(2):
+            node = elements[e, k]
+            for c in range(3):
+                out[node, c] += forces[e, k, c]
+    return out
+
+
+@numba.njit(cache=True, fastmath=False)
+def midpoints(x: FloatArray, elements: IntArray) -> FloatArray:
+    """Element midpoints ``(x1 + x2) / 2``, shape (n_elements, 3) (compiled)."""
+    n_el = elements.shape[0]
+    out = np.empty((n_el, 3))
+    for e in range(n_el):
+        i = elements[e, 0]
+        j = elements[e, 1]
+        for c in range(3):
+            out[e, c] = 0.5 * (x[i, c] + x[j, c])
+    return out
+
+
+def _per_element(value: ArrayLike, n_el: int) -> FloatArray:
+    return np.broadcast_to(np.asarray(value, dtype=float), (n_el,))
+
+
+def pack_properties(
+    n_el: int, length0: ArrayLike, EA: ArrayLike, slack_ratio: ArrayLike,
+    smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike, Cd: ArrayLike, Ct: ArrayLike,
+    Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike,
+) -> FloatArray:
+    """Per-element properties (scalars broadcast) packed into one (11, n_el) array, in the
+    row order the kernel reads them."""
+    props = np.empty((_N_PROPS, n_el))
+    for row, value in enumerate((length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct,
+                                 Ca, Cat, rho)):
+        props[row] = _per_element(value, n_el)
+    return props
+
+
+class FusedLoads:
+    """Element loads of a fixed set of elastic elements, evaluated by the compiled kernel.
+
+    Holds the packed element properties (and, with ``reuse_buffers``, the output arrays) so
+    that a call costs one dispatch into the kernel.
+
+    Parameters
+    ----------
+    elements
+        Node indices of each element, shape (n_el, 2). All are treated as elastic.
+    n_nodes
+        Number of nodes of the positions passed to :meth:`__call__`.
+    length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct, Ca, Cat, rho
+        Element properties, scalars or (n_el,) arrays (see :func:`element_loads`).
+    with_drag, with_added_mass
+        Whether to compute the Morison drag and the added-mass / fluid-inertia terms.
+        Default: where any drag (added-mass) coefficient and ``rho`` are nonzero.
+    reuse_buffers
+        Write every call's outputs into the same arrays (a little faster). Then the arrays of
+        one call are overwritten by the next: copy what you keep. Default ``False``: fresh
+        arrays every call, safe to store.
+    """
+
+    def __init__(
+        self, elements: IntArray, n_nodes: int, length0: ArrayLike, EA: ArrayLike,
+        slack_ratio: ArrayLike, smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike,
+        Cd: ArrayLike, Ct: ArrayLike, Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike,
+        with_drag: bool | None = None, with_added_mass: bool | None = None,
+        reuse_buffers: bool = False,
+    ) -> None:
+        self.elements = np.ascontiguousarray(elements, dtype=np.int64)
+        n_el = self.elements.shape[0]
+        self.n_el = n_el
+        self.n_nodes = int(n_nodes)
+        self.props = pack_properties(n_el, length0, EA, slack_ratio, smoothing, BA, diameter,
+                                     Cd, Ct, Ca, Cat, rho)
+        wet = bool(np.any(self.props[_RHO] > 0))
+        if with_drag is None:
+            with_drag = wet and bool(np.any(self.props[_CD] > 0) or np.any(self.props[_CT] > 0))
+        if with_added_mass is None:
+            with_added_mass = wet and bool(np.any(self.props[_CA] > 0)
+                                           or np.any(self.props[_CAT] > 0))
+        self.with_drag = bool(with_drag)
+        self.with_added_mass = bool(with_added_mass)
+        self._zero_fluid = np.zeros((n_el, 3))
+        self.reuse_buffers = reuse_buffers
+        self._buffers = self._allocate() if reuse_buffers else None
+
+    def _allocate(self) -> tuple:
+        n_el, n = self.n_el, self.n_nodes
+        return (np.empty((n_el, 2, 3)), np.empty((n_el, 2, 3)), np.zeros((n_el, 2, 3)),
+                np.empty(n_el), np.empty(n_el), np.empty(n_el, dtype=np.bool_),
+                np.empty((n_el, 6, 6)), np.empty((n_el, 6, 6)), np.empty((n_el, 6, 6)),
+                np.empty((n, 3)), np.empty((n, 3)))
+
+    def _fluid(self, value: ArrayLike | None) -> FloatArray:
+        if value is None:
+            return self._zero_fluid
+        arr = np.asarray(value, dtype=np.float64)
+        if arr.shape != (self.n_el, 3):
+            arr = np.broadcast_to(arr, (self.n_el, 3))
+        return np.ascontiguousarray(arr)
+
+    def __call__(
+        self, x: FloatArray, v: FloatArray, a: FloatArray,
+        fluid_velocity_mid: ArrayLike | None, fluid_acceleration_mid: ArrayLike | None,
+        tangent: bool,
+    ) -> ElementLoads:
+        """Evaluate the loads at positions, velocities and accelerations (n_nodes, 3).
+
+        ``fluid_velocity_mid`` and ``fluid_acceleration_mid`` are the fluid kinematics at the
+        element midpoints, (n_el, 3) or (3,); ``None`` means still water.
+        """
+        out = self._buffers if self._buffers is not None else self._allocate()
+        if not self.with_added_mass and self._buffers is not None:
+            out[2].fill(0.0)
+        _kernel(np.ascontiguousarray(x, dtype=np.float64),
+                np.ascontiguousarray(v, dtype=np.float64),
+                np.ascontiguousarray(a, dtype=np.float64),
+                self._fluid(fluid_velocity_mid), self._fluid(fluid_acceleration_mid),
+                self.elements, self.props, bool(tangent), self.with_drag,
+                self.with_added_mass, *out)
+        return ElementLoads(*out)
+
+
+def element_loads(
+    x: FloatArray, v: FloatArray, a: FloatArray, fluid_velocity_mid: ArrayLike,
+    fluid_acceleration_mid: ArrayLike, elements: IntArray, length0: ArrayLike, EA: ArrayLike,
+    slack_ratio: ArrayLike, smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike,
+    Cd: ArrayLike, Ct: ArrayLike, Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike,
+    tangent: bool, with_added_mass: bool, with_drag: bool = True,
+) -> ElementLoads:
+    """All loads of elastic elements and their derivatives in one compiled pass.
+
+    Convenience form of :class:`FusedLoads` (which packs the properties once and is the one to
+    use in a time loop).
+
+    Parameters
+    ----------
+    x, v, a
+        Node positions, velocities and accelerations, shape (n_nodes, 3).
+    fluid_velocity_mid, fluid_acceleration_mid
+        Fluid velocity and acceleration at each element midpoint, (n_el, 3) or (3,).
+    elements
+        Node indices of each element, shape (n_el, 2); every element is treated as elastic.
+    length0, EA, slack_ratio, smoothing, BA
+        Unstretched length, axial stiffness, slack stiffness ratio, slack band and
+        Kelvin-Voigt damping [force*time]; scalars or (n_el,).
+    diameter, Cd, Ct, Ca, Cat, rho
+        Hydrodynamic diameter, drag and added-mass coefficients and fluid density.
+    tangent
+        Also compute the blocks ``K``, ``C`` (and ``Ma``).
+    with_added_mass
+        Compute added mass and fluid inertia (set when ``Ca`` or ``Cat`` is nonzero).
+    with_drag
+        Compute the Morison drag.
+
+    Returns
+    -------
+    ElementLoads
+        See :class:`ElementLoads`; ``nodal`` is ``total_forces`` summed to the nodes, with
+        ``n_nodes = len(x)``.
+    """
+    x = np.asarray(x, dtype=np.float64)
+    loads = FusedLoads(elements, x.shape[0], length0, EA, slack_ratio, smoothing, BA,
+                       diameter, Cd, Ct, Ca, Cat, rho, with_drag=with_drag,
+                       with_added_mass=with_added_mass)
+    return loads(x, v, a, fluid_velocity_mid, fluid_acceleration_mid, tangent)
