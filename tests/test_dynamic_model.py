@@ -33,7 +33,8 @@ def _system(friction=(0.6, 0.6)) -> System:
 def test_dynamic_tangents_match_central_differences(friction):
     system = _system(friction)
     mesh = discretize(system)
-    model = DynamicModel(mesh, CurrentProfile.uniform(0.7, 25.0), seabed_model=system.environment.seabed)
+    model = DynamicModel(mesh, CurrentProfile.uniform(0.7, 25.0),
+                         seabed_model=system.environment.seabed)
     rng = np.random.default_rng(3)
     x = mesh.node_position.copy()
     x[mesh.line_nodes[0][1:4], 2] = -100.004  # resting on the seabed, past the blend band

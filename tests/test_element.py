@@ -110,3 +110,24 @@ def test_block_pattern_matches_dense_assembly_with_constrained_dofs():
     keep = np.arange(3, 12)
     expected = dense[np.ix_(keep, keep)] + np.diag(diag)
     assert np.allclose(K, expected)
+
+
+@pytest.mark.parametrize("max_band", [120, 1])  # banded LAPACK and SuperLU paths
+def test_sparse_factor_solves_like_a_dense_solver(max_band):
+    from moorline.solvers.assembly import SparseFactor
+
+    n, n_el = 12, 11
+    elements = np.column_stack((np.arange(n_el), np.arange(1, n_el + 1)))
+    elements = np.vstack((elements, [[0, 7]]))  # a loop: the reordering must cope
+    dof = np.arange(3 * n).reshape(-1, 3)
+    dof[5] = -1
+    dof[dof > 15] -= 3
+    pattern = BlockPattern(elements, dof)
+    blocks = RNG.normal(size=(len(elements), 6, 6))
+    data = pattern.values(blocks, np.eye(3)[None] * 50.0 + RNG.normal(size=(n, 3, 3)))
+    A = np.zeros((pattern.n, pattern.n))
+    A[pattern.rows, pattern.indices] = data
+    b = RNG.normal(size=pattern.n)
+    factor = SparseFactor(pattern, max_band=max_band)
+    assert factor.banded == (max_band == 120)
+    assert np.allclose(factor.factor(data).solve(b), np.linalg.solve(A, b), rtol=1e-10)

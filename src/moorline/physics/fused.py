@@ -73,8 +73,8 @@ class ElementLoads(NamedTuple):
     taut
         ``strain > -smoothing``: where the dashpot acts, (n_el,).
     K, C, Ma
-        ``-dF/dx``, ``-dF/dv``, ``-dF/da`` element blocks (n_el, 6, 6); their contents are
-        undefined (uninitialized) unless ``tangent`` (and, for ``Ma``, ``with_added_mass``).
+        ``-dF/dx``, ``-dF/dv``, ``-dF/da`` element blocks (n_el, 6, 6); ``None`` unless
+        ``tangent`` (and, for ``Ma``, ``with_added_mass``).
     nodal
         ``total_forces`` summed to the nodes, (n_nodes, 3).
     nodal_added_mass
@@ -87,14 +87,14 @@ class ElementLoads(NamedTuple):
     tension: FloatArray
     strain: FloatArray
     taut: BoolArray
-    K: FloatArray
-    C: FloatArray
-    Ma: FloatArray
+    K: FloatArray | None
+    C: FloatArray | None
+    Ma: FloatArray | None
     nodal: FloatArray
     nodal_added_mass: FloatArray
 
 
-@numba.njit(cache=True, fastmath=False)
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
 def _projector(out, alpha, t, p):
     """``out = alpha (I - t t^T) + t p^T`` (3x3), evaluated as hydro._projector_terms does:
     ``t_a (p_b - alpha t_b) + alpha delta_ab``."""
@@ -104,7 +104,7 @@ def _projector(out, alpha, t, p):
         out[r, r] = out[r, r] + alpha
 
 
-@numba.njit(cache=True, fastmath=False)
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
 def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mass,
             el_forces, total, f_am, tension, strain_out, taut_out, K, C, Ma, nodal, nodal_am):
     """The fused loop; see :func:`element_loads`. Every operation is written in the order the
@@ -232,7 +232,11 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
                         duv[r, c] = val
                         gd[r, c] = gx + w[r] * (cx * w[c])
 
-        if with_added_mass:
+        if not with_added_mass:
+            for k in range(2):
+                for c in range(3):
+                    f_am[e, k, c] = 0.0
+        else:
             # ---- fluid inertia, added mass and their position derivatives (hydro) ----
             D = props[_DIAM, e]
             m = 0.5 * props[_RHO, e] * 0.25 * np.pi * D * D * L0
@@ -329,7 +333,7 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
                 nodal_am[node, c] += f_am[e, k, c]
 
 
-@numba.njit(cache=True, fastmath=False)
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
 def sum_to_nodes(forces: FloatArray, elements: IntArray, n_nodes: int) -> FloatArray:
     """Add the forces each element exerts on its nodes into a nodal array (compiled).
 
@@ -359,7 +363,7 @@ def sum_to_nodes(forces: FloatArray, elements: IntArray, n_nodes: int) -> FloatA
     return out
 
 
-@numba.njit(cache=True, fastmath=False)
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
 def midpoints(x: FloatArray, elements: IntArray) -> FloatArray:
     """Element midpoints ``(x1 + x2) / 2``, shape (n_elements, 3) (compiled)."""
     n_el = elements.shape[0]
@@ -393,8 +397,8 @@ def pack_properties(
 class FusedLoads:
     """Element loads of a fixed set of elastic elements, evaluated by the compiled kernel.
 
-    Holds the packed element properties (and, with ``reuse_buffers``, the output arrays) so
-    that a call costs one dispatch into the kernel.
+    Holds the packed element properties (and scratch arrays) so that a call costs one
+    dispatch into the kernel plus the allocation of its outputs.
 
     Parameters
     ----------
@@ -408,9 +412,9 @@ class FusedLoads:
         Whether to compute the Morison drag and the added-mass / fluid-inertia terms.
         Default: where any drag (added-mass) coefficient and ``rho`` are nonzero.
     reuse_buffers
-        Write every call's outputs into the same arrays (a little faster). Then the arrays of
-        one call are overwritten by the next: copy what you keep. Default ``False``: fresh
-        arrays every call, safe to store.
+        Write every call's outputs into the same arrays (a little faster); the arrays of one
+        call are then overwritten by the next, copy what you keep. Default ``False``: fresh
+        arrays every call, safe to store (e.g. in an accepted time step's evaluation).
     """
 
     def __init__(
@@ -435,22 +439,29 @@ class FusedLoads:
         self.with_drag = bool(with_drag)
         self.with_added_mass = bool(with_added_mass)
         self._zero_fluid = np.zeros((n_el, 3))
+        self._scratch_blocks = tuple(np.empty((n_el, 6, 6)) for _ in range(3))  # not tangent
         self.reuse_buffers = reuse_buffers
-        self._buffers = self._allocate() if reuse_buffers else None
+        self._buffers = (self._allocate(True), self._allocate(False)) if reuse_buffers else None
 
-    def _allocate(self) -> tuple:
+    def _allocate(self, tangent: bool) -> tuple:
+        """Output arrays (``K``, ``C``, ``Ma``: a shared scratch unless ``tangent``)."""
         n_el, n = self.n_el, self.n_nodes
-        return (np.empty((n_el, 2, 3)), np.empty((n_el, 2, 3)), np.zeros((n_el, 2, 3)),
-                np.empty(n_el), np.empty(n_el), np.empty(n_el, dtype=np.bool_),
-                np.empty((n_el, 6, 6)), np.empty((n_el, 6, 6)), np.empty((n_el, 6, 6)),
-                np.empty((n, 3)), np.empty((n, 3)))
+        empty = np.empty
+        if tangent:
+            K, C, Ma = empty((n_el, 6, 6)), empty((n_el, 6, 6)), empty((n_el, 6, 6))
+        else:
+            K, C, Ma = self._scratch_blocks
+        return (empty((n_el, 2, 3)), empty((n_el, 2, 3)), empty((n_el, 2, 3)), empty(n_el),
+                empty(n_el), empty(n_el, dtype=np.bool_), K, C, Ma, empty((n, 3)),
+                empty((n, 3)))
 
     def _fluid(self, value: ArrayLike | None) -> FloatArray:
         if value is None:
             return self._zero_fluid
-        arr = np.asarray(value, dtype=np.float64)
-        if arr.shape != (self.n_el, 3):
-            arr = np.broadcast_to(arr, (self.n_el, 3))
+        if (type(value) is np.ndarray and value.dtype == np.float64
+                and value.shape == self._zero_fluid.shape and value.flags.c_contiguous):
+            return value
+        arr = np.broadcast_to(np.asarray(value, dtype=np.float64), self._zero_fluid.shape)
         return np.ascontiguousarray(arr)
 
     def __call__(
@@ -458,20 +469,27 @@ class FusedLoads:
         fluid_velocity_mid: ArrayLike | None, fluid_acceleration_mid: ArrayLike | None,
         tangent: bool,
     ) -> ElementLoads:
-        """Evaluate the loads at positions, velocities and accelerations (n_nodes, 3).
+        """Evaluate the loads at node positions, velocities and accelerations (n_nodes, 3).
 
         ``fluid_velocity_mid`` and ``fluid_acceleration_mid`` are the fluid kinematics at the
-        element midpoints, (n_el, 3) or (3,); ``None`` means still water.
+        element midpoints, (n_el, 3) or (3,); ``None`` means still water. ``K`` and ``C`` of
+        the result are ``None`` unless ``tangent``, ``Ma`` unless ``tangent`` and
+        ``with_added_mass``.
         """
-        out = self._buffers if self._buffers is not None else self._allocate()
-        if not self.with_added_mass and self._buffers is not None:
-            out[2].fill(0.0)
+        tangent = bool(tangent)
+        if self._buffers is not None:
+            out = self._buffers[0 if tangent else 1]
+        else:
+            out = self._allocate(tangent)
         _kernel(np.ascontiguousarray(x, dtype=np.float64),
                 np.ascontiguousarray(v, dtype=np.float64),
                 np.ascontiguousarray(a, dtype=np.float64),
                 self._fluid(fluid_velocity_mid), self._fluid(fluid_acceleration_mid),
-                self.elements, self.props, bool(tangent), self.with_drag,
-                self.with_added_mass, *out)
+                self.elements, self.props, tangent, self.with_drag, self.with_added_mass, *out)
+        if not tangent:
+            return ElementLoads(*out[:6], None, None, None, *out[9:])
+        if not self.with_added_mass:
+            return ElementLoads(*out[:8], None, *out[9:])
         return ElementLoads(*out)
 
 

@@ -9,7 +9,10 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
+from scipy.linalg.lapack import dgbtrf, dgbtrs
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -61,6 +64,16 @@ class BlockPattern:
         node_blocks: FloatArray | None = None,
         diagonal: FloatArray | None = None,
     ) -> sp.csr_matrix:
+        """Sum blocks into a CSR matrix (see :meth:`values` for the arguments)."""
+        data = self.values(element_blocks, node_blocks, diagonal)
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
+
+    def values(
+        self,
+        element_blocks: FloatArray | None = None,
+        node_blocks: FloatArray | None = None,
+        diagonal: FloatArray | None = None,
+    ) -> FloatArray:
         """Sum blocks into a CSR matrix.
 
         Parameters
@@ -80,7 +93,62 @@ class BlockPattern:
         data = np.bincount(self._slot, values[self._keep], minlength=self.nnz)
         if diagonal is not None:
             data[self._diag_slot] += diagonal
-        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
+        return data
+
+    @property
+    def rows(self) -> NDArray[np.int32]:
+        """Row of every stored entry, in storage order."""
+        return np.repeat(np.arange(self.n, dtype=np.int32), np.diff(self.indptr))
+
+
+class SparseFactor:
+    """Factorizations of matrices with a fixed :class:`BlockPattern`.
+
+    The unknowns are reordered once by reverse Cuthill-McKee. When the reordered matrix is
+    narrow-banded (cables: nodes along lines), LAPACK's banded LU (``dgbtrf``/``dgbtrs``) is
+    used, filled through a precomputed map from storage slots to band positions: cost linear
+    in the number of unknowns and a few microseconds of Python per call. Otherwise SuperLU.
+    """
+
+    def __init__(self, pattern: BlockPattern, max_band: int = 120) -> None:
+        self.pattern = pattern
+        n = pattern.n
+        graph = sp.csr_matrix((np.ones(pattern.nnz), pattern.indices, pattern.indptr),
+                              shape=(n, n))
+        perm = reverse_cuthill_mckee(graph, symmetric_mode=True).astype(np.int64)
+        inverse = np.empty_like(perm)
+        inverse[perm] = np.arange(n)
+        rows, cols = inverse[pattern.rows], inverse[pattern.indices]
+        self.kl = int(np.max(rows - cols, initial=0))
+        self.ku = int(np.max(cols - rows, initial=0))
+        self.banded = n > 0 and self.kl + self.ku + 1 <= max_band
+        self.perm, self.inverse = perm, inverse
+        self.shape = (2 * self.kl + self.ku + 1, n)
+        self.band_slot = (self.kl + self.ku + rows - cols) * n + cols
+        self._lu = None
+
+    def factor(self, data: FloatArray) -> SparseFactor:
+        """Factorize the matrix with entries ``data`` (storage order of the pattern)."""
+        if self.banded:
+            ab = np.zeros(self.shape[0] * self.shape[1])
+            ab[self.band_slot] = data
+            lu, piv, info = dgbtrf(ab.reshape(self.shape), self.kl, self.ku, overwrite_ab=1)
+            if info > 0:
+                raise np.linalg.LinAlgError(f"singular matrix (zero pivot at {info - 1})")
+            self._lu = (lu, piv)
+        else:
+            p = self.pattern
+            K = sp.csr_matrix((data, p.indices, p.indptr), shape=(p.n, p.n))
+            self._lu = spla.splu(K.tocsc())
+        return self
+
+    def solve(self, rhs: FloatArray) -> FloatArray:
+        """Solve with the last factorization."""
+        if not self.banded:
+            return self._lu.solve(rhs)
+        lu, piv = self._lu
+        y, info = dgbtrs(lu, self.kl, self.ku, rhs[self.perm], piv)
+        return y[self.inverse]
 
 
 def gather_free(values: FloatArray, dof_of_node: IntArray) -> FloatArray:

@@ -22,10 +22,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
-from .assembly import BlockPattern, gather_free, scatter_free
+from .assembly import BlockPattern, SparseFactor, gather_free, scatter_free
 from .dynamic_model import DynamicModel, Evaluation, MaterialState
 
 FloatArray = NDArray[np.float64]
@@ -72,9 +71,10 @@ class Stepper:
         self.stiffness_update = stiffness_update
         mesh = model.mesh
         self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
+        self.factorizer = SparseFactor(self.pattern)
         self.dof = mesh.dof_of_node
         self.free = mesh.free_nodes
-        self.lu: spla.SuperLU | None = None
+        self.lu: SparseFactor | None = None
         self.lu_h = np.nan
         self.lu_age = 0
         self.carried = None  # incremental variant: imbalance left by the previous step
@@ -108,8 +108,7 @@ class Stepper:
         nodes = nodes + ck * ev.node_K + cv * ev.node_C
         if ev.node_M is not None:
             nodes = nodes + ca * ev.node_M
-        K = self.pattern.assemble(blocks, nodes)
-        self.lu = spla.splu(K.tocsc())
+        self.lu = self.factorizer.factor(self.pattern.values(blocks, nodes))
         self.lu_h, self.lu_age = h, 0
         self.counters["tangents"] += 1
         self.counters["factorizations"] += 1
