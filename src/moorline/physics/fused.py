@@ -6,7 +6,10 @@ dozen small vectorized kernels per evaluation (:mod:`moorline.physics.element`,
 system sizes of mooring analysis (tens to hundreds of elements) its cost is almost entirely
 numpy call overhead. :func:`element_loads` does the same arithmetic in one ``numba.njit`` loop
 over the elements, in the same order of operations, so that it agrees with the numpy path to
-round-off (the tests hold it to 1e-12 relative):
+round-off (tests/test_fused.py holds every output to 1e-12 of its largest entry). Only the
+chord length may differ in its last bit (numpy's ``einsum`` may use fused multiply-adds); the
+ill-conditioned quantities inherit that: the strain ``l / L0 - 1`` to ~eps absolute, and in the
+slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
 
 * axial: chord, length, unit vector ``n``; strain ``l / L0 - 1``; the tension with the smooth
   slack band and its slope (:func:`moorline.physics.element.axial_tension`); the Kelvin-Voigt
@@ -30,8 +33,10 @@ solid) elements stay on the numpy path: a caller with a mixed system either keep
 path (what :class:`~moorline.solvers.dynamic_model.DynamicModel` does) or passes the elastic
 subset of the elements only; the hydrodynamic part is per element, so a subset is exact.
 
-The first call compiles the kernels (a few seconds); ``cache=True`` stores the machine code
-next to this file (or in ``NUMBA_CACHE_DIR``), so later processes only load it.
+Division follows numpy (``error_model="numpy"``: inf/nan, no exception), and ``fastmath`` is
+off so that the order of operations is kept. The first call compiles the kernels (about 2 s);
+``cache=True`` stores the machine code in ``__pycache__`` next to this file (or in
+``NUMBA_CACHE_DIR``), so later processes load it (about 0.2 s, plus 0.3 s to import numba).
 """
 
 from __future__ import annotations
@@ -94,34 +99,24 @@ class ElementLoads(NamedTuple):
     nodal_added_mass: FloatArray
 
 
-@numba.njit(cache=True, fastmath=False, error_model="numpy")
-def _projector(out, alpha, t, p):
-    """``out = alpha (I - t t^T) + t p^T`` (3x3), evaluated as hydro._projector_terms does:
-    ``t_a (p_b - alpha t_b) + alpha delta_ab``."""
-    for r in range(3):
-        for c in range(3):
-            out[r, c] = t[r] * (p[c] - alpha * t[c])
-        out[r, r] = out[r, r] + alpha
+@numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _projector(alpha, t, p, r, c):
+    """Entry ``(r, c)`` of ``alpha (I - t t^T) + t p^T``, evaluated as hydro._projector_terms
+    does: ``t_r (p_c - alpha t_c) + alpha delta_rc``."""
+    g = t[r] * (p[c] - alpha * t[c])
+    return g + alpha if r == c else g
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
 def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mass,
             el_forces, total, f_am, tension, strain_out, taut_out, K, C, Ma, nodal, nodal_am):
     """The fused loop; see :func:`element_loads`. Every operation is written in the order the
-    numpy path evaluates it, so that both agree to round-off."""
-    n_el = elements.shape[0]
-    t = np.empty(3)        # unit tangent
-    tr = np.empty(3)       # transverse relative velocity of the dashpot
-    w = np.empty(3)        # normal relative flow velocity
-    q = np.empty(3)
-    kax = np.empty((3, 3))  # axial k of [[k, -k], [-k, k]] (with the dashpot rotation term)
-    cax = np.empty((3, 3))  # dashpot c of [[c, -c], [-c, c]]
-    duv = np.zeros((3, 3))  # drag dF/dv, the same on all four node-node blocks
-    gd = np.zeros((3, 3))   # drag dF/dx2 (= -dF/dx1), both nodes
-    gi = np.zeros((3, 3))   # fluid inertia dF/dx2, both nodes
-    gk = np.zeros((2, 3, 3))  # added-mass force on node k, d/dx2
-    mab = np.zeros((3, 3))  # added-mass block of each node
-    for e in range(n_el):
+    numpy path evaluates it, so that both agree to round-off. Small vectors are tuples so that
+    the unrolled 3x3 loops keep them in registers."""
+    nodal[:, :] = 0.0
+    nodal_am[:, :] = 0.0
+    zero3 = (0.0, 0.0, 0.0)
+    for e in range(elements.shape[0]):
         i = elements[e, 0]
         j = elements[e, 1]
         L0 = props[_L0, e]
@@ -135,9 +130,7 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
         d2 = x[j, 2] - x[i, 2]
         length = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
         lc = max(length, _TINY)
-        t[0] = d0 / lc
-        t[1] = d1 / lc
-        t[2] = d2 / lc
+        t = (d0 / lc, d1 / lc, d2 / lc)
 
         # ---- axial tension with the smooth slack band (element.axial_tension) ----
         strain = length / L0 - 1.0
@@ -155,51 +148,31 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
             slope = sr * EA
         # the model converts dT/dl to dT/deps and back (DynamicModel._axial_tension)
         dT_dl = ((slope / L0) * L0) / L0
-        # Kelvin-Voigt dashpot where strain > -smoothing
+        # Kelvin-Voigt dashpot where strain > -smoothing (DynamicModel._axial_tension)
         taut = strain > -s_band
-        ndv = 0.0
-        for c in range(3):
-            dvc = v[j, c] - v[i, c]
-            tr[c] = dvc
-            ndv += t[c] * dvc
+        dv0 = v[j, 0] - v[i, 0]
+        dv1 = v[j, 1] - v[i, 1]
+        dv2 = v[j, 2] - v[i, 2]
+        ndv = t[0] * dv0 + t[1] * dv1 + t[2] * dv2
         T = T + (BA * (ndv / L0) if taut else 0.0)
         tension[e] = T
         strain_out[e] = strain
         taut_out[e] = taut
+        f = (T * t[0], T * t[1], T * t[2])
         for c in range(3):
-            fc = T * t[c]
-            el_forces[e, 0, c] = fc
-            el_forces[e, 1, c] = -fc
-            total[e, 0, c] = fc
-            total[e, 1, c] = -fc
+            el_forces[e, 0, c] = f[c]
+            el_forces[e, 1, c] = -f[c]
+        fn = (-f[0], -f[1], -f[2])  # accumulated totals of node 1 (f) and node 2 (fn)
 
-        if tangent:
-            # element.tangent_blocks + the rotation term (DynamicModel._axial_tangent) and the
-            # dashpot blocks (_axial_damping_blocks)
-            geo = T / length
-            damping = BA / (L0 * length) if taut else 0.0
-            cdash = BA / L0 if taut else 0.0
-            for c in range(3):
-                tr[c] = tr[c] - ndv * t[c]
-            for r in range(3):
-                for c in range(3):
-                    nn = t[r] * t[c]
-                    eye = 1.0 if r == c else 0.0
-                    k = dT_dl * nn + geo * (eye - nn)
-                    if damping != 0.0:
-                        k = k + damping * t[r] * tr[c]
-                    kax[r, c] = k
-                    cax[r, c] = cdash * t[r] * t[c]
-
+        # ---- Morison drag (hydro.drag_forces) ----
+        w = zero3
+        s = cn = ct = un = abs_s = 0.0
         if with_drag:
-            # ---- Morison drag (hydro.drag_forces) ----
             u0 = uf[e, 0] - 0.5 * (v[i, 0] + v[j, 0])
             u1 = uf[e, 1] - 0.5 * (v[i, 1] + v[j, 1])
             u2 = uf[e, 2] - 0.5 * (v[i, 2] + v[j, 2])
             s = u0 * t[0] + u1 * t[1] + u2 * t[2]
-            w[0] = u0 - s * t[0]
-            w[1] = u1 - s * t[1]
-            w[2] = u2 - s * t[2]
+            w = (u0 - s * t[0], u1 - s * t[1], u2 - s * t[2])
             un = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
             abs_s = abs(s)
             half = 0.25 * props[_RHO, e] * L0 * props[_DIAM, e]
@@ -207,130 +180,136 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
             ct = half * np.pi * props[_CT, e]
             a_n = cn * un
             a_t = ct * abs_s * s
-            for c in range(3):
-                fc = a_n * w[c] + a_t * t[c]
-                total[e, 0, c] += fc
-                total[e, 1, c] += fc
-            if tangent:
-                inv = 1.0 / un if un > 0.0 else 0.0
-                inv_l = 1.0 / lc
-                cnw = cn * un
-                beta = 2.0 * ct * abs_s - cnw
-                hb = -0.5 * beta
-                cw = -0.5 * cn * inv
-                hcnw = 0.5 * cnw
-                alpha = s * (ct * abs_s - cnw) * inv_l
-                bl = beta * inv_l
-                cx = -cn * s * inv * inv_l
-                for r in range(3):
-                    for c in range(3):
-                        val = t[r] * (hb * t[c]) + w[r] * (cw * w[c])
-                        gx = t[r] * (bl * w[c] - alpha * t[c])
-                        if r == c:
-                            val = val - hcnw
-                            gx = gx + alpha
-                        duv[r, c] = val
-                        gd[r, c] = gx + w[r] * (cx * w[c])
+            fd = (a_n * w[0] + a_t * t[0], a_n * w[1] + a_t * t[1], a_n * w[2] + a_t * t[2])
+            f = (f[0] + fd[0], f[1] + fd[1], f[2] + fd[2])
+            fn = (fn[0] + fd[0], fn[1] + fd[1], fn[2] + fd[2])
 
-        if not with_added_mass:
-            for k in range(2):
-                for c in range(3):
-                    f_am[e, k, c] = 0.0
-        else:
-            # ---- fluid inertia, added mass and their position derivatives (hydro) ----
+        # ---- fluid inertia and added mass (hydro.fluid_inertia_forces, added_mass_blocks) --
+        m = mca = dc = sf = 0.0
+        if with_added_mass:
             D = props[_DIAM, e]
             m = 0.5 * props[_RHO, e] * 0.25 * np.pi * D * D * L0
             ca = props[_CA, e]
-            cat = props[_CAT, e]
-            dc = m * (cat - ca)
+            dc = m * (props[_CAT, e] - ca)
             mca = m * ca
             sf = t[0] * af[e, 0] + t[1] * af[e, 1] + t[2] * af[e, 2]
             m1 = m * (1.0 + ca)
-            for r in range(3):
-                for c in range(3):
-                    mab[r, c] = (mca if r == c else 0.0) + dc * (t[r] * t[c])
-            for c in range(3):
-                fc = m1 * af[e, c] + (dc * sf) * t[c]
-                total[e, 0, c] += fc
-                total[e, 1, c] += fc
+            fi = (m1 * af[e, 0] + (dc * sf) * t[0], m1 * af[e, 1] + (dc * sf) * t[1],
+                  m1 * af[e, 2] + (dc * sf) * t[2])
+            f = (f[0] + fi[0], f[1] + fi[1], f[2] + fi[2])
+            fn = (fn[0] + fi[0], fn[1] + fi[1], fn[2] + fi[2])
+            for r in range(3):  # -M_a a_k, M_a = (m Ca) I + m (Cat - Ca) t t^T per node
+                m0 = (mca if r == 0 else 0.0) + dc * (t[r] * t[0])
+                m1_ = (mca if r == 1 else 0.0) + dc * (t[r] * t[1])
+                m2 = (mca if r == 2 else 0.0) + dc * (t[r] * t[2])
+                f_am[e, 0, r] = -(m0 * a[i, 0] + m1_ * a[i, 1] + m2 * a[i, 2])
+                f_am[e, 1, r] = -(m0 * a[j, 0] + m1_ * a[j, 1] + m2 * a[j, 2])
+        else:
             for k in range(2):
-                node = i if k == 0 else j
-                for r in range(3):
-                    acc = mab[r, 0] * a[node, 0] + mab[r, 1] * a[node, 1]
-                    acc = acc + mab[r, 2] * a[node, 2]
-                    f_am[e, k, r] = -acc
-                    total[e, k, r] += -acc
-            if tangent:
-                # fluid inertia through t (hydro.fluid_inertia_forces)
-                cf = dc / lc
                 for c in range(3):
-                    q[c] = cf * (af[e, c] - sf * t[c])
-                _projector(gi, cf * sf, t, q)
-                # added-mass force -M_a(x) a_k through t (hydro.added_mass_position_derivative)
-                cm = -m * (cat - ca) / lc
-                for k in range(2):
-                    node = i if k == 0 else j
-                    sk = t[0] * a[node, 0] + t[1] * a[node, 1] + t[2] * a[node, 2]
-                    for c in range(3):
-                        q[c] = cm * (a[node, c] - sk * t[c])
-                    _projector(gk[k], cm * sk, t, q)
+                    f_am[e, k, c] = 0.0
+        for c in range(3):
+            f0 = f[c] + f_am[e, 0, c]
+            f1 = fn[c] + f_am[e, 1, c]
+            total[e, 0, c] = f0
+            total[e, 1, c] = f1
+            # summed to the nodes in the order of hydro.sum_to_nodes (np.bincount)
+            nodal[i, c] += f0
+            nodal_am[i, c] += f_am[e, 0, c]
+        for c in range(3):
+            nodal[j, c] += total[e, 1, c]
+            nodal_am[j, c] += f_am[e, 1, c]
 
-        if tangent:
-            # K = -dF/dx, C = -dF/dv: the hydrodynamic position blocks are [-g, g] in every
-            # row (subtracting them adds g to the x1 columns); the drag velocity blocks are
-            # the same on all four node-node positions. Node-node blocks 00, 01, 10, 11.
-            for r in range(3):
-                for c in range(3):
-                    k = kax[r, c]
-                    k00 = k
-                    k01 = -k
-                    k10 = -k
-                    k11 = k
-                    cc = cax[r, c]
-                    c00 = cc
-                    c01 = -cc
-                    c10 = -cc
-                    c11 = cc
-                    if with_drag:
-                        g = gd[r, c]
-                        k00 = k00 + g
-                        k01 = k01 - g
-                        k10 = k10 + g
-                        k11 = k11 - g
-                        d = duv[r, c]
-                        c00 = c00 - d
-                        c01 = c01 - d
-                        c10 = c10 - d
-                        c11 = c11 - d
-                    if with_added_mass:
-                        g = gi[r, c]
-                        k00 = (k00 + g) + gk[0, r, c]
-                        k01 = (k01 - g) - gk[0, r, c]
-                        k10 = (k10 + g) + gk[1, r, c]
-                        k11 = (k11 - g) - gk[1, r, c]
-                        mb = mab[r, c]
-                        Ma[e, r, c] = mb
-                        Ma[e, r, c + 3] = 0.0
-                        Ma[e, r + 3, c] = 0.0
-                        Ma[e, r + 3, c + 3] = mb
-                    K[e, r, c] = k00
-                    K[e, r, c + 3] = k01
-                    K[e, r + 3, c] = k10
-                    K[e, r + 3, c + 3] = k11
-                    C[e, r, c] = c00
-                    C[e, r, c + 3] = c01
-                    C[e, r + 3, c] = c10
-                    C[e, r + 3, c + 3] = c11
-
-    # ---- sum to the nodes, in the order of hydro.sum_to_nodes (np.bincount) ----
-    nodal[:, :] = 0.0
-    nodal_am[:, :] = 0.0
-    for e in range(n_el):
-        for k in range(2):
-            node = elements[e, k]
+        if not tangent:
+            continue
+        # ---- blocks K = -dF/dx, C = -dF/dv, Ma = -dF/da -------------------------------
+        # axial: element.tangent_blocks, the dashpot rotation term (DynamicModel.
+        # _axial_tangent) and the dashpot (_axial_damping_blocks)
+        geo = T / length
+        damping = BA / (L0 * length) if taut else 0.0
+        cdash = BA / L0 if taut else 0.0
+        tr = (dv0 - ndv * t[0], dv1 - ndv * t[1], dv2 - ndv * t[2])
+        # drag coefficients of dF/dv (same on the four node-node blocks) and dF/dx2 (= -dF/dx1)
+        inv = 1.0 / un if un > 0.0 else 0.0
+        inv_l = 1.0 / lc
+        cnw = cn * un
+        beta = 2.0 * ct * abs_s - cnw
+        hb = -0.5 * beta
+        cw = -0.5 * cn * inv
+        hcnw = 0.5 * cnw
+        alpha_d = s * (ct * abs_s - cnw) * inv_l
+        pd = (beta * inv_l * w[0], beta * inv_l * w[1], beta * inv_l * w[2])
+        cx = -cn * s * inv * inv_l
+        # fluid inertia through t, and the added-mass force -M_a(x) a_k of node k through t
+        # (hydro.fluid_inertia_forces, hydro.added_mass_position_derivative)
+        cf = dc / lc
+        alpha_i = cf * sf
+        pi_ = zero3
+        cm = -m * (props[_CAT, e] - props[_CA, e]) / lc
+        alpha_0 = alpha_1 = 0.0
+        p0 = p1 = zero3
+        if with_added_mass:
+            pi_ = (cf * (af[e, 0] - sf * t[0]), cf * (af[e, 1] - sf * t[1]),
+                   cf * (af[e, 2] - sf * t[2]))
+            s0 = t[0] * a[i, 0] + t[1] * a[i, 1] + t[2] * a[i, 2]
+            s1 = t[0] * a[j, 0] + t[1] * a[j, 1] + t[2] * a[j, 2]
+            alpha_0 = cm * s0
+            alpha_1 = cm * s1
+            p0 = (cm * (a[i, 0] - s0 * t[0]), cm * (a[i, 1] - s0 * t[1]),
+                  cm * (a[i, 2] - s0 * t[2]))
+            p1 = (cm * (a[j, 0] - s1 * t[0]), cm * (a[j, 1] - s1 * t[1]),
+                  cm * (a[j, 2] - s1 * t[2]))
+        for r in range(3):
             for c in range(3):
-                nodal[node, c] += total[e, k, c]
-                nodal_am[node, c] += f_am[e, k, c]
+                nn = t[r] * t[c]
+                eye = 1.0 if r == c else 0.0
+                k = dT_dl * nn + geo * (eye - nn)
+                if damping != 0.0:
+                    k = k + damping * t[r] * tr[c]
+                k00 = k
+                k01 = -k
+                k10 = -k
+                k11 = k
+                cc = cdash * t[r] * t[c]
+                c00 = cc
+                c01 = -cc
+                c10 = -cc
+                c11 = cc
+                if with_drag:
+                    # the position blocks are [-g, g] in every row: subtracting adds g to x1's
+                    g = _projector(alpha_d, t, pd, r, c) + w[r] * (cx * w[c])
+                    k00 = k00 + g
+                    k01 = k01 - g
+                    k10 = k10 + g
+                    k11 = k11 - g
+                    d = t[r] * (hb * t[c]) + w[r] * (cw * w[c])
+                    if r == c:
+                        d = d - hcnw
+                    c00 = c00 - d
+                    c01 = c01 - d
+                    c10 = c10 - d
+                    c11 = c11 - d
+                if with_added_mass:
+                    g = _projector(alpha_i, t, pi_, r, c)
+                    g0 = _projector(alpha_0, t, p0, r, c)
+                    g1 = _projector(alpha_1, t, p1, r, c)
+                    k00 = (k00 + g) + g0
+                    k01 = (k01 - g) - g0
+                    k10 = (k10 + g) + g1
+                    k11 = (k11 - g) - g1
+                    mb = (mca if r == c else 0.0) + dc * nn
+                    Ma[e, r, c] = mb
+                    Ma[e, r, c + 3] = 0.0
+                    Ma[e, r + 3, c] = 0.0
+                    Ma[e, r + 3, c + 3] = mb
+                K[e, r, c] = k00
+                K[e, r, c + 3] = k01
+                K[e, r + 3, c] = k10
+                K[e, r + 3, c + 3] = k11
+                C[e, r, c] = c00
+                C[e, r, c + 3] = c01
+                C[e, r + 3, c] = c10
+                C[e, r + 3, c + 3] = c11
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
@@ -364,15 +343,26 @@ def sum_to_nodes(forces: FloatArray, elements: IntArray, n_nodes: int) -> FloatA
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
-def midpoints(x: FloatArray, elements: IntArray) -> FloatArray:
-    """Element midpoints ``(x1 + x2) / 2``, shape (n_elements, 3) (compiled)."""
-    n_el = elements.shape[0]
-    out = np.empty((n_el, 3))
-    for e in range(n_el):
+def _midpoints_into(x, elements, out):
+    for e in range(elements.shape[0]):
         i = elements[e, 0]
         j = elements[e, 1]
         for c in range(3):
             out[e, c] = 0.5 * (x[i, c] + x[j, c])
+
+
+def midpoints(x: FloatArray, elements: IntArray) -> FloatArray:
+    """Element midpoints ``(x1 + x2) / 2``, shape (n_elements, 3) (compiled loop).
+
+    Parameters
+    ----------
+    x
+        Node positions, shape (n_nodes, 3), float64.
+    elements
+        Node indices of each element, shape (n_elements, 2), int64.
+    """
+    out = np.empty((elements.shape[0], 3))
+    _midpoints_into(x, elements, out)
     return out
 
 
