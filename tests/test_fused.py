@@ -172,7 +172,10 @@ def test_unquantized_inputs():
     mesh = discretize(_system())
     EA, s = float(mesh.EA.max()), float(mesh.slack_smoothing.min())
     K_band = EA / (s * float(mesh.length0.min())) * 1e-3  # a few ulps of strain / RTOL
-    floor = {"material": 1.0, "tension": EA, "element_forces": EA, "nodal": EA, "K": K_band}
+    # the dashpot share blends in over the band too: C inherits the same conditioning
+    C_band = float(mesh.BA.max()) / (s * float(mesh.length0.min())) * 1e-3
+    floor = {"material": 1.0, "tension": EA, "element_forces": EA, "nodal": EA, "K": K_band,
+             "C": C_band}
     fluid = FLUIDS["ramped"]
     ref = DynamicModel(mesh, fluid, kernel="numpy")
     new = DynamicModel(mesh, fluid, kernel="numba")

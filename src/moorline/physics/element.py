@@ -83,6 +83,26 @@ def axial_tension(
     return tension, slope / length0
 
 
+def dashpot_share(
+    length: FloatArray, length0: FloatArray, smoothing: FloatArray | float = 0.0
+) -> tuple[FloatArray, FloatArray]:
+    """Fraction of an element's Kelvin-Voigt dashpot that acts, and its derivative with
+    respect to the strain.
+
+    A slack cable transmits no damping force either. Switching the dashpot on at a strain
+    threshold would make the tension jump by ``BA deps/dt`` (an implicit Newton iteration
+    cannot converge across a jump), so it blends in linearly over the same band as the
+    tension law of :func:`axial_tension`: 0 below ``-s``, 1 above ``s``.
+    """
+    strain = length / length0 - 1.0
+    s = np.broadcast_to(np.asarray(smoothing, dtype=float), strain.shape)
+    safe_s = np.where(s > 0, s, 1.0)
+    share = np.where(s > 0, np.clip((strain + s) / (2 * safe_s), 0.0, 1.0),
+                     (strain > 0).astype(float))
+    slope = np.where((s > 0) & (np.abs(strain) < s), 1.0 / (2 * safe_s), 0.0)
+    return share, slope
+
+
 def strain_energy(
     length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray,
     smoothing: FloatArray | float = 0.0,

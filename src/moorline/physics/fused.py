@@ -13,7 +13,8 @@ slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
 
 * axial: chord, length, unit vector ``n``; strain ``l / L0 - 1``; the tension with the smooth
   slack band and its slope (:func:`moorline.physics.element.axial_tension`); the Kelvin-Voigt
-  damping ``BA * strain_rate`` where ``strain > -smoothing``; the nodal forces
+  damping ``BA * share(strain) * strain_rate`` (blended in over the slack band); the nodal
+  forces
   (:func:`moorline.physics.element.nodal_forces`); with ``tangent`` the blocks ``K``
   (geometric + material + the non-symmetric rotation term of the dashpot) and ``C`` (the
   dashpot, ``BA / L0 n n^T``);
@@ -148,13 +149,20 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
             slope = sr * EA
         # the model converts dT/dl to dT/deps and back (DynamicModel._axial_tension)
         dT_dl = ((slope / L0) * L0) / L0
-        # Kelvin-Voigt dashpot where strain > -smoothing (DynamicModel._axial_tension)
-        taut = strain > -s_band
+        # Kelvin-Voigt dashpot, blended in over the slack band (element.dashpot_share)
+        if s_band > 0:
+            share = min(max((strain + s_band) / (2 * s_band), 0.0), 1.0)
+            dshare = 1.0 / (2 * s_band) if -s_band < strain < s_band else 0.0
+        else:
+            share = 1.0 if strain > 0 else 0.0
+            dshare = 0.0
+        taut = share > 0
         dv0 = v[j, 0] - v[i, 0]
         dv1 = v[j, 1] - v[i, 1]
         dv2 = v[j, 2] - v[i, 2]
         ndv = t[0] * dv0 + t[1] * dv1 + t[2] * dv2
-        T = T + (BA * (ndv / L0) if taut else 0.0)
+        T = T + BA * share * (ndv / L0)
+        dT_dl = dT_dl + BA * dshare * (ndv / L0) / L0
         tension[e] = T
         strain_out[e] = strain
         taut_out[e] = taut
@@ -226,8 +234,8 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
         # axial: element.tangent_blocks, the dashpot rotation term (DynamicModel.
         # _axial_tangent) and the dashpot (_axial_damping_blocks)
         geo = T / length
-        damping = BA / (L0 * length) if taut else 0.0
-        cdash = BA / L0 if taut else 0.0
+        damping = BA * share / (L0 * length)
+        cdash = BA * share / L0
         tr = (dv0 - ndv * t[0], dv1 - ndv * t[1], dv2 - ndv * t[2])
         # drag coefficients of dF/dv (same on the four node-node blocks) and dF/dx2 (= -dF/dx1)
         inv = 1.0 / un if un > 0.0 else 0.0

@@ -136,13 +136,13 @@ class DynamicModel:
                               previous.maxwell), r.element_forces, **out)
         length, unit = element.element_geometry(x, el)
         dv = v[el[:, 1]] - v[el[:, 0]]
-        T, dT_dl, state, taut = self._axial_tension(length, unit, dv, previous, dt)
+        T, dT_dl, state, share = self._axial_tension(length, unit, dv, previous, dt)
         el_forces = element.nodal_forces(T, unit)
         forces = el_forces.copy()
         out = {}
         if tangent:
-            out["K"] = self._axial_tangent(length, unit, dv, T, dT_dl, taut)
-            out["C"] = _axial_damping_blocks(unit, np.where(taut, m.BA / m.length0, 0.0))
+            out["K"] = self._axial_tangent(length, unit, dv, T, dT_dl, share)
+            out["C"] = _axial_damping_blocks(unit, m.BA * share / m.length0)
         mid = 0.5 * (x[el[:, 0]] + x[el[:, 1]])
         if self.has_drag or self.has_added_mass:
             u_f, a_f, _ = self.fluid.kinematics(mid, t)
@@ -169,10 +169,11 @@ class DynamicModel:
             T[ve], maxwell[ve], dT_deps[ve] = self._viscoelastic(
                 strain[ve], previous.strain[ve], previous.maxwell[ve], dt, m.EA[ve], m.EA1[ve],
                 m.tau[ve], m.slack_ratio[ve])
-        taut = strain > -m.slack_smoothing
+        share, dshare = element.dashpot_share(length, m.length0, m.slack_smoothing)
         strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0
-        T = T + np.where(taut, m.BA * strain_rate, 0.0)
-        return T, dT_deps / m.length0, MaterialState(strain, maxwell), taut
+        T = T + m.BA * share * strain_rate
+        dT_deps = dT_deps + m.BA * dshare * strain_rate
+        return T, dT_deps / m.length0, MaterialState(strain, maxwell), share
 
     def _viscoelastic(self, strain, strain_old, maxwell_old, dt, EA, EA1, tau, slack_ratio):
         """Standard linear solid update: exact exponential integration of the Maxwell branch
@@ -185,10 +186,10 @@ class DynamicModel:
                                                tau)
         return T, T - EA * strain, k
 
-    def _axial_tangent(self, length, unit, dv, T, dT_dl, taut):
+    def _axial_tangent(self, length, unit, dv, T, dT_dl, share):
         m = self.mesh
         blocks = element.tangent_blocks(length, unit, T, dT_dl)
-        damping = np.where(taut, m.BA / (m.length0 * length), 0.0)
+        damping = m.BA * share / (m.length0 * length)
         if np.any(damping):
             transverse = dv - np.einsum("ij,ij->i", dv, unit)[:, None] * unit
             k = damping[:, None, None] * unit[:, :, None] * transverse[:, None, :]
