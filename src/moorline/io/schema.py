@@ -286,6 +286,7 @@ class DynamicsSpec(_Spec):
     max_step_cuts: Annotated[int, Field(ge=0, le=20)] = 6
     ramp_time: quantity("time", ge=0.0) = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
+    fast_path: bool = True
 
 
 # Add new analyses (modal, ...) as further members of this union.

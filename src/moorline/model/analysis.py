@@ -94,6 +94,9 @@ class DynamicsSettings:
     viscoelastic_update
         Standard linear solid update: ``exponential`` (exact integration of the Maxwell branch
         over a step, accurate for any dt) or ``incremental`` (Tuah eq. 2.2.b.3).
+    fast_path
+        Use the compiled step (:mod:`moorline.solvers.fast_newmark`) when the model allows
+        it (elastic lines, still water or uniform current, Newmark, iterative); same results.
     """
 
     kind: Literal["dynamics"] = "dynamics"
@@ -108,3 +111,4 @@ class DynamicsSettings:
     max_step_cuts: int = 6
     ramp_time: float = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
+    fast_path: bool = True

@@ -82,9 +82,7 @@ def simulate(
     scale = max(float(np.abs(model.external).max(initial=0.0)),
                 float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
     tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
-    stepper = Stepper(model, Coefficients.for_scheme(settings.scheme, settings.alpha),
-                      settings.variant, tolerance, settings.max_iterations,
-                      settings.stiffness_update)
+    stepper = _stepper(model, fluid, settings, tolerance)
     every = max(output_every or system.output.every, settings.dt)
     recorder = _Recorder(mesh, writer)
     recorder.add(state)
@@ -103,6 +101,20 @@ def simulate(
     counters = dict(stepper.counters, steps=n_steps, step_cuts=cuts)
     return recorder.result(True, f"completed {n_steps} steps", counters, system,
                            asdict(settings))
+
+
+def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: float):
+    """The compiled stepper when the model allows it, else the general one."""
+    from .fast_newmark import FastStepper, fast_path_reason
+
+    coefficients = Coefficients.for_scheme(settings.scheme, settings.alpha)
+    reason = fast_path_reason(model, fluid, settings.scheme, settings.variant)
+    if reason is None and settings.fast_path:
+        return FastStepper(model, coefficients, tolerance, settings.max_iterations,
+                           settings.stiffness_update)
+    logger.info("general stepper (compiled step not used: %s)", reason or "disabled")
+    return Stepper(model, coefficients, settings.variant, tolerance, settings.max_iterations,
+                   settings.stiffness_update)
 
 
 def _statics_settings(system: System) -> StaticsSettings:
@@ -159,20 +171,30 @@ def _advance(stepper: Stepper, excitation: Excitation, state: StepState, h: floa
         raise ConvergenceError("Newton iterations did not converge", time=t1,
                                where=_worst(stepper, state, h, constrained, forces),
                                residual=norm)
-    stepper.lu = None
+    _forget_tangent(stepper)
     half, used1 = _advance(stepper, excitation, state, h / 2, cuts_left - 1, mesh)
     full, used2 = _advance(stepper, excitation, half, h / 2, cuts_left - 1, mesh)
-    stepper.lu = None
+    _forget_tangent(stepper)
     return full, 1 + used1 + used2
 
 
-def _worst(stepper: Stepper, state: StepState, h: float, constrained, forces) -> str:
+def _forget_tangent(stepper) -> None:
+    if hasattr(stepper, "lu_valid"):
+        stepper.lu_valid = False
+    else:
+        stepper.lu = None
+
+
+def _worst(stepper, state: StepState, h: float, constrained, forces) -> str:
+    """Where the residual of the predicted state is largest (for the error message)."""
+    model = stepper.model
+    general = Stepper(model, stepper.c, "iterative", 0.0, 0, 1)
     x1 = state.x + h * state.v + 0.5 * h * h * state.a
-    x1[~stepper.free] = constrained[0]
-    v1, a1 = stepper._kinematics(state, x1, h)
-    ev = stepper.model.evaluate(x1, v1, a1, state.t + h, state.material, h, False, forces)
-    r = stepper._residual(state, ev, a1)
-    return describe_dof(stepper.model.mesh, int(np.argmax(np.abs(r))))
+    x1[~general.free] = constrained[0]
+    v1, a1 = general._kinematics(state, x1, h)
+    ev = model.evaluate(x1, v1, a1, state.t + h, state.material, h, False, forces)
+    r = general._residual(state, ev, a1)
+    return describe_dof(model.mesh, int(np.argmax(np.abs(r))))
 
 
 class _Recorder:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -17,8 +19,9 @@ def ramp(t: float, ramp_time: float) -> tuple[float, float, float]:
         return 1.0, 0.0, 0.0
     if t <= 0:
         return 0.0, 0.0, 0.0
-    w = np.pi / ramp_time
-    return 0.5 * (1 - np.cos(w * t)), 0.5 * w * np.sin(w * t), 0.5 * w * w * np.cos(w * t)
+    w = math.pi / ramp_time
+    return (0.5 * (1 - math.cos(w * t)), 0.5 * w * math.sin(w * t),
+            0.5 * w * w * math.cos(w * t))
 
 
 def motion_value(motion: Motion, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -41,27 +44,50 @@ def motion_value(motion: Motion, t: float) -> tuple[FloatArray, FloatArray, Floa
 
 
 class Excitation:
-    """Prescribed node kinematics and point force histories of a system."""
+    """Prescribed node kinematics and point force histories of a system.
+
+    Harmonic motions of all prescribed points are evaluated together (one vectorized call per
+    time); tables one by one.
+    """
 
     def __init__(self, system: System, mesh: Mesh, base_positions: FloatArray) -> None:
         points = list(system.points.values())
-        self._moving = [(int(mesh.point_node[i]), p.motion) for i, p in enumerate(points)
-                        if p.kind == "prescribed" and p.motion is not None]
-        self._forces = [(int(mesh.point_node[i]), p.force_history) for i, p in enumerate(points)
-                        if p.kind == "free" and p.force_history is not None]
         self.constrained = np.flatnonzero(~mesh.free_nodes)
         self.base = base_positions[self.constrained].copy()
+        row = {int(n): i for i, n in enumerate(self.constrained)}
+        moving = [(row[int(mesh.point_node[i])], p.motion) for i, p in enumerate(points)
+                  if p.kind == "prescribed" and p.motion is not None]
+        harmonic = [(r, mo) for r, mo in moving if mo.kind == "harmonic"]
+        self._tables = [(r, mo) for r, mo in moving if mo.kind != "harmonic"]
+        self._rows = [r for r, _ in harmonic]
+        self._amp = np.array([mo.amplitude for _, mo in harmonic], dtype=float).reshape(-1, 3)
+        self._omega = np.array([2 * np.pi / mo.period for _, mo in harmonic])
+        self._phase = np.radians([mo.phase_deg for _, mo in harmonic])
+        self._ramp = np.array([mo.ramp_time for _, mo in harmonic])
+        self._forces = [(int(mesh.point_node[i]), p.force_history) for i, p in enumerate(points)
+                        if p.kind == "free" and p.force_history is not None]
 
     def constrained_state(self, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Positions, velocities and accelerations of all fixed and prescribed nodes at ``t``."""
         x, v, a = self.base.copy(), np.zeros_like(self.base), np.zeros_like(self.base)
-        index = {int(n): i for i, n in enumerate(self.constrained)}
-        for node, motion in self._moving:
+        for k, row in enumerate(self._rows):  # a few points: scalar math beats numpy calls
+            w = self._omega[k]
+            arg = w * t + self._phase[k]
+            s, c = math.sin(arg), math.cos(arg)
+            r0, r1, r2 = ramp(t, self._ramp[k])
+            for j in range(3):
+                amp = self._amp[k, j]
+                if amp == 0.0:
+                    continue
+                d, dv, da = amp * s, amp * w * c, -amp * w * w * s
+                x[row, j] += r0 * d
+                v[row, j] = r0 * dv + r1 * d
+                a[row, j] = r0 * da + 2 * r1 * dv + r2 * d
+        for row, motion in self._tables:
             d, dv, da = motion_value(motion, t)
-            i = index[node]
-            x[i] += d
-            v[i] = dv
-            a[i] = da
+            x[row] += d
+            v[row] = dv
+            a[row] = da
         return x, v, a
 
     def point_forces(self, t: float, n_nodes: int) -> FloatArray | None:
