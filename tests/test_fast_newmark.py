@@ -61,7 +61,7 @@ def test_band_ordering_and_lu_solve_like_dense():
     band, bw = band_ordering(elements, dof)
     pattern = BlockPattern(elements, dof)
     blocks = rng.normal(size=(len(elements), 6, 6))
-    A = pattern.assemble(blocks, np.eye(3)[None] * 40.0).toarray()
+    A = pattern.assemble(blocks, np.repeat(np.eye(3)[None] * 40.0, 7, axis=0)).toarray()
     n = A.shape[0]
     # A in band order
     perm = np.empty(n, dtype=int)
