@@ -20,7 +20,8 @@ $(COMPARE): $(STAMP)
 
 demo: $(STAMP)
 	$(BIN)/moorline run cases/oc3_line.yaml --out out
-	@echo "results and plots written under out/oc3-line/"
+	$(BIN)/moorline run cases/oc3_dynamics.yaml --out out
+	@echo "results and plots written under out/oc3-line/ and out/oc3-dynamics/"
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
@@ -29,8 +30,11 @@ verify: $(COMPARE)
 	$(BIN)/python -m pytest -q -m "slow or not slow"
 	$(BIN)/moorline verify
 
+# bench_dynamics.py caches MoorDyn's largest stable steps in benchmarks/.cache/ (delete it or
+# pass --refresh to search again); BENCH_ARGS=--quick gives a shorter run.
 bench: $(COMPARE)
 	$(BIN)/python benchmarks/bench_statics.py
+	$(BIN)/python benchmarks/bench_dynamics.py $(BENCH_ARGS)
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks
