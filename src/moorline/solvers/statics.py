@@ -251,5 +251,7 @@ def describe_dof(mesh: Mesh, dof: int) -> str:
     for k, nodes in enumerate(mesh.line_nodes):
         hit = np.flatnonzero(nodes == node)
         if hit.size:
-            return f"line {mesh.line_names[k]}, node {int(hit[0])} ({axis})"
+            i = int(hit[0])
+            return (f"line {mesh.line_names[k]}, node {i} ({axis}), between elements {i - 1} "
+                    f"and {i}")
     return f"node {node} ({axis})"
