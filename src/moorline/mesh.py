@@ -7,7 +7,7 @@ freedom; ``dof_of_node[i, k] == -1`` marks them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -66,6 +66,11 @@ class Mesh:
         Diameter times tributary unstretched length of each node (n_nodes,).
     gravity, water_density
         Environment constants.
+    body_names
+        Body ids (their 6 dofs follow the node dofs in coupled solvers).
+    slave_node, slave_body, slave_arm
+        Nodes rigidly attached to bodies: node index, body index and position in the body
+        frame (the master-slave transformation of Tuah 1982 eq. 3.3.6-3.3.7).
     """
 
     node_position: FloatArray
@@ -106,6 +111,10 @@ class Mesh:
     node_contact_area: FloatArray
     gravity: float
     water_density: float
+    body_names: tuple[str, ...] = ()
+    slave_node: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    slave_body: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    slave_arm: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
 
     @property
     def n_nodes(self) -> int:
@@ -158,11 +167,31 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
     return out
 
 
+def rotation_matrix(rotation_vector: FloatArray) -> FloatArray:
+    """Rotation matrix of a rotation vector (Rodrigues' formula)."""
+    v = np.asarray(rotation_vector, dtype=float)
+    angle = float(np.linalg.norm(v))
+    if angle < 1e-300:
+        return np.eye(3)
+    k = v / angle
+    K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * K @ K
+
+
+def world_position(system: System, point) -> FloatArray:
+    """Position of a point in the world frame (body points: through their body's pose)."""
+    if point.kind != "body":
+        return np.asarray(point.position, dtype=float)
+    body = system.bodies[point.body]
+    R = rotation_matrix(np.asarray(body.rotation, dtype=float))
+    return np.asarray(body.position, dtype=float) + R @ np.asarray(point.position, dtype=float)
+
+
 def discretize(system: System) -> Mesh:
     """Build the :class:`Mesh` of a system (no solving; interior nodes on straight chords)."""
     point_names = tuple(system.points)
     point_index = {name: i for i, name in enumerate(point_names)}
-    positions = [np.asarray(p.position, dtype=float) for p in system.points.values()]
+    positions = [world_position(system, p) for p in system.points.values()]
     elements: list[IntArray] = []
     line_nodes: list[IntArray] = []
     length0: list[FloatArray] = []
@@ -230,4 +259,17 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         dof_of_node=dof, seabed_z=-env.depth if env.has_seabed else -np.inf,
         seabed_stiffness_per_area=env.seabed.stiffness,
         seabed_damping_per_area=env.seabed.damping, node_contact_area=tributary,
-        gravity=env.gravity, water_density=env.water_density, **props)
+        gravity=env.gravity, water_density=env.water_density, **props,
+        **_body_arrays(system, points))
+
+
+def _body_arrays(system: System, points: list) -> dict:
+    names = tuple(system.bodies)
+    slaves = [(i, names.index(p.body), p.position) for i, p in enumerate(points)
+              if p.kind == "body"]
+    return {
+        "body_names": names,
+        "slave_node": np.array([s[0] for s in slaves], dtype=np.int64),
+        "slave_body": np.array([s[1] for s in slaves], dtype=np.int64),
+        "slave_arm": np.array([s[2] for s in slaves], dtype=float).reshape(-1, 3),
+    }

@@ -60,6 +60,15 @@ class StaticResult:
     case: str = ""
     units: str = "SI"
     extras: dict = field(default_factory=dict)
+    body_pose: FloatArray = field(default_factory=lambda: np.zeros((0, 6)))
+
+    def body_position(self, body: str) -> FloatArray:
+        """Position of a body's origin (3,)."""
+        return self.body_pose[self.mesh.body_names.index(body), :3].copy()
+
+    def body_rotation(self, body: str) -> FloatArray:
+        """Rotation vector of a body [rad] (3,)."""
+        return self.body_pose[self.mesh.body_names.index(body), 3:].copy()
 
     @property
     def residual(self) -> float:

@@ -25,6 +25,7 @@ from moorline.model import (
     Environment,
     Line,
     LineType,
+    ModalSettings,
     Motion,
     OutputSettings,
     Point,
@@ -38,6 +39,7 @@ from .schema import (
     CaseSpec,
     DynamicsSpec,
     LineSpec,
+    ModalSpec,
     MotionSpec,
     PointSpec,
     StaticsSpec,
@@ -435,6 +437,12 @@ def _dynamics(spec: DynamicsSpec, units: str) -> DynamicsSettings:
     return DynamicsSettings(**spec.model_dump())
 
 
+def _modal(spec: ModalSpec, units: str) -> ModalSettings:
+    values = spec.model_dump()
+    values["band"] = tuple(values["band"]) if values["band"] is not None else None
+    return ModalSettings(**values)
+
+
 def _motion(spec: MotionSpec | None, source: str | None, field: str) -> Motion | None:
     """A history spec as a :class:`Motion`, reading a CSV table relative to the case file."""
     if spec is None:
@@ -482,5 +490,5 @@ def _header_rows(path: Path) -> int:
 
 
 _ANALYSES: dict[type[BaseModel], Callable[[Any, str], Any]] = {
-    StaticsSpec: _statics, DynamicsSpec: _dynamics}
+    StaticsSpec: _statics, DynamicsSpec: _dynamics, ModalSpec: _modal}
 """How each analysis spec becomes its settings object; extend with new analysis kinds."""

@@ -31,7 +31,7 @@ from pydantic_core import PydanticCustomError
 from .units import UnitParseError, to_system
 
 __all__ = ["AnalysisSpec", "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "LineSpec",
-           "LineTypeSpec", "MotionSpec", "PointSpec", "StaticsSpec", "describe_errors",
+           "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec", "describe_errors",
            "quantity"]
 
 
@@ -289,8 +289,25 @@ class DynamicsSpec(_Spec):
     fast_path: bool = True
 
 
-# Add new analyses (modal, ...) as further members of this union.
-AnalysisSpec = Annotated[Union[StaticsSpec, DynamicsSpec],  # noqa: UP007
+def _band(values: list[float]) -> tuple[float, float]:
+    if len(values) != 2 or not values[0] < values[1]:
+        raise _fail(f"must be [low, high] with low < high (rad/s), got {list(values)}")
+    return (values[0], values[1])
+
+
+class ModalSpec(_Spec):
+    """``analyses[i]`` with ``kind: modal`` (see :class:`moorline.model.ModalSettings`);
+    ``band`` in rad/s (plain numbers, the same in both unit systems)."""
+
+    kind: Literal["modal"]
+    n_modes: PositiveInt = 10
+    band: Annotated[list[quantity("dimensionless", ge=0.0)], AfterValidator(_band)] | None = None
+    mass: Literal["lumped", "consistent"] = "lumped"
+    added_mass: bool = True
+
+
+# Add new analyses as further members of this union.
+AnalysisSpec = Annotated[Union[StaticsSpec, DynamicsSpec, ModalSpec],  # noqa: UP007
                          Field(discriminator="kind")]
 
 

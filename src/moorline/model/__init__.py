@@ -4,15 +4,20 @@ from .analysis import (
     DynamicScheme,
     DynamicsSettings,
     DynamicVariant,
+    ModalMass,
+    ModalSettings,
     OutputSettings,
     StaticMethod,
     StaticsSettings,
 )
+from .body import Body, Hydrostatics
 from .components import Line, LineType, Motion, Point, PointKind
 from .environment import Current, Environment, Seabed, Waves
 from .system import System, UnitSystem
 
 __all__ = [
+    "Body",
+    "Hydrostatics",
     "DynamicScheme",
     "DynamicVariant",
     "DynamicsSettings",
@@ -21,6 +26,8 @@ __all__ = [
     "Environment",
     "Line",
     "LineType",
+    "ModalMass",
+    "ModalSettings",
     "OutputSettings",
     "Point",
     "PointKind",

@@ -112,3 +112,32 @@ class DynamicsSettings:
     ramp_time: float = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
     fast_path: bool = True
+
+
+ModalMass = Literal["lumped", "consistent"]
+
+
+@dataclass(frozen=True)
+class ModalSettings:
+    """Modal analysis settings: natural frequencies and modes about the static equilibrium
+    (Tuah 1982, sec. 3.2.b step 4 and sec. 5.3).
+
+    Attributes
+    ----------
+    n_modes
+        Number of lowest modes wanted (ignored when ``band`` is given).
+    band
+        ``(low, high)`` circular frequencies [rad/time]: all modes in this band instead of the
+        lowest ``n_modes``; ``None``: the lowest ``n_modes``.
+    mass
+        ``lumped`` (half of each element to each node) or ``consistent`` (Tuah eq. 3.1.12)
+        structural mass.
+    added_mass
+        Include the hydrodynamic added mass (element normal/tangential and points).
+    """
+
+    kind: Literal["modal"] = "modal"
+    n_modes: int = 10
+    band: tuple[float, float] | None = None
+    mass: ModalMass = "lumped"
+    added_mass: bool = True

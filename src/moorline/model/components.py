@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 Vector3 = tuple[float, float, float]
-PointKind = Literal["fixed", "free", "prescribed"]
+PointKind = Literal["fixed", "free", "prescribed", "body"]
 MaterialKind = Literal["elastic", "viscoelastic"]
 
 
@@ -103,10 +103,11 @@ class Point:
     name
         Identifier used by lines.
     kind
-        ``fixed`` (never moves), ``free`` (solved for) or ``prescribed`` (position imposed; its
-        reaction is reported).
+        ``fixed`` (never moves), ``free`` (solved for), ``prescribed`` (position imposed; its
+        reaction is reported) or ``body`` (rigidly attached to the body ``body``).
     position
-        Position [length]; for a free point the initial guess.
+        Position [length]; for a free point the initial guess; for a body point its position
+        in the body frame (relative to the body origin).
     mass
         Lumped mass [mass] (free points).
     volume
@@ -123,6 +124,8 @@ class Point:
     Cd, drag_area, Ca
         Free points: drag coefficient and area (``0.5 rho Cd A |u| u``) and added-mass
         coefficient on the displaced volume.
+    body
+        Body points: the body's name.
     """
 
     name: str
@@ -137,6 +140,7 @@ class Point:
     Cd: float = 0.0
     drag_area: float = 0.0
     Ca: float = 0.0
+    body: str | None = None
 
 
 @dataclass(frozen=True)

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from .analysis import DynamicsSettings, OutputSettings, StaticsSettings
+from .body import Body
 from .components import Line, LineType, Point
 from .environment import Environment
 
@@ -26,6 +27,7 @@ class System:
     line_types: dict[str, LineType] = field(default_factory=dict)
     points: dict[str, Point] = field(default_factory=dict)
     lines: dict[str, Line] = field(default_factory=dict)
+    bodies: dict[str, Body] = field(default_factory=dict)
     analyses: tuple[StaticsSettings | DynamicsSettings, ...] = (StaticsSettings(),)
     output: OutputSettings = field(default_factory=OutputSettings)
     source: str | None = None

@@ -78,14 +78,23 @@ def solve_statics(
     target = mesh.node_position[~mesh.free_nodes]
     solver = {"newton": _newton, "incremental": _incremental, "relaxation": _relaxation}
     counters = _Counters()
-    ok, message, iterations, state, x = solver[settings.method](
-        model, x, start, target, settings, counters)
+    pose = np.zeros((0, 6))
+    if mesh.body_names:
+        from .coupled_statics import solve_coupled
+
+        ok, message, iterations, state, x, poses = solve_coupled(system, mesh, x, settings,
+                                                                  counters)
+        pose = poses.as_array()
+    else:
+        ok, message, iterations, state, x = solver[settings.method](
+            model, x, start, target, settings, counters)
     return StaticResult(
         success=ok, message=message, method=settings.method, iterations=iterations,
         load_steps=settings.load_steps, residual_history=np.array(counters.history),
         n_residual=counters.residuals, n_tangent=counters.tangents,
         n_factorizations=counters.factorizations, positions=x, tension=state.tension,
-        element_forces=state.element_forces, mesh=mesh, case=system.name, units=system.units)
+        element_forces=state.element_forces, mesh=mesh, case=system.name, units=system.units,
+        body_pose=pose)
 
 
 def _default_settings(system: System) -> StaticsSettings:

@@ -1,0 +1,79 @@
+"""Rigid bodies (buoys, platforms) that lines attach to (Tuah 1982 sec. 3.2.c, 3.3; Wang, Er
+and Iu, eq. 24-34). Frozen descriptions only."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+Vector3 = tuple[float, float, float]
+Matrix6 = tuple[tuple[float, ...], ...]
+HydrostaticsKind = Literal["none", "box", "cylinder", "matrix"]
+
+
+@dataclass(frozen=True)
+class Hydrostatics:
+    """Buoyancy and hydrostatic restoring of a body.
+
+    Attributes
+    ----------
+    kind
+        ``box`` (length along body x, width along body y, height), ``cylinder`` (vertical,
+        diameter, height): buoyancy from the submerged volume at the current draft, acting at
+        the centre of buoyancy, and roll/pitch restoring from the waterplane inertia; the body
+        frame origin is the shape's geometric centre. ``matrix``: a constant 6x6 ``stiffness``
+        about the initial pose plus a constant buoyancy ``volume`` at ``center_of_buoyancy``
+        (body frame). ``none``: no hydrostatics.
+    """
+
+    kind: HydrostaticsKind = "none"
+    length: float = 0.0
+    width: float = 0.0
+    height: float = 0.0
+    diameter: float = 0.0
+    stiffness: Matrix6 | None = None
+    volume: float = 0.0
+    center_of_buoyancy: Vector3 = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Body:
+    """A six-degree-of-freedom rigid body.
+
+    Attributes
+    ----------
+    name
+        Identifier; points attach with ``kind: body`` and ``body: <name>``.
+    kind
+        ``free`` (solved for) or ``fixed`` (held at its pose; its reaction is reported).
+    position
+        Position of the body frame origin [length] (the initial guess for a free body).
+    rotation
+        Initial rotation vector [rad] (axis times angle).
+    mass
+        Mass [mass].
+    center_of_gravity
+        Centre of gravity in the body frame [length].
+    inertia
+        Inertia tensor about the centre of gravity in the body frame [mass*length^2].
+    added_mass, damping
+        Constant 6x6 added mass and linear (radiation) damping about the body origin, world
+        axes (Tuah eq. 3.2.c.20), in SI-consistent units of the case.
+    hydrostatics
+        Buoyancy and restoring.
+    force
+        Constant external force and moment about the body origin (world axes) [force, force*
+        length], e.g. a wind load.
+    """
+
+    name: str
+    kind: Literal["free", "fixed"] = "free"
+    position: Vector3 = (0.0, 0.0, 0.0)
+    rotation: Vector3 = (0.0, 0.0, 0.0)
+    mass: float = 0.0
+    center_of_gravity: Vector3 = (0.0, 0.0, 0.0)
+    inertia: tuple[Vector3, Vector3, Vector3] = ((0.0, 0.0, 0.0),) * 3
+    added_mass: Matrix6 | None = None
+    damping: Matrix6 | None = None
+    hydrostatics: Hydrostatics = field(default_factory=Hydrostatics)
+    force: tuple[float, float, float, float, float, float] = (0.0,) * 6

@@ -1,0 +1,119 @@
+"""Static equilibrium of lines and rigid bodies solved together (Tuah 1982 sec. 3.3; Wang, Er
+and Iu eq. 31-34): one Newton system in the free node dofs and the six dofs of every free
+body, through the master-slave transformation of :mod:`moorline.solvers.bodies`."""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from ..mesh import Mesh
+from ..model import StaticsSettings, System
+from .assembly import BlockPattern, gather_free, scatter_free
+from .bodies import Poses, body_loads, place_slaves, skew, transformation, world_arms
+from .equilibrium import ForceState, StaticModel
+
+FloatArray = NDArray[np.float64]
+
+
+class CoupledStatics:
+    """Residual and exact tangent of the coupled line-body statics."""
+
+    def __init__(self, system: System, mesh: Mesh) -> None:
+        self.mesh = mesh
+        self.model = StaticModel(mesh)
+        self.bodies = [system.bodies[n] for n in mesh.body_names]
+        self.n_free = mesh.n_dofs
+        free = [b.kind == "free" for b in self.bodies]
+        offsets = self.n_free + 6 * (np.cumsum(free) - 1)
+        self.body_dof = np.where(free, offsets, -1).astype(np.int64)
+        self.n_unknowns = self.n_free + 6 * int(sum(free))
+        ext = mesh.dof_of_node.copy()
+        for k, node in enumerate(mesh.slave_node):
+            ext[node] = self.n_free + 3 * k + np.arange(3)
+        self.ext_dofs = self.n_free + 3 * len(mesh.slave_node)
+        self.pattern = BlockPattern(mesh.elements, ext)
+
+    def residual(self, x: FloatArray, poses: Poses) -> tuple[FloatArray, ForceState]:
+        """Out-of-balance forces at the free node dofs, then force and moment on every free
+        body (about its origin)."""
+        state = self.model.forces(x)
+        out = np.zeros(self.n_unknowns)
+        out[: self.n_free] = gather_free(state.nodal, self.mesh.dof_of_node)
+        arms = world_arms(self.mesh, poses)
+        for b, body in enumerate(self.bodies):
+            if self.body_dof[b] < 0:
+                continue
+            mine = self.mesh.slave_body == b
+            f = state.nodal[self.mesh.slave_node[mine]]
+            generalized, _ = body_loads(body, poses.r[b], poses.R[b], self.mesh.gravity,
+                                        self.mesh.water_density)
+            generalized[:3] += f.sum(axis=0)
+            generalized[3:] += np.cross(arms[mine], f).sum(axis=0)
+            out[self.body_dof[b]: self.body_dof[b] + 6] = generalized
+        return out, state
+
+    def tangent(self, x: FloatArray, poses: Poses, state: ForceState):
+        """Exact tangent ``-d(residual)/d(unknowns)`` (CSC)."""
+        arms = world_arms(self.mesh, poses)
+        P = transformation(self.mesh, self.ext_dofs, self.n_free, self.body_dof, arms)
+        K = (P.T @ self.model.tangent(x, self.pattern) @ P).tolil()
+        for b, body in enumerate(self.bodies):
+            d = self.body_dof[b]
+            if d < 0:
+                continue
+            mine = self.mesh.slave_body == b
+            block = body_loads(body, poses.r[b], poses.R[b], self.mesh.gravity,
+                               self.mesh.water_density)[1]
+            for f, arm in zip(state.nodal[self.mesh.slave_node[mine]], arms[mine], strict=True):
+                block[3:, 3:] -= skew(f) @ skew(arm)
+            K[d:d + 6, d:d + 6] = K[d:d + 6, d:d + 6].toarray() + block
+        return K.tocsc()
+
+    def update(self, x: FloatArray, poses: Poses, du: FloatArray) -> tuple[FloatArray, Poses]:
+        """Apply a step of the unknowns."""
+        x = x + scatter_free(du[: self.n_free], self.mesh.dof_of_node)
+        nb = len(self.bodies)
+        dr, dtheta = np.zeros((nb, 3)), np.zeros((nb, 3))
+        for b in range(nb):
+            d = self.body_dof[b]
+            if d >= 0:
+                dr[b], dtheta[b] = du[d:d + 3], du[d + 3:d + 6]
+        poses = poses.moved(dr, dtheta)
+        return place_slaves(self.mesh, poses, x), poses
+
+
+def solve_coupled(system: System, mesh: Mesh, x: FloatArray, settings: StaticsSettings,
+                  counters) -> tuple[bool, str, int, ForceState, FloatArray, Poses]:
+    """Newton iterations with backtracking on the residual norm (single load step)."""
+    problem = CoupledStatics(system, mesh)
+    poses = Poses.initial(system, mesh)
+    x = place_slaves(mesh, poses, x)
+    scale = max(problem.model.load_scale(),
+                max((b.mass * mesh.gravity for b in problem.bodies), default=0.0))
+    tol = max(settings.tolerance * scale, problem.model.roundoff_floor(x))
+    R, state = problem.residual(x, poses)
+    for it in range(settings.max_iterations + 1):
+        counters.residuals += 1
+        counters.history.append(float(np.abs(R).max(initial=0.0)))
+        if counters.history[-1] <= tol:
+            return True, f"converged in {it} iterations", it, state, x, poses
+        if it == settings.max_iterations:
+            break
+        K = problem.tangent(x, poses, state)
+        counters.tangents += 1
+        counters.factorizations += 1
+        du = spla.spsolve(K, R)
+        r0, alpha = float(np.linalg.norm(R)), 1.0
+        for _ in range(12):
+            x_try, p_try = problem.update(x, poses, alpha * du)
+            R_try, s_try = problem.residual(x_try, p_try)
+            counters.residuals += 1
+            if np.linalg.norm(R_try) < r0:
+                break
+            alpha *= 0.5
+        x, poses, R, state = x_try, p_try, R_try, s_try
+    return (False, f"coupled statics did not converge in {settings.max_iterations} iterations: "
+            f"largest out-of-balance force {counters.history[-1]:.3e}",
+            settings.max_iterations, state, x, poses)

@@ -1,0 +1,131 @@
+"""Rigid bodies coupled to lines in statics: equilibrium, the exact coupled tangent and the
+body's 6x6 mooring stiffness against finite differences of re-solved equilibria."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from moorline.mesh import discretize, rotation_matrix
+from moorline.model import Body, Environment, Hydrostatics, Line, LineType, Point, System
+from moorline.solvers.bodies import Poses, place_slaves
+from moorline.solvers.coupled_statics import CoupledStatics
+from moorline.solvers.initial_shape import initial_positions
+from moorline.solvers.statics import solve_statics
+from moorline.solvers.stiffness import group_stiffness
+
+RHO, G = 1025.0, 9.81
+
+
+def box_system(kind="free", position=(0.0, 0.0, 1.7), rotation=(0.0, 0.0, 0.0)) -> System:
+    """A 26 x 10 x 5 m box (Wang, Er and Iu) on four taut-ish steel lines."""
+    lt = LineType("steel", diameter=0.1, mass_per_length=8000 * np.pi / 4 * 0.01,
+                  EA=2e11 * np.pi / 4 * 0.01, Cd=1.2)
+    body = Body("box", kind=kind, position=position, rotation=rotation, mass=1.2e5,
+                center_of_gravity=(0.3, -0.2, -0.5),
+                inertia=((1.0e6, 0, 0), (0, 6.0e6, 0), (0, 0, 7.0e6)),
+                hydrostatics=Hydrostatics("box", length=26.0, width=10.0, height=5.0),
+                force=(2.0e4, 5.0e3, 0.0, 0.0, 0.0, 1.0e4))
+    points, lines = {}, {}
+    span = 99.1 / np.tan(np.radians(50))
+    for k, (sx, sy) in enumerate([(1, 1), (-1, 1), (-1, -1), (1, -1)]):
+        points[f"f{k}"] = Point(f"f{k}", "body", (13.0 * sx, 5.0 * sy, -2.5), body="box")
+        points[f"a{k}"] = Point(f"a{k}", "fixed", (13.0 * sx + sx * span, 5.0 * sy + sy * 20,
+                                                   -100.0))
+        lines[f"l{k}"] = Line(f"l{k}", "steel", 130.0, 11, f"a{k}", f"f{k}")
+    env = Environment(depth=100.0, water_density=RHO, gravity=G)
+    return System("box", environment=env, line_types={"steel": lt}, points=points, lines=lines,
+                  bodies={"box": body})
+
+
+@pytest.fixture(scope="module")
+def floating():
+    result = solve_statics(box_system())
+    assert result.success, result.message
+    return result
+
+
+def test_free_body_is_in_equilibrium_with_its_lines(floating):
+    system = box_system()
+    r, rv = floating.body_position("box"), floating.body_rotation("box")
+    body = system.bodies["box"]
+    # independent balance: buoyancy of the (nearly level) box vs weight, loads and lines
+    lines = sum(floating.end_force(f"l{k}", "b") for k in range(4))
+    draft = 2.5 - r[2]
+    buoyancy = RHO * G * 26 * 10 * draft
+    assert abs(rv).max() < 0.05
+    assert lines[2] + buoyancy - body.mass * G == pytest.approx(0.0, abs=1e-3 * body.mass * G)
+    assert lines[0] + body.force[0] == pytest.approx(0.0, abs=1e-6 * body.mass * G)
+    assert lines[1] + body.force[1] == pytest.approx(0.0, abs=1e-6 * body.mass * G)
+
+
+def test_coupled_tangent_matches_finite_differences(floating):
+    system = box_system()
+    mesh = discretize(system)
+    problem = CoupledStatics(system, mesh)
+    rng = np.random.default_rng(2)
+    poses = Poses.initial(system, mesh)
+    poses = poses.moved(np.array([[0.3, -0.2, 0.05]]), np.array([[0.02, -0.03, 0.05]]))
+    x = place_slaves(mesh, poses, initial_positions(system, mesh))
+    x[mesh.free_nodes] += rng.normal(scale=0.05, size=x[mesh.free_nodes].shape)
+    R, state = problem.residual(x, poses)
+    K = problem.tangent(x, poses, state).toarray()
+    fd = np.zeros_like(K)
+    h = 1e-6
+    for j in range(problem.n_unknowns):
+        du = np.zeros(problem.n_unknowns)
+        du[j] = h
+        rp = problem.residual(*problem.update(x, poses, du))[0]
+        rm = problem.residual(*problem.update(x, poses, -du))[0]
+        fd[:, j] = -(rp - rm) / (2 * h)
+    bad = np.argwhere(~np.isclose(K, fd, rtol=1e-4, atol=1e-5 * np.abs(K).max()))
+    assert not len(bad), (problem.n_free, bad[:10].tolist(), [(K[i, j], fd[i, j]) for i, j in bad[:6]])
+
+
+def _line_wrench(system: System, result, reference):
+    """Force and moment about ``reference`` the lines exert on the body's points."""
+    F, M = np.zeros(3), np.zeros(3)
+    for k in range(4):
+        f = result.end_force(f"l{k}", "b")
+        F += f
+        M += np.cross(result.point_position(f"f{k}") - reference, f)
+    return np.concatenate((F, M))
+
+
+def test_body_mooring_stiffness_matches_finite_differences(floating):
+    """6x6 mooring stiffness (lines only) at the equilibrium, against re-solved equilibria of
+    the lines with the body held at perturbed poses; 1e-4 relative (foundation + bodies
+    issue)."""
+    r0, rv0 = floating.body_position("box"), floating.body_rotation("box")
+    held = box_system("fixed", tuple(r0), tuple(rv0))
+    base = solve_statics(held)
+    assert np.allclose(base.positions, floating.positions, atol=1e-6)
+    names = [f"f{k}" for k in range(4)]
+    K6 = group_stiffness(base, names, r0)
+    R0 = rotation_matrix(rv0)
+    h = np.array([1e-3] * 3 + [1e-5] * 3)
+    fd = np.zeros((6, 6))
+    for j in range(6):
+        wrench = []
+        for sign in (1, -1):
+            dq = np.zeros(6)
+            dq[j] = sign * h[j]
+            R = rotation_matrix(dq[3:]) @ R0
+            from moorline.solvers.bodies import rotation_vector
+
+            system = box_system("fixed", tuple(r0 + dq[:3]), tuple(rotation_vector(R)))
+            res = solve_statics(system, initial=base.positions)
+            assert res.success
+            wrench.append(_line_wrench(system, res, r0 + dq[:3]))
+        fd[:, j] = -(wrench[0] - wrench[1]) / (2 * h[j])
+    assert np.allclose(K6, fd, rtol=1e-4, atol=1e-4 * np.abs(K6).max())
+
+
+def test_fixed_body_points_follow_the_pose():
+    system = box_system("fixed", (1.0, 2.0, 1.5), (0.0, 0.1, 0.2))
+    mesh = discretize(system)
+    R = rotation_matrix(np.array([0.0, 0.1, 0.2]))
+    node = mesh.point_node[mesh.point_index("f0")]
+    assert np.allclose(mesh.node_position[node], np.array([1.0, 2.0, 1.5]) + R @ [13, 5, -2.5])
+    result = solve_statics(replace(system))
+    assert result.success
