@@ -205,6 +205,11 @@ class DynamicResult:
     case: str = ""
     units: str = "SI"
     settings: dict = field(default_factory=dict)
+    body_pose: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
+
+    def body_history(self, body: str) -> FloatArray:
+        """Pose history of a body (n_t, 6): position and rotation vector."""
+        return self.body_pose[:, self.mesh.body_names.index(body)]
 
     def end_tension(self, line: str, end: str = "b") -> FloatArray:
         """Tension history at one end of a line (n_t,)."""
@@ -251,4 +256,128 @@ class DynamicResult:
                 **{f"setting_{k}": v for k, v in self.settings.items()},
             },
         )
+        if m.body_names:
+            ds["body_pose"] = (("time", "body", "dof"), self.body_pose)
+            ds = ds.assign_coords(body=list(m.body_names),
+                                  dof=["x", "y", "z", "rx", "ry", "rz"])
+        return ds
+
+
+@dataclass(frozen=True)
+class ModalResult:
+    """Natural frequencies and mode shapes about a static equilibrium
+    (:func:`moorline.solvers.modal.solve_modes`).
+
+    Attributes
+    ----------
+    success, message
+        Whether the eigensolver succeeded, and what it found.
+    omega
+        Circular natural frequencies [rad/time] (n_modes,), ascending. A negative value marks
+        a negative eigenvalue ``-omega^2`` (an unstable equilibrium).
+    mode_shapes
+        Node displacements of each mode (n_modes, n_nodes, 3), zero at fixed and prescribed
+        nodes; mass-normalized: ``phi^T M phi = 1`` over the free dofs.
+    participation
+        Share of ``sum_i m_i phi_i^2`` (``m_i`` the diagonal of the mass matrix) on the x, y
+        and z dofs (n_modes, 3); rows sum to 1.
+    effective_mass
+        Effective modal mass along x, y, z, ``(phi^T M r_d)^2`` [mass] (n_modes, 3).
+    dominant
+        Direction (``"x"``, ``"y"`` or ``"z"``) with the largest participation share, per mode.
+    positions, tension
+        The static equilibrium linearized about: node positions (n_nodes, 3) and element
+        tensions (n_elements,).
+    mesh, case, units
+        What was solved, for output.
+    solver
+        ``dense`` (LAPACK, all eigenvalues) or ``shift-invert`` (ARPACK).
+    n_dofs
+        Number of free degrees of freedom.
+    settings
+        The modal settings used (``n_modes``, ``band``, ``mass``, ``added_mass``).
+    """
+
+    success: bool
+    message: str
+    omega: FloatArray
+    mode_shapes: FloatArray
+    participation: FloatArray
+    effective_mass: FloatArray
+    dominant: tuple[str, ...]
+    positions: FloatArray
+    tension: FloatArray
+    mesh: Mesh
+    case: str = ""
+    units: str = "SI"
+    solver: str = ""
+    n_dofs: int = 0
+    settings: dict = field(default_factory=dict)
+
+    @property
+    def n_modes(self) -> int:
+        """Number of modes."""
+        return len(self.omega)
+
+    @property
+    def period(self) -> FloatArray:
+        """Natural periods ``2 pi / omega`` [time] (``inf`` for ``omega <= 0``)."""
+        with np.errstate(divide="ignore"):
+            return np.where(self.omega > 0, 2 * np.pi / np.abs(self.omega), np.inf)
+
+    @property
+    def frequency_hz(self) -> FloatArray:
+        """Natural frequencies ``omega / (2 pi)`` [1/time]."""
+        return self.omega / (2 * np.pi)
+
+    def modes_of(self, direction: str) -> NDArray[np.int64]:
+        """Indices (0-based, ascending frequency) of the modes dominated by ``direction``."""
+        return np.array([i for i, d in enumerate(self.dominant) if d == direction],
+                        dtype=np.int64)
+
+    def to_xarray(self) -> xr.Dataset:
+        """The result as an :class:`xarray.Dataset` (dims mode, node, xyz, element, point).
+
+        The coordinate ``mode`` numbers the modes from 1; ``position`` is the static
+        configuration and ``mode_shape(mode, node, xyz)`` the mass-normalized node
+        displacements (for the plots: ``element_nodes`` and ``point_position`` too).
+        """
+        m = self.mesh
+        settings = {f"setting_{k}": (v if v is not None else "none") if not isinstance(v, bool)
+                    else int(v) for k, v in self.settings.items() if k != "band"}
+        band = self.settings.get("band")
+        if band is not None:
+            settings.update(setting_band_low=float(band[0]), setting_band_high=float(band[1]))
+        ds = xr.Dataset(
+            {
+                "omega": (("mode",), self.omega),
+                "period": (("mode",), self.period),
+                "frequency_hz": (("mode",), self.frequency_hz),
+                "dominant": (("mode",), np.array(self.dominant, dtype=str)),
+                "participation": (("mode", "xyz"), self.participation),
+                "effective_mass": (("mode", "xyz"), self.effective_mass),
+                "mode_shape": (("mode", "node", "xyz"), self.mode_shapes),
+                "position": (("node", "xyz"), self.positions),
+                "tension": (("element",), self.tension),
+                "element_nodes": (("element", "pair"), m.elements),
+                "point_position": (("point", "xyz"),
+                                   self.positions[m.point_node].reshape(-1, 3)),
+            },
+            coords={
+                "mode": np.arange(1, self.n_modes + 1), "xyz": ["x", "y", "z"],
+                "point": list(m.point_names), "point_kind": (("point",), list(m.point_kind)),
+                "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
+            },
+            attrs={
+                "analysis": "modal", "case": self.case, "units": self.units,
+                "moorline_version": __version__, "seabed_z": float(m.seabed_z),
+                "converged": int(self.success), "message": self.message,
+                "solver": self.solver, "n_dofs": int(self.n_dofs), **settings,
+            },
+        )
+        ds["omega"].attrs["units"] = "rad/time"
+        ds["period"].attrs["units"] = "time"
+        ds["frequency_hz"].attrs["units"] = "1/time"
+        ds["effective_mass"].attrs["units"] = "mass"
+        ds["mode_shape"].attrs["normalization"] = "phi^T M phi = 1"
         return ds

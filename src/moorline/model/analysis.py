@@ -94,6 +94,9 @@ class DynamicsSettings:
     viscoelastic_update
         Standard linear solid update: ``exponential`` (exact integration of the Maxwell branch
         over a step, accurate for any dt) or ``incremental`` (Tuah eq. 2.2.b.3).
+    rayleigh_ratio, rayleigh_frequencies
+        Rayleigh damping ``a0 M + a1 K`` with this damping ratio at the two circular
+        frequencies [rad/s] (systems with bodies; Wang, Er and Iu use 0.03).
     fast_path
         Use the compiled step (:mod:`moorline.solvers.fast_newmark`) when the model allows
         it (elastic lines, still water or uniform current, Newmark, iterative); same results.
@@ -112,6 +115,8 @@ class DynamicsSettings:
     ramp_time: float = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
     fast_path: bool = True
+    rayleigh_ratio: float = 0.0
+    rayleigh_frequencies: tuple[float, float] = (0.0, 0.0)
 
 
 ModalMass = Literal["lumped", "consistent"]

@@ -6,6 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Literal
 
+from .components import Motion
+
 Vector3 = tuple[float, float, float]
 Matrix6 = tuple[tuple[float, ...], ...]
 HydrostaticsKind = Literal["none", "box", "cylinder", "matrix"]
@@ -64,6 +66,8 @@ class Body:
     force
         Constant external force and moment about the body origin (world axes) [force, force*
         length], e.g. a wind load.
+    force_history
+        Time-varying force at the body origin (world axes), e.g. Wang's ``F_x = A sin(w t)``.
     """
 
     name: str
@@ -77,3 +81,4 @@ class Body:
     damping: Matrix6 | None = None
     hydrostatics: Hydrostatics = field(default_factory=Hydrostatics)
     force: tuple[float, float, float, float, float, float] = (0.0,) * 6
+    force_history: Motion | None = None

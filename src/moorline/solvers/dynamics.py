@@ -78,11 +78,13 @@ def simulate(
                          system.environment.seabed)
     excitation = Excitation(system, mesh, x0)
     state = _initial_state(model, excitation, x0, settings.dt, maxwell)
+    if mesh.body_names:
+        state = _with_bodies(state, initial)
     # force scale of the residual tolerance: the larger of the nodal loads and the tensions
     scale = max(float(np.abs(model.external).max(initial=0.0)),
                 float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
     tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
-    stepper = _stepper(model, fluid, settings, tolerance)
+    stepper = _stepper(model, fluid, settings, tolerance, system)
     every = max(output_every or system.output.every, settings.dt)
     recorder = _Recorder(mesh, writer)
     recorder.add(state)
@@ -103,11 +105,19 @@ def simulate(
                            asdict(settings))
 
 
-def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: float):
-    """The compiled stepper when the model allows it, else the general one."""
+def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: float,
+             system: System | None = None):
+    """The coupled stepper for systems with bodies; else the compiled stepper when the model
+    allows it, else the general one."""
     from .fast_newmark import FastStepper, fast_path_reason
 
     coefficients = Coefficients.for_scheme(settings.scheme, settings.alpha)
+    if model.mesh.body_names:
+        from .coupled_dynamics import CoupledStepper
+
+        return CoupledStepper(system, model, Coefficients.for_scheme("newmark", 0.0), tolerance,
+                              settings.max_iterations, settings.stiffness_update,
+                              _rayleigh(settings))
     reason = fast_path_reason(model, fluid, settings.scheme, settings.variant)
     if reason is None and settings.fast_path:
         return FastStepper(model, coefficients, tolerance, settings.max_iterations,
@@ -115,6 +125,15 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     logger.info("general stepper (compiled step not used: %s)", reason or "disabled")
     return Stepper(model, coefficients, settings.variant, tolerance, settings.max_iterations,
                    settings.stiffness_update)
+
+
+def _rayleigh(settings: DynamicsSettings) -> tuple[float, float] | None:
+    """(a0, a1) of Rayleigh damping with the settings' ratio at its two frequencies."""
+    zeta = settings.rayleigh_ratio
+    w1, w2 = settings.rayleigh_frequencies
+    if zeta <= 0 or w1 <= 0 or w2 <= 0:
+        return None
+    return 2 * zeta * w1 * w2 / (w1 + w2), 2 * zeta / (w1 + w2)
 
 
 def _statics_settings(system: System) -> StaticsSettings:
@@ -148,14 +167,34 @@ def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
     ev = model.evaluate(x, v, a, 0.0, material, dt, True, forces)
     mass = ev.node_M if ev.node_M is not None else np.zeros((mesh.n_nodes, 3, 3))
     mass = mass + model.node_mass[:, None, None] * np.eye(3)
-    if mesh.n_dofs:
+    if mesh.n_dofs and not mesh.body_names:  # with bodies: start at rest (static state)
         from .assembly import BlockPattern
 
-        M = BlockPattern(mesh.elements, mesh.dof_of_node).assemble(ev.Ma, mass)
-        a_free = spla.splu(M.tocsc()).solve(gather_free(ev.nodal, mesh.dof_of_node))
-        a = a + scatter_free(a_free, mesh.dof_of_node)
-        ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
+        M = BlockPattern(mesh.elements, mesh.dof_of_node).assemble(ev.Ma, mass).tocsc()
+        massive = M.diagonal() > 0  # massless nodes (weightless strings) start at a = 0
+        if np.any(massive):
+            rhs = gather_free(ev.nodal, mesh.dof_of_node)
+            a_free = np.zeros(len(rhs))
+            a_free[massive] = spla.splu(M[massive][:, massive].tocsc()).solve(rhs[massive])
+            a = a + scatter_free(a_free, mesh.dof_of_node)
+            ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
     return StepState(0.0, x, v, a, ev.material, ev)
+
+
+def _with_bodies(state: StepState, initial) -> StepState:
+    """Bodies at their static poses, at rest."""
+    from dataclasses import replace as dc_replace
+
+    from ..mesh import rotation_matrix
+    from .coupled_dynamics import BodyState
+
+    pose = initial.body_pose if isinstance(initial, StaticResult) else None
+    if pose is None or not len(pose):
+        raise ConvergenceError("dynamics of a system with bodies needs its static state")
+    R = np.array([rotation_matrix(p[3:]) for p in pose])
+    zeros = np.zeros((len(pose), 6))
+    return dc_replace(state, a=np.zeros_like(state.a),
+                      bodies=BodyState(pose[:, :3].copy(), R, zeros, zeros.copy()))
 
 
 def _advance(stepper: Stepper, excitation: Excitation, state: StepState, h: float,
@@ -168,8 +207,9 @@ def _advance(stepper: Stepper, excitation: Excitation, state: StepState, h: floa
     if ok:
         return new, 0
     if cuts_left == 0:
-        raise ConvergenceError("Newton iterations did not converge", time=t1,
-                               where=_worst(stepper, state, h, constrained, forces),
+        where = (None if state.bodies is not None
+                 else _worst(stepper, state, h, constrained, forces))
+        raise ConvergenceError("Newton iterations did not converge", time=t1, where=where,
                                residual=norm)
     _forget_tangent(stepper)
     half, used1 = _advance(stepper, excitation, state, h / 2, cuts_left - 1, mesh)
@@ -205,12 +245,14 @@ class _Recorder:
         self.writer = writer
         self.records: dict[str, list] = {k: [] for k in
                                          ("time", "position", "velocity", "tension",
-                                          "end_force")}
+                                          "end_force", "body_pose")}
 
     def add(self, state: StepState) -> None:
         record = {"position": state.x.copy(), "velocity": state.v.copy(),
                   "tension": state.evaluation.tension.copy(),
-                  "end_force": _end_forces(self.mesh, state)}
+                  "end_force": _end_forces(self.mesh, state),
+                  "body_pose": (state.bodies.pose() if state.bodies is not None
+                                else np.zeros((0, 6)))}
         self.records["time"].append(state.t)
         for key, value in record.items():
             self.records[key].append(value)
@@ -222,7 +264,8 @@ class _Recorder:
         arrays = {k: np.array(v) for k, v in self.records.items()}
         return DynamicResult(ok, message, arrays["time"], arrays["position"],
                              arrays["velocity"], arrays["tension"], arrays["end_force"],
-                             counters, self.mesh, system.name, system.units, settings)
+                             counters, self.mesh, system.name, system.units, settings,
+                             body_pose=arrays["body_pose"])
 
 
 def _end_forces(mesh: Mesh, state: StepState) -> FloatArray:

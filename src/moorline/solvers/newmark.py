@@ -40,6 +40,7 @@ class StepState:
     a: FloatArray
     material: MaterialState
     evaluation: Evaluation
+    bodies: object = None  # coupled_dynamics.BodyState when the system has bodies
 
 
 @dataclass(frozen=True)

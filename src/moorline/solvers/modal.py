@@ -1,0 +1,317 @@
+"""Natural frequencies and mode shapes of a cable system about its static equilibrium.
+
+The equations of motion linearized about the static equilibrium ``x0`` are
+``M u'' + K u = 0`` with
+
+- ``K`` the exact tangent stiffness ``-dR/dx`` at ``x0`` over the free dofs
+  (:meth:`moorline.solvers.equilibrium.StaticModel.tangent`): material (axial) part, the
+  geometric (initial-stress) part ``T/l (I - n n^T)`` that gives a cable its transverse
+  stiffness, and the seabed contact springs of the nodes in contact;
+- ``M`` the structural mass (lumped: half of each element to each node; or consistent, Tuah
+  1982 eq. 3.1.12), the point masses, and when asked the added mass: per element
+  ``rho A L0 [Ca (I - t t^T) + Cat t t^T] / 2`` to each node, ``t`` the element direction at
+  ``x0`` (Tuah eq. 3.2.a.2, :func:`moorline.physics.hydro.added_mass_blocks`), and
+  ``rho Ca V`` on the three translations of each point.
+
+Fixed and prescribed points are held. The generalized eigenproblem
+``K phi = omega^2 M phi`` is solved densely (:func:`scipy.linalg.eigh`) for small systems and
+otherwise with ARPACK in shift-invert mode (:func:`scipy.sparse.linalg.eigsh`), followed by a
+Rayleigh-Ritz step on the subspace found (M-orthonormal modes, refined eigenvalues). These
+are the frequencies and modes the mode-superposition analyses of Tuah (1982) use (sec. 3.2.b
+step 4: strumming; sec. 5.3: stochastic response).
+
+Repeated frequencies (the two transverse polarizations of a straight string) have no unique
+modes; within each cluster of (numerically) equal eigenvalues the basis is rotated so that the
+modes separate by direction where they can, which makes the ``dominant`` labels
+reproducible.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import asdict
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from ..errors import ConvergenceError, MoorlineError
+from ..mesh import Mesh
+from ..model import ModalSettings, System
+from ..physics import element, hydro
+from ..results import ModalResult, StaticResult
+from .assembly import scatter_free
+from .equilibrium import StaticModel
+from .statics import solve_statics
+
+FloatArray = NDArray[np.float64]
+logger = logging.getLogger(__name__)
+
+#: Up to this many free dofs the eigenproblem is solved densely (all eigenvalues, LAPACK).
+DENSE_LIMIT = 300
+#: Eigenvalues closer than this (relative) form a cluster of repeated frequencies.
+CLUSTER_RTOL = 1.0e-7
+AXES = ("x", "y", "z")
+
+
+def solve_modes(
+    system: System,
+    settings: ModalSettings | None = None,
+    statics: StaticResult | None = None,
+) -> ModalResult:
+    """Natural frequencies and mass-normalized mode shapes about the static equilibrium.
+
+    Parameters
+    ----------
+    system
+        The problem (lines and points; systems with bodies are not supported yet).
+    settings
+        Number of modes or frequency band, mass model, added mass; default: the first modal
+        analysis of the system, else :class:`~moorline.model.ModalSettings` defaults.
+    statics
+        The equilibrium to linearize about; solved with the system's statics settings when
+        not given.
+
+    Returns
+    -------
+    ModalResult
+        Modes in increasing frequency; ``phi^T M phi = I`` over the free dofs.
+
+    Raises
+    ------
+    ConvergenceError
+        When the statics did not converge (there is no equilibrium to linearize about).
+    MoorlineError
+        When the model has no free dof, a free dof without mass, or bodies.
+
+    Notes
+    -----
+    ``K`` is symmetrized, ``K = (K + K^T) / 2``: all static loads are conservative (weights,
+    buoyancy, constant point forces, elastic elements and seabed springs derive from a
+    potential), so the exact tangent is the Hessian of the potential energy and symmetric;
+    the symmetrization only removes round-off, and lets the symmetric solvers (``eigh``,
+    ``eigsh``) be used. The shift-invert shift is slightly below zero (or just below the
+    band's lower end), so that ``K - sigma M`` is positive definite even for a (near-)
+    mechanism and ARPACK converges to the eigenvalues nearest the shift: the lowest ones.
+    """
+    settings = settings or _default_settings(system)
+    if statics is None:
+        statics = solve_statics(system)
+    if not statics.success:
+        raise ConvergenceError(f"modal analysis of {system.name}: no static equilibrium to "
+                               f"linearize about ({statics.message})")
+    mesh = statics.mesh
+    if getattr(mesh, "body_names", ()):
+        raise MoorlineError("modal analysis of systems with bodies is not supported yet")
+    if mesh.n_dofs == 0:
+        raise MoorlineError(f"modal analysis of {system.name}: the model has no free node")
+    K, M = modal_matrices(mesh, statics.positions, settings)
+    lam, phi, solver = _eigen(K, M, settings)
+    phi = _rotate_clusters(lam, phi, M, mesh)
+    phi = _fix_signs(phi)
+    return _result(system, statics, settings, lam, phi, M, solver)
+
+
+def _default_settings(system: System) -> ModalSettings:
+    for analysis in system.analyses:
+        if isinstance(analysis, ModalSettings):
+            return analysis
+    return ModalSettings()
+
+
+def modal_matrices(mesh: Mesh, x: FloatArray,
+                   settings: ModalSettings) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """Stiffness and mass matrices over the free dofs at positions ``x``.
+
+    Parameters
+    ----------
+    mesh
+        The discretized system.
+    x
+        Node positions of the equilibrium (n_nodes, 3).
+    settings
+        Mass model (``lumped``/``consistent``) and whether to add the added mass.
+
+    Returns
+    -------
+    K, M
+        Symmetric CSR matrices (n_dofs, n_dofs).
+    """
+    model = StaticModel(mesh)
+    K = model.tangent(x)
+    K = ((K + K.T) * 0.5).tocsr()
+    eye = np.eye(3)
+    point_mass = mesh.node_mass.copy()
+    el_blocks = None
+    if settings.mass == "consistent":
+        el_blocks = element.consistent_mass_blocks(mesh.length0, mesh.mass_per_length)
+    else:
+        point_mass += element.lumped_mass(mesh.elements, mesh.length0, mesh.mass_per_length,
+                                          mesh.n_nodes)
+    rho = mesh.water_density
+    if settings.added_mass and rho > 0:
+        added = hydro.added_mass_blocks(x, mesh.elements, mesh.length0, mesh.diameter, mesh.Ca,
+                                        mesh.Cat, rho)
+        el_blocks = added if el_blocks is None else el_blocks + added
+        point_mass += rho * mesh.node_Ca * mesh.node_volume
+    M = model.pattern.assemble(el_blocks, point_mass[:, None, None] * eye)
+    return K, M
+
+
+def _eigen(K: sp.csr_matrix, M: sp.csr_matrix,
+           settings: ModalSettings) -> tuple[FloatArray, FloatArray, str]:
+    """Eigenvalues ``omega^2`` (ascending) and M-orthonormal vectors (n_dofs, n_modes)."""
+    n = K.shape[0]
+    diag_m = M.diagonal()
+    if np.any(diag_m <= 0):
+        dof = int(np.flatnonzero(diag_m <= 0)[0])
+        raise MoorlineError(f"modal analysis: free dof {dof} has no mass (a massless free "
+                            "point or line); give it mass")
+    if n <= DENSE_LIMIT or (settings.band is None and settings.n_modes >= n - 1):
+        return (*_dense(K, M, settings), "dense")
+    lam, phi = _shift_invert(K, M, settings)
+    return lam, phi, "shift-invert"
+
+
+def _dense(K: sp.csr_matrix, M: sp.csr_matrix,
+           settings: ModalSettings) -> tuple[FloatArray, FloatArray]:
+    n = K.shape[0]
+    kwargs: dict = {"subset_by_index": [0, min(settings.n_modes, n) - 1]}
+    if settings.band is not None:
+        low, high = settings.band
+        lower = low * low * (1 - 1e-12) if low > 0 else -np.inf
+        kwargs = {"subset_by_value": [lower, high * high * (1 + 1e-12)]}
+    try:
+        return sla.eigh(K.toarray(), M.toarray(), **kwargs)
+    except np.linalg.LinAlgError as exc:
+        raise MoorlineError(f"modal analysis: mass matrix not positive definite ({exc})") \
+            from None
+
+
+def _default_shift(K: sp.csr_matrix, M: sp.csr_matrix) -> float:
+    """A shift slightly below zero on the scale of the system: a millionth of the median
+    diagonal ratio ``K_ii / M_ii`` (for a cable of N elements the lowest eigenvalue is about
+    ``pi^2 T / (2 EA N^2)`` times that ratio)."""
+    ratio = K.diagonal() / M.diagonal()
+    ratio = ratio[ratio > 0]
+    return -1e-6 * float(np.median(ratio)) if ratio.size else -1.0
+
+
+def _shift_invert(K: sp.csr_matrix, M: sp.csr_matrix,
+                  settings: ModalSettings) -> tuple[FloatArray, FloatArray]:
+    """ARPACK shift-invert: the lowest ``n_modes``, or every mode in the band (the number
+    asked for grows until the farthest eigenvalue found lies beyond the band's width)."""
+    n = K.shape[0]
+    sigma = _default_shift(K, M)
+    if settings.band is None:
+        return _rayleigh_ritz(K, M, _arpack(K, M, settings.n_modes, sigma))
+    low, high = settings.band
+    if low > 0:
+        sigma = low * low * (1 - 1e-6) + min(sigma, 0.0) * 1e-6
+    width = high * high - sigma
+    k = max(settings.n_modes, 6)
+    while True:
+        if k >= n - 1:
+            return _dense(K, M, settings)
+        lam, phi = _rayleigh_ritz(K, M, _arpack(K, M, k, sigma))
+        if np.max(np.abs(lam - sigma)) > width:
+            keep = (lam >= low * low * (1 - 1e-12)) & (lam <= high * high * (1 + 1e-12))
+            return lam[keep], phi[:, keep]
+        k *= 2
+
+
+def _arpack(K: sp.csr_matrix, M: sp.csr_matrix, k: int, sigma: float) -> FloatArray:
+    try:
+        _, vectors = spla.eigsh(K.tocsc(), k=k, M=M.tocsc(), sigma=sigma, which="LM",
+                                mode="normal")
+    except spla.ArpackNoConvergence as exc:
+        raise ConvergenceError(f"modal analysis: ARPACK did not converge ({exc})") from None
+    return vectors
+
+
+def _rayleigh_ritz(K: sp.csr_matrix, M: sp.csr_matrix,
+                   basis: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Project onto the subspace found: refined eigenvalues and exactly M-orthonormal modes."""
+    lam, y = sla.eigh(basis.T @ (K @ basis), basis.T @ (M @ basis))
+    return lam, basis @ y
+
+
+def _dof_axis(mesh: Mesh) -> NDArray[np.int64]:
+    """Axis (0, 1, 2) of every free dof."""
+    axis = np.empty(mesh.n_dofs, dtype=np.int64)
+    free = mesh.dof_of_node >= 0
+    axis[mesh.dof_of_node[free]] = np.nonzero(free)[1]
+    return axis
+
+
+def _rotate_clusters(lam: FloatArray, phi: FloatArray, M: sp.csr_matrix,
+                     mesh: Mesh) -> FloatArray:
+    """Within each cluster of repeated eigenvalues, rotate the (M-orthonormal) basis to
+    diagonalize ``sum_d w_d phi^T D_d phi`` with weights 1, 2, 3 for x, y, z (``D_d`` the
+    mass diagonal on the dofs of axis ``d``): modes then separate by direction."""
+    phi = phi.copy()
+    weight = M.diagonal() * (1.0 + _dof_axis(mesh))
+    scale = max(float(np.max(np.abs(lam), initial=0.0)), np.finfo(float).tiny)
+    start = 0
+    for i in range(1, len(lam) + 1):
+        if i < len(lam) and abs(lam[i] - lam[i - 1]) <= CLUSTER_RTOL * max(abs(lam[i]),
+                                                                           1e-12 * scale):
+            continue
+        if i - start > 1:
+            block = phi[:, start:i]
+            _, rotation = np.linalg.eigh(block.T @ (weight[:, None] * block))
+            phi[:, start:i] = block @ rotation
+        start = i
+    return phi
+
+
+def _fix_signs(phi: FloatArray) -> FloatArray:
+    """Make the largest component of every mode positive (reproducible signs)."""
+    idx = np.argmax(np.abs(phi), axis=0)
+    signs = np.sign(phi[idx, np.arange(phi.shape[1])])
+    return phi * np.where(signs == 0, 1.0, signs)
+
+
+def participation(phi: FloatArray, M: sp.csr_matrix, mesh: Mesh) -> tuple[FloatArray,
+                                                                          FloatArray]:
+    """Direction shares and effective modal masses of mass-normalized modes.
+
+    Returns
+    -------
+    share
+        (n_modes, 3): the share of ``sum_i m_i phi_i^2`` (``m_i`` the diagonal of ``M``) on the
+        dofs of each axis; rows sum to 1. The dominant direction of a mode is its largest.
+    effective_mass
+        (n_modes, 3): ``(phi^T M r_d)^2`` with ``r_d`` the unit translation of all free dofs
+        along axis ``d`` (the modal mass excited by a uniform acceleration along ``d``).
+    """
+    axis = _dof_axis(mesh)
+    energy = M.diagonal()[:, None] * phi**2
+    share = np.stack([energy[axis == d].sum(axis=0) for d in range(3)], axis=1)
+    share /= np.maximum(share.sum(axis=1, keepdims=True), np.finfo(float).tiny)
+    Mphi = M @ phi
+    gamma = np.stack([Mphi[axis == d].sum(axis=0) for d in range(3)], axis=1)
+    return share, gamma**2
+
+
+def _result(system: System, statics: StaticResult, settings: ModalSettings, lam: FloatArray,
+            phi: FloatArray, M: sp.csr_matrix, solver: str) -> ModalResult:
+    mesh = statics.mesh
+    negative = lam < 0
+    if np.any(negative):
+        logger.warning("%s: %d negative eigenvalue(s): the equilibrium is unstable (reported "
+                       "as negative omega)", system.name, int(negative.sum()))
+    omega = np.sign(lam) * np.sqrt(np.abs(lam))
+    share, effective = participation(phi, M, mesh)
+    shapes = np.stack([scatter_free(phi[:, j], mesh.dof_of_node) for j in range(phi.shape[1])])
+    shapes = shapes.reshape(phi.shape[1], mesh.n_nodes, 3)
+    dominant = tuple(AXES[int(k)] for k in np.argmax(share, axis=1)) if len(lam) else ()
+    found = f"{len(lam)} modes" + (f" in band {settings.band} rad/s" if settings.band else "")
+    return ModalResult(
+        success=True, message=f"{found} ({solver}, {mesh.n_dofs} dofs)", omega=omega,
+        mode_shapes=shapes, participation=share, effective_mass=effective, dominant=dominant,
+        positions=statics.positions, tension=statics.tension, mesh=mesh, case=system.name,
+        units=system.units, solver=solver, n_dofs=mesh.n_dofs,
+        settings={k: v for k, v in asdict(settings).items() if k != "kind"})
