@@ -211,7 +211,7 @@ BAD_CASES = [
     ("negative_EA1", "line_types.chain.EA1", "must be >= 0, got -1.0e8"),
     ("position_two_numbers", "points.anchor.position", "must be 3 numbers"),
     ("position_component_text", "points.anchor.position[2]", "expected a number, got 'deep'"),
-    ("unknown_point_kind", "points.anchor.kind", "'fixed', 'free' or 'prescribed'"),
+    ("unknown_point_kind", "points.anchor.kind", "'fixed', 'free', 'prescribed' or 'body'"),
     ("unknown_line_type", "lines.line1.type", "known line types: chain"),
     ("unknown_end_point", "lines.line1.end_b", "known points: anchor, fairlead"),
     ("same_ends", "lines.line1.end_b", "both ends are the point 'anchor'"),
@@ -229,7 +229,7 @@ BAD_CASES = [
     ("unattached_free_point", "points.buoy", "not attached to any line"),
     ("initial_position_fixed", "points.anchor.initial_position", "only prescribed points"),
     ("airy_without_period", "environment.waves.period", "needs period > 0"),
-    ("bodies_not_supported", "bodies", "not supported yet"),
+    ("body_point_unknown_body", "points.fairlead.body", "unknown body 'hull'"),
 ]
 
 

@@ -208,11 +208,34 @@ def statics_summary(result: Any, with_stiffness: bool = True) -> dict[str, Any]:
 
             point["stiffness"] = np.asarray(stiffness.point_stiffness(result, name)).tolist()
         points[name] = point
-    return {
+    summary = {
         "case": result.case, "converged": bool(result.success),
         "iterations": int(result.iterations), "units": result.units, "method": result.method,
         "message": result.message, "lines": lines, "points": points,
     }
+    if mesh.body_names:
+        summary["bodies"] = _bodies_summary(result, with_stiffness)
+    return summary
+
+
+def _bodies_summary(result: Any, with_stiffness: bool) -> dict[str, Any]:
+    """Pose of every body and, at a converged equilibrium, its 6x6 mooring stiffness (lines
+    only) about its origin."""
+    from .solvers import stiffness
+
+    mesh = result.mesh
+    out: dict[str, Any] = {}
+    for b, name in enumerate(mesh.body_names):
+        entry: dict[str, Any] = {
+            "position": result.body_position(name).tolist(),
+            "rotation_deg": np.degrees(result.body_rotation(name)).tolist()}
+        attached = [mesh.point_names[int(n)] for n, k in zip(mesh.slave_node, mesh.slave_body,
+                                                              strict=True) if k == b]
+        if with_stiffness and result.success and attached:
+            entry["mooring_stiffness"] = np.asarray(stiffness.group_stiffness(
+                result, attached, result.body_position(name))).tolist()
+        out[name] = entry
+    return out
 
 
 RESULTS_FILE = "results.nc"
@@ -457,10 +480,48 @@ def _stats(values: np.ndarray) -> dict[str, float]:
             "mean": float(values.mean()), "std": float(values.std())}
 
 
+def modal_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of a modal result (:class:`~moorline.results.ModalResult`):
+    ``{"case", "modes": [{"index", "omega", "period", "dominant"}]}``, ``index`` numbering
+    the modes from 1 in increasing frequency, ``omega`` in rad/s, ``period`` in s."""
+    modes = [{"index": k + 1, "omega": float(result.omega[k]),
+              "period": float(result.period[k]), "dominant": str(result.dominant[k])}
+             for k in range(result.n_modes)]
+    return {"case": result.case, "modes": modes}
+
+
+def run_modal(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Natural modes about the preceding statics result of the run (solved here when there
+    is none): group ``label`` of the results file and a plot of the mode shapes."""
+    from .io.writers import write_group
+    from .plot import plot_mode_shapes
+    from .solvers.modal import solve_modes
+
+    system = context.system
+    statics = context.latest("statics")
+    initial = statics.result if statics is not None and statics.success else None
+    path = context.directory / f"{_prefix(label, 'modal')}mode_shapes.png"
+    with _status(f"solving the modes of {system.name} ...", context.quiet) as update:
+        try:
+            result = solve_modes(system, settings, initial)
+        except ConvergenceError as exc:
+            return Outcome("modal", False, str(exc), {"converged": False,
+                                                      "message": str(exc), "modes": []})
+        update("writing results ...")
+        ds = result.to_xarray()
+        write_group(ds, context.results, label)
+        update("plotting ...")
+        plot_mode_shapes(ds, path)
+    summary = {"converged": bool(result.success), "message": result.message,
+               **modal_summary(result)}
+    return Outcome("modal", bool(result.success), result.message, summary, [path], result)
+
+
 #: Runner of each analysis kind a case may list: (settings, context, label) -> Outcome.
 RUNNERS: dict[str, Callable[[Any, RunContext, str], Outcome]] = {
     "statics": run_statics,
     "dynamics": run_dynamics,
+    "modal": run_modal,
 }
 
 
@@ -585,6 +646,86 @@ def _finish(case: Path, context: RunContext, summary: dict[str, Any], as_json: b
     failed = [o for o in outcomes if not o.success]
     if failed:
         _fail(f"{case}: {failed[0].kind} failed: {failed[0].message}", EXIT_FAILED)
+
+
+@cli.command()
+@click.argument("case", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--n", "n_modes", type=click.IntRange(min=1), default=None, metavar="N",
+              help="Number of lowest modes (default: the case's modal analysis, else 10).")
+@_out_option
+@_json_option
+@_common_options
+def modes(case: Path, n_modes: int | None, out: Path, as_json: bool, quiet: bool,
+          verbose: bool) -> None:
+    """Natural frequencies and mode shapes of CASE about its static equilibrium.
+
+    Prints index, omega [rad/s], period [s], frequency [Hz] and dominant direction of each
+    mode; adds group modal to DIR/<case>/results.nc (replacing an older modal group, keeping
+    the others) and writes mode_shapes.png.
+    """
+    import dataclasses
+
+    from .model import ModalSettings
+    from .plot import plot_mode_shapes
+    from .solvers.modal import solve_modes
+
+    _configure_logging(verbose)
+    system = _load(case)
+    settings = next((a for a in system.analyses if _analysis_kind(a) == "modal"),
+                    ModalSettings())
+    if n_modes is not None:
+        settings = dataclasses.replace(settings, n_modes=n_modes, band=None)
+    context = _context(system, case, out, quiet)
+    plot_path = context.directory / "mode_shapes.png"
+    with _status(f"solving the modes of {system.name} ...", quiet) as update:
+        result = solve_modes(system, settings)
+        update("writing results ...")
+        ds = result.to_xarray()
+        _replace_group(context, ds, "modal")
+        update("plotting ...")
+        plot_mode_shapes(ds, plot_path)
+    if as_json:
+        from .io.writers import summary_json
+
+        click.echo(summary_json(modal_summary(result)))
+    else:
+        _stdout().print(_modes_table(result))
+    _note(f"wrote {context.results}, {plot_path}", quiet)
+
+
+def _replace_group(context: RunContext, ds: Any, group: str) -> None:
+    """Add ``ds`` as ``group`` to the results file, keeping its other groups; an existing
+    ``group`` is replaced (NetCDF cannot delete a group: the file is rewritten)."""
+    import netCDF4
+
+    from .io.writers import read_group, result_groups, start_results, write_group
+
+    path = context.results
+    if not path.exists():
+        start_results(path, {"case": context.system.name, "units": context.system.units,
+                             "moorline_version": __version__, "analyses": "",
+                             "complete": 1, "status": "complete"})
+    elif group in result_groups(path):
+        groups = [name for name in result_groups(path) if name and name != group]
+        keep = {name: read_group(path, name) for name in groups}
+        with netCDF4.Dataset(path, "r") as root:
+            attrs = {key: root.getncattr(key) for key in root.ncattrs()}
+        start_results(path, {**attrs, "analyses": ""})
+        for name, other in keep.items():
+            write_group(other, path, name)
+    write_group(ds, path, group)
+
+
+def _modes_table(result: Any) -> Table:
+    table = Table(title=escape(f"{result.case}: natural modes ({result.message})"))
+    for name in ("mode", "omega [rad/s]", "period [s]", "frequency [Hz]", "dominant",
+                 "share x", "share y", "share z"):
+        table.add_column(escape(name), justify="left" if name == "dominant" else "right")
+    for k in range(result.n_modes):
+        table.add_row(str(k + 1), _g(result.omega[k]), _g(result.period[k]),
+                      _g(result.frequency_hz[k]), result.dominant[k],
+                      *(f"{v:.3f}" for v in result.participation[k]))
+    return table
 
 
 @cli.command()

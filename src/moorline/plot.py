@@ -20,7 +20,8 @@ from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from numpy.typing import NDArray
 
-__all__ = ["plot_configuration", "plot_motion_history", "plot_tension_history"]
+__all__ = ["plot_configuration", "plot_mode_shapes", "plot_motion_history",
+           "plot_tension_history"]
 
 CMAP = "viridis"
 _MARKERS = {"fixed": ("s", "black"), "prescribed": ("^", "tab:red"), "free": ("o", "tab:blue")}
@@ -274,3 +275,67 @@ def plot_motion_history(dataset: xr.Dataset, path: str | Path) -> None:
 def _history_title(dataset: xr.Dataset, what: str) -> str:
     case = str(dataset.attrs.get("case", "")).strip()
     return f"{case}: {what}" if case else what[:1].upper() + what[1:]
+
+
+# ----------------------------------------------------------------------------- modes
+
+
+def plot_mode_shapes(dataset: xr.Dataset, path: str | Path, max_modes: int = 6,
+                     amplitude: float = 0.08) -> None:
+    """Plot the static shape and the scaled shapes of the first modes, one panel per mode.
+
+    Modes dominated by x or z motion are drawn in the x-z elevation, modes dominated by y
+    (out of the x-z plane) in the x-y plan view. Each mode is scaled so that its largest node
+    displacement is ``amplitude`` times the size of the system (mode shapes have no absolute
+    amplitude).
+
+    Parameters
+    ----------
+    dataset
+        A modal dataset (:meth:`moorline.results.ModalResult.to_xarray` or the ``modal`` group
+        of a ``results.nc`` read back): ``position(node, xyz)``, ``element_nodes``,
+        ``mode_shape(mode, node, xyz)``, ``omega``, ``period``, ``dominant``; attributes
+        ``units`` and ``case``.
+    path
+        PNG file to write (parent directories are created).
+    max_modes
+        Number of modes drawn (the lowest).
+    amplitude
+        Drawn amplitude relative to the largest extent of the static shape.
+    """
+    units = _UNITS.get(str(dataset.attrs.get("units", "SI")), _UNITS["SI"])
+    position = np.asarray(dataset["position"].values, dtype=float)
+    connectivity = np.asarray(dataset["element_nodes"].values, dtype=int)
+    shapes = np.asarray(dataset["mode_shape"].values, dtype=float)[:max_modes]
+    n = len(shapes)
+    columns = 1 if n <= 1 else 2
+    rows = max(1, math.ceil(n / columns))
+    fig = Figure(figsize=(6.0 * columns, 3.2 * rows), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(rows, columns, squeeze=False).ravel())
+    size = max(float(np.ptp(position, axis=0).max(initial=0.0)), 1e-9)
+    for k, ax in enumerate(axes):
+        if k >= n:
+            ax.set_axis_off()
+            continue
+        dominant = str(dataset["dominant"].values[k])
+        plane = [0, 1] if dominant == "y" else [0, 2]
+        largest = max(float(np.abs(shapes[k]).max(initial=0.0)), np.finfo(float).tiny)
+        moved = position + shapes[k] * (amplitude * size / largest)
+        ax.add_collection(LineCollection(position[connectivity][:, :, plane], colors="0.6",
+                                         linewidths=1.0, linestyles="dashed"))
+        ax.add_collection(LineCollection(moved[connectivity][:, :, plane], colors="tab:blue",
+                                         linewidths=1.6))
+        ax.autoscale_view()
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel(f"x [{units['length']}]")
+        ax.set_ylabel(f"{'xyz'[plane[1]]} [{units['length']}]")
+        omega = float(dataset["omega"].values[k])
+        period = float(dataset["period"].values[k])
+        view = "plan" if dominant == "y" else "elevation"
+        ax.set_title(f"mode {k + 1}: {omega:.4g} rad/s, T = {period:.4g} s, {dominant} ({view})",
+                     fontsize=9)
+        ax.grid(True, linewidth=0.3)
+    case = str(dataset.attrs.get("case", "")).strip()
+    fig.suptitle(f"{case}: mode shapes (dashed: static shape)" if case
+                 else "Mode shapes (dashed: static shape)")
+    _save(fig, Path(path))

@@ -167,6 +167,10 @@ class StaticResult:
         )
         ds["position"].attrs["units"] = "length"
         ds["tension"].attrs["units"] = "force"
+        if m.body_names:
+            ds["body_pose"] = (("body", "dof"), self.body_pose)
+            ds = ds.assign_coords(body=list(m.body_names),
+                                  dof=["x", "y", "z", "rx", "ry", "rz"])
         return ds
 
 

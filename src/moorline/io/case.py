@@ -20,9 +20,11 @@ from pydantic import BaseModel, ValidationError
 
 from moorline.errors import CaseError
 from moorline.model import (
+    Body,
     Current,
     DynamicsSettings,
     Environment,
+    Hydrostatics,
     Line,
     LineType,
     ModalSettings,
@@ -208,8 +210,22 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
         if lt.material == "viscoelastic" and lt.tau <= 0.0:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
     depth = env.depth if env.depth is not None else math.inf
+    bodies = spec.bodies or {}
     for name, point in spec.points.items():
         _check_point(name, point, depth, fail)
+        if point.kind == "body" and point.body not in bodies:
+            fail(f"unknown body {point.body!r}; known bodies: {_known(list(bodies))}",
+                 f"points.{name}.body")
+        if point.kind != "body" and point.body is not None:
+            fail(f"only body points take 'body'; this point is {point.kind}",
+                 f"points.{name}.body")
+    for name, body in bodies.items():
+        hs = body.hydrostatics
+        need = {"box": ("length", "width", "height"), "cylinder": ("diameter", "height"),
+                "matrix": ()}.get(hs.kind, ())
+        for key in need:
+            if getattr(hs, key) <= 0:
+                fail(f"a {hs.kind} needs {key} > 0", f"bodies.{name}.hydrostatics.{key}")
     for name, line in spec.lines.items():
         _check_line(spec, name, line, fail)
     attached = {p for line in spec.lines.values() for p in (line.end_a, line.end_b)}
@@ -233,7 +249,7 @@ def _check_point(
                  f"points.{name}.{key}")
         if history is not None:
             _check_history(history, f"points.{name}.{key}", fail)
-    if point.kind == "free" or not math.isfinite(depth):
+    if point.kind in ("free", "body") or not math.isfinite(depth):
         return
     for key in ("position", "initial_position"):
         xyz = getattr(point, key)
@@ -291,7 +307,8 @@ def _check_line(
         )
     a, b = spec.points[line.end_a], spec.points[line.end_b]
     span = math.dist(a.position, b.position)
-    if a.kind != "free" and b.kind != "free" and span > line.length * (1 + MAX_STRAIN):
+    if a.kind in ("fixed", "prescribed") and b.kind in ("fixed", "prescribed") \
+            and span > line.length * (1 + MAX_STRAIN):
         fail(
             f"too short to span its ends: {line.end_a!r} and {line.end_b!r} are {span:.6g} "
             f"apart, more than length*(1 + MAX_STRAIN) = {line.length * (1 + MAX_STRAIN):.6g} "
@@ -380,10 +397,12 @@ def _build(spec: CaseSpec, source: str | None) -> System:
             Cd=p.Cd,
             drag_area=p.drag_area,
             Ca=p.Ca,
+            body=p.body,
         )
         for name, p in spec.points.items()
     }
     lines = {name: _line(name, line) for name, line in spec.lines.items()}
+    bodies = {name: _body(name, b, source) for name, b in (spec.bodies or {}).items()}
     if spec.analyses is None:
         analyses: tuple[Any, ...] = (_statics(StaticsSpec(kind="statics"), units),)
     else:
@@ -395,10 +414,28 @@ def _build(spec: CaseSpec, source: str | None) -> System:
         line_types=line_types,
         points=points,
         lines=lines,
+        bodies=bodies,
         analyses=analyses,
         output=OutputSettings(every=default(spec.output.every, "output_every")),
         source=source,
     )
+
+
+def _body(name: str, spec: Any, source: str | None) -> Body:
+    hs = spec.hydrostatics
+    inertia = tuple(tuple(spec.inertia[i] if i == j else 0.0 for j in range(3))
+                    for i in range(3))
+    return Body(
+        name=name, kind=spec.kind, position=tuple(spec.position),
+        rotation=tuple(math.radians(a) for a in spec.rotation), mass=spec.mass,
+        center_of_gravity=tuple(spec.center_of_gravity), inertia=inertia,
+        added_mass=spec.added_mass, damping=spec.damping,
+        hydrostatics=Hydrostatics(kind=hs.kind, length=hs.length, width=hs.width,
+                                  height=hs.height, diameter=hs.diameter,
+                                  stiffness=hs.stiffness, volume=hs.volume,
+                                  center_of_buoyancy=tuple(hs.center_of_buoyancy)),
+        force=(*spec.force, *spec.moment),
+        force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"))
 
 
 def _current(spec: Any) -> Current:

@@ -224,6 +224,58 @@ class ForceHistorySpec(MotionSpec):
     values: list[Force3] | None = None
 
 
+def _matrix6(value: Any) -> tuple[tuple[float, ...], ...]:
+    """A 6x6 matrix of plain numbers (the case's units), given as 6 rows of 6, or 6 numbers
+    for a diagonal."""
+    rows = value
+    if isinstance(value, list) and len(value) == 6 and all(
+            isinstance(v, int | float) for v in value):
+        rows = [[float(value[i]) if i == j else 0.0 for j in range(6)] for i in range(6)]
+    ok = (isinstance(rows, list) and len(rows) == 6
+          and all(isinstance(r, list) and len(r) == 6 for r in rows))
+    if not ok:
+        raise _fail("must be a 6x6 matrix (6 rows of 6 numbers) or 6 diagonal numbers")
+    try:
+        return tuple(tuple(float(x) for x in r) for r in rows)
+    except (TypeError, ValueError):
+        raise _fail("must contain numbers only") from None
+
+
+Matrix6 = Annotated[Any, PlainValidator(_matrix6)]
+
+
+class HydrostaticsSpec(_Spec):
+    """``bodies.<name>.hydrostatics``: ``box`` (length, width, height), ``cylinder`` (diameter,
+    height), ``matrix`` (stiffness 6x6, volume, center_of_buoyancy) or ``none``."""
+
+    kind: Literal["none", "box", "cylinder", "matrix"] = "none"
+    length: quantity("length", ge=0.0) = 0.0
+    width: quantity("length", ge=0.0) = 0.0
+    height: quantity("length", ge=0.0) = 0.0
+    diameter: quantity("length", ge=0.0) = 0.0
+    stiffness: Matrix6 | None = None
+    volume: quantity("volume", ge=0.0) = 0.0
+    center_of_buoyancy: Vector3 = (0.0, 0.0, 0.0)
+
+
+class BodySpec(_Spec):
+    """``bodies.<name>``: a rigid body (see :class:`moorline.model.Body`). Matrices (inertia,
+    added mass, damping, hydrostatic stiffness) are plain numbers in the case's units."""
+
+    kind: Literal["free", "fixed"] = "free"
+    position: Vector3
+    rotation: Annotated[list[quantity("angle")], AfterValidator(_three)] = (0.0, 0.0, 0.0)
+    mass: quantity("mass", ge=0.0)
+    center_of_gravity: Vector3 = (0.0, 0.0, 0.0)
+    inertia: Annotated[list[quantity("mass*length^2")], AfterValidator(_three)] = (0.0,) * 3
+    added_mass: Matrix6 | None = None
+    damping: Matrix6 | None = None
+    hydrostatics: HydrostaticsSpec = Field(default_factory=HydrostaticsSpec)
+    force: Force3 = (0.0, 0.0, 0.0)
+    moment: Annotated[list[quantity("force*length")], AfterValidator(_three)] = (0.0,) * 3
+    force_history: ForceHistorySpec | None = None
+
+
 class PointSpec(_Spec):
     """``points.<name>``: a fixed, free or prescribed node.
 
@@ -231,8 +283,9 @@ class PointSpec(_Spec):
     from; it moves to ``position`` over the load steps.
     """
 
-    kind: Literal["fixed", "free", "prescribed"]
+    kind: Literal["fixed", "free", "prescribed", "body"]
     position: Vector3
+    body: str | None = None
     mass: quantity("mass", ge=0.0) = 0.0
     volume: quantity("volume", ge=0.0) = 0.0
     force: Force3 = (0.0, 0.0, 0.0)
@@ -289,10 +342,10 @@ class DynamicsSpec(_Spec):
     fast_path: bool = True
 
 
-def _band(values: list[float]) -> tuple[float, float]:
+def _band(values: list[float]) -> list[float]:
     if len(values) != 2 or not values[0] < values[1]:
         raise _fail(f"must be [low, high] with low < high (rad/s), got {list(values)}")
-    return (values[0], values[1])
+    return values
 
 
 class ModalSpec(_Spec):
@@ -326,7 +379,7 @@ class CaseSpec(_Spec):
     line_types: dict[str, LineTypeSpec]
     points: dict[str, PointSpec]
     lines: dict[str, LineSpec]
-    bodies: dict[str, Any] | None = None
+    bodies: dict[str, BodySpec] | None = None
     analyses: list[AnalysisSpec] | None = None
     output: OutputSpec = Field(default_factory=OutputSpec)
 
@@ -344,12 +397,6 @@ class CaseSpec(_Spec):
             raise _fail("must define at least one line")
         return value
 
-    @field_validator("bodies")
-    @classmethod
-    def _no_bodies(cls, value: dict[str, Any] | None) -> dict[str, Any] | None:
-        if value:
-            raise _fail("bodies are not supported yet; leave 'bodies' empty or omit it")
-        return value
 
 
 # ---- pydantic errors -> (dotted key path, one-line message) -------------------------------

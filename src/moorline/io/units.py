@@ -67,6 +67,8 @@ DIMENSIONS: dict[str, Dimension] = {
     "area": Dimension("area", "m**2", "ft**2"),
     "volume": Dimension("volume", "m**3", "ft**3"),
     "mass": Dimension("mass", "kg", "slug"),
+    "mass*length^2": Dimension("moment of inertia", "kg*m**2", "slug*ft**2"),
+    "force*length": Dimension("moment", "N*m", "lbf*ft"),
     "time": Dimension("time", "s", "s"),
     "velocity": Dimension("velocity", "m/s", "ft/s"),
     "acceleration": Dimension("acceleration", "m/s**2", "ft/s**2"),

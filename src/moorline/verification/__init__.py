@@ -14,6 +14,7 @@ register("oc3-line", "oc3_line:run")
 register("tuah-ex3", "tuah_ex3:run")
 register("tuah-ex4", "tuah_ex4:run")
 register("steady-current", "steady_current:run")
+register("wang-w1", "wang_w1:run")
 register("modes-string", "modes_string:run")
 register("modes-irvine", "modes_irvine:run")
 
