@@ -71,3 +71,36 @@ def test_free_decay_frequency_matches_the_analytic_one():
     assert measured == pytest.approx(period, rel=5e-3)
     amplitude = F0 / k
     assert np.abs(z).max() == pytest.approx(amplitude, rel=2e-2)
+
+
+def test_floating_cylinder_follows_a_long_wave():
+    """A small floating cylinder with long-wave loads in a 20 s Airy wave heaves with the
+    wave: amplitude ratio 1/(1 - (w/w_n)^2) of the linear heave oscillator (Froude-Krylov +
+    hydrostatic excitation), within 5 % (the exponential decay of the fluid acceleration over
+    the draft and the light mooring line make the rest)."""
+    from moorline.model import Waves
+
+    d, h = 4.0, 4.0
+    area = np.pi * d**2 / 4
+    mass = 1025 * area * 2.0  # draft 2 m
+    lt = LineType("rope", diameter=0.02, mass_per_length=0.3, EA=1e6, Cd=1.0, Ca=0.0, Ct=0.0)
+    body = Body("buoy", position=(0.0, 0.0, 0.0), mass=mass,
+                inertia=((5e4, 0, 0), (0, 5e4, 0), (0, 0, 5e4)),
+                hydrostatics=Hydrostatics("cylinder", diameter=d, height=h), wave_loads=True)
+    points = {"anchor": Point("anchor", "fixed", (-60.0, 0.0, -50.0)),
+              "pad": Point("pad", "body", (0.0, 0.0, -2.0), body="buoy")}
+    lines = {"rope": Line("rope", "rope", 85.0, 6, "anchor", "pad")}
+    env = Environment(depth=50.0, water_density=1025.0, gravity=9.81,
+                      waves=Waves(kind="airy", height=1.0, period=20.0))
+    system = System("heave", environment=env, line_types={"rope": lt}, points=points,
+                    lines=lines, bodies={"buoy": body})
+    start = solve_statics(system)
+    assert start.success, start.message
+    result = simulate(system, DynamicsSettings(duration=120.0, dt=0.1, ramp_time=20.0),
+                      initial=start, output_every=0.1)
+    z = result.body_history("buoy")[:, 2]
+    late = result.time > 60.0
+    amplitude = 0.5 * (z[late].max() - z[late].min())
+    omega, omega_n = 2 * np.pi / 20.0, np.sqrt(1025 * 9.81 * area / mass)
+    expected = 0.5 / (1 - (omega / omega_n) ** 2)
+    assert amplitude == pytest.approx(expected, rel=5e-2)

@@ -435,7 +435,8 @@ def _body(name: str, spec: Any, source: str | None) -> Body:
                                   stiffness=hs.stiffness, volume=hs.volume,
                                   center_of_buoyancy=tuple(hs.center_of_buoyancy)),
         force=(*spec.force, *spec.moment),
-        force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"))
+        force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"),
+        drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads)
 
 
 def _current(spec: Any) -> Current:

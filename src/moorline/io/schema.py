@@ -274,6 +274,9 @@ class BodySpec(_Spec):
     force: Force3 = (0.0, 0.0, 0.0)
     moment: Annotated[list[quantity("force*length")], AfterValidator(_three)] = (0.0,) * 3
     force_history: ForceHistorySpec | None = None
+    drag_area: Annotated[list[quantity("area", ge=0.0)], AfterValidator(_three)] = (0.0,) * 3
+    Cd: Coefficient = 1.0
+    wave_loads: bool = False
 
 
 class PointSpec(_Spec):

@@ -68,6 +68,14 @@ class Body:
         length], e.g. a wind load.
     force_history
         Time-varying force at the body origin (world axes), e.g. Wang's ``F_x = A sin(w t)``.
+    drag_area, Cd
+        Quadratic drag on the relative velocity at the body origin, per world direction:
+        ``1/2 rho Cd A_i |u_i| u_i`` (a small body such as a disc buoy).
+    wave_loads
+        Long-wave (small-body) excitation from the fluid field at the body origin: the
+        Froude-Krylov and added-mass force ``(rho V + A) a_fluid`` and, with a box or cylinder
+        waterplane, the heave excitation ``rho g A_wp eta``. Diffraction coefficients (Tuah
+        sec. 3.2.c) are not computed here; a BEM code can supply ``added_mass``/``damping``.
     """
 
     name: str
@@ -82,3 +90,6 @@ class Body:
     hydrostatics: Hydrostatics = field(default_factory=Hydrostatics)
     force: tuple[float, float, float, float, float, float] = (0.0,) * 6
     force_history: Motion | None = None
+    drag_area: Vector3 = (0.0, 0.0, 0.0)
+    Cd: float = 1.0
+    wave_loads: bool = False

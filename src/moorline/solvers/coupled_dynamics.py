@@ -139,6 +139,7 @@ class CoupledStepper:
             gen[3:] += np.cross(arms[mine], f).sum(axis=0)
             gen -= self._inertia(body, bs, b) + self.added[b] @ bs.acc[b]
             gen -= self.damping[b] @ bs.vel[b]
+            gen[:3] += self._fluid_loads(body, bs, b, t1)[0]
             r[d:d + 6] = gen
         if self.C_rayleigh is not None:
             r -= self.C_rayleigh @ self._velocity(v1, bs)
@@ -151,6 +152,30 @@ class CoupledStepper:
             if self.body_dof[b] >= 0:
                 u[self.body_dof[b]:self.body_dof[b] + 6] = bs.vel[b]
         return u
+
+    def _fluid_loads(self, body, bs: BodyState, b: int, t: float):
+        """Drag on the relative velocity and long-wave excitation at the body origin, with the
+        drag's velocity derivative (3, 3)."""
+        force, dF_dv = np.zeros(3), np.zeros((3, 3))
+        area = np.asarray(body.drag_area, dtype=float)
+        if not body.wave_loads and not np.any(area):
+            return force, dF_dv
+        rho, g = self.mesh.water_density, self.mesh.gravity
+        u, a, eta = self.model.fluid.kinematics(bs.r[b][None, :], t)
+        if np.any(area):
+            rel = u[0] - bs.vel[b, :3]
+            force += 0.5 * rho * body.Cd * area * np.abs(rel) * rel
+            dF_dv -= np.diag(rho * body.Cd * area * np.abs(rel))
+        if body.wave_loads:
+            hs = body.hydrostatics
+            area_wp = (hs.length * hs.width if hs.kind == "box" else
+                       np.pi * hs.diameter**2 / 4 if hs.kind == "cylinder" else 0.0)
+            draft = float(np.clip(hs.height / 2 - bs.r[b, 2], 0.0, hs.height)) \
+                if hs.kind in ("box", "cylinder") else 0.0
+            volume = area_wp * draft if area_wp else hs.volume
+            force += rho * volume * a[0] + self.added[b][:3, :3] @ a[0]
+            force[2] += rho * g * area_wp * float(eta[0])
+        return force, dF_dv
 
     @staticmethod
     def _history(body, t: float) -> FloatArray:
@@ -202,6 +227,7 @@ class CoupledStepper:
                 block[3:, 3:] -= skew(f) @ skew(arm)
             block += ca * (self.mass_matrix(body, bs.R[b]) + self.added[b])
             block += cv * self.damping[b]
+            block[:3, :3] -= cv * self._fluid_loads(body, bs, b, self._t)[1]
             K[d:d + 6, d:d + 6] = K[d:d + 6, d:d + 6].toarray() + block
         K = K.tocsc()
         if self.C_rayleigh is not None:
@@ -253,6 +279,7 @@ class CoupledStepper:
         if self.C_rayleigh is None and self.rayleigh is not None:
             self.setup_rayleigh(s0)
         t1 = s0.t + h
+        self._t = t1
         x1 = s0.x + h * s0.v + 0.5 * h * h * s0.a
         x1[~self.free] = constrained[0]
         dq = h * s0.bodies.vel + 0.5 * h * h * s0.bodies.acc

@@ -5,6 +5,7 @@ body, through the master-slave transformation of :mod:`moorline.solvers.bodies`.
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
@@ -69,7 +70,15 @@ class CoupledStatics:
             for f, arm in zip(state.nodal[self.mesh.slave_node[mine]], arms[mine], strict=True):
                 block[3:, 3:] -= skew(f) @ skew(arm)
             K[d:d + 6, d:d + 6] = K[d:d + 6, d:d + 6].toarray() + block
-        return K.tocsc()
+        K = K.tocsc()
+        # a body free to turn about an axis with nothing resisting it (yaw of a buoy on one
+        # line) is a mechanism of the statics: a vanishing regularization of the body
+        # diagonal keeps the Newton matrix solvable without changing the equilibrium
+        body = np.flatnonzero(np.arange(self.n_unknowns) >= self.n_free)
+        if body.size:
+            scale = 1e-9 * float(np.abs(K.diagonal()).max(initial=1.0))
+            K = K + sp.csc_matrix((np.full(body.size, scale), (body, body)), shape=K.shape)
+        return K
 
     def update(self, x: FloatArray, poses: Poses, du: FloatArray) -> tuple[FloatArray, Poses]:
         """Apply a step of the unknowns."""
