@@ -94,35 +94,87 @@ class CoupledStatics:
 
 
 def solve_coupled(system: System, mesh: Mesh, x: FloatArray, settings: StaticsSettings,
-                  counters) -> tuple[bool, str, int, ForceState, FloatArray, Poses]:
-    """Newton iterations with backtracking on the residual norm (single load step)."""
+                  counters, hold=None) -> tuple[bool, str, int, ForceState, FloatArray, Poses]:
+    """Newton on the bodies' six dofs with the lines kept in equilibrium (partitioned).
+
+    Every iteration first equilibrates the lines with the bodies held (``hold``: the robust
+    line statics, energy line search), then takes a Newton step on the bodies with the exact
+    reduced tangent (the coupled tangent with the line dofs condensed out: the Schur
+    complement ``K_bb - K_bl K_ll^-1 K_lb``), backtracking on the bodies' out-of-balance
+    force. A slack line gives a body almost no stiffness; a monolithic Newton step then
+    throws the line through the seabed, where the partitioned one cannot.
+    """
     problem = CoupledStatics(system, mesh)
     poses = Poses.initial(system, mesh)
     x = place_slaves(mesh, poses, x)
     scale = max(problem.model.load_scale(),
                 max((b.mass * mesh.gravity for b in problem.bodies), default=0.0))
     tol = max(settings.tolerance * scale, problem.model.roundoff_floor(x))
-    R, state = problem.residual(x, poses)
+    n = problem.n_free
+    x, R, state = _equilibrate(problem, x, poses, hold, counters)
     for it in range(settings.max_iterations + 1):
-        counters.residuals += 1
-        counters.history.append(float(np.abs(R).max(initial=0.0)))
-        if counters.history[-1] <= tol:
-            return True, f"converged in {it} iterations", it, state, x, poses
+        norm = float(np.abs(R).max(initial=0.0))
+        counters.history.append(norm)
+        if norm <= tol:
+            return True, f"converged in {it} body iterations", it, state, x, poses
         if it == settings.max_iterations:
             break
         K = problem.tangent(x, poses, state)
         counters.tangents += 1
         counters.factorizations += 1
-        du = spla.spsolve(K, R)
-        r0, alpha = float(np.linalg.norm(R)), 1.0
-        for _ in range(12):
-            x_try, p_try = problem.update(x, poses, alpha * du)
-            R_try, s_try = problem.residual(x_try, p_try)
-            counters.residuals += 1
-            if np.linalg.norm(R_try) < r0:
+        dq = _reduced_step(K, R, n)
+        dq = _limit(np.concatenate((np.zeros(n), dq)), problem, settings)[n:]
+        merit0, alpha = float(np.linalg.norm(R[n:])), 1.0
+        for _ in range(8):
+            x_try, p_try = problem.update(x, poses, np.concatenate((np.zeros(n), alpha * dq)))
+            x_try, R_try, s_try = _equilibrate(problem, x_try, p_try, hold, counters)
+            if np.linalg.norm(R_try[n:]) < merit0:
                 break
             alpha *= 0.5
         x, poses, R, state = x_try, p_try, R_try, s_try
-    return (False, f"coupled statics did not converge in {settings.max_iterations} iterations: "
-            f"largest out-of-balance force {counters.history[-1]:.3e}",
+    return (False, f"coupled statics did not converge in {settings.max_iterations} body "
+            f"iterations: largest out-of-balance force {counters.history[-1]:.3e}",
             settings.max_iterations, state, x, poses)
+
+
+def _equilibrate(problem: CoupledStatics, x: FloatArray, poses: Poses, hold, counters):
+    """Lines in equilibrium with the bodies held at ``poses``; the coupled residual there."""
+    x = place_slaves(problem.mesh, poses, x)
+    if hold is not None:
+        x = hold(x)
+    R, state = problem.residual(x, poses)
+    counters.residuals += 1
+    return x, R, state
+
+
+def _reduced_step(K, R: FloatArray, n: int) -> FloatArray:
+    """Body step from the coupled tangent with the line dofs condensed out."""
+    K = K.tocsc()
+    K_bb = K[n:, n:].toarray()
+    if n == 0:
+        return np.linalg.solve(K_bb, R[n:])
+    K_bl, K_lb = K[n:, :n].toarray(), K[:n, n:].toarray()
+    lu = spla.splu(K[:n, :n].tocsc())
+    schur = K_bb - K_bl @ lu.solve(K_lb)
+    rhs = R[n:] - K_bl @ lu.solve(R[:n])
+    return np.linalg.solve(schur, rhs)
+
+
+def _limit(du: FloatArray, problem: CoupledStatics, settings: StaticsSettings) -> FloatArray:
+    """Scale a Newton step so no node or body origin moves more than ``max_step`` times the
+    longest line (slack lines give a body almost no stiffness in some direction, and a full
+    step would throw it far away), and clip each body's rotation to 0.2 rad on its own (a
+    body nearly free to turn, such as the yaw of a buoy on one line, would otherwise hold the
+    whole step back)."""
+    mesh = problem.mesh
+    longest = max((float(mesh.length0[e].sum()) for e in mesh.line_elements), default=1.0)
+    reach = settings.max_step * longest
+    du = du.copy()
+    moves = [np.abs(du[: problem.n_free]).max(initial=0.0) / reach]
+    for d in problem.body_dof[problem.body_dof >= 0]:
+        moves.append(np.linalg.norm(du[d:d + 3]) / reach)
+        turn = np.linalg.norm(du[d + 3:d + 6])
+        if turn > 0.2:
+            du[d + 3:d + 6] *= 0.2 / turn
+    largest = max(moves)
+    return du / largest if largest > 1.0 else du

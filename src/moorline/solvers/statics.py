@@ -82,8 +82,14 @@ def solve_statics(
     if mesh.body_names:
         from .coupled_statics import solve_coupled
 
+        # bodies by Newton on their six dofs, the lines re-equilibrated (robust line statics)
+        # with the bodies held at every trial pose
+        def hold(x_held: FloatArray) -> FloatArray:
+            fixed = x_held[~mesh.free_nodes]
+            return solver[settings.method](model, x_held, fixed, fixed, settings, counters)[4]
+
         ok, message, iterations, state, x, poses = solve_coupled(system, mesh, x, settings,
-                                                                  counters)
+                                                                  counters, hold)
         pose = poses.as_array()
     else:
         ok, message, iterations, state, x = solver[settings.method](

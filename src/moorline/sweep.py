@@ -1,0 +1,577 @@
+"""Parameter studies: run a list of variations of one case and gather steady-state outputs.
+
+A *study* (YAML file, or the same mapping in Python) names a base case, the parameters to
+vary, what to run and which outputs to gather::
+
+    name: wang-w3
+    base:
+      builder: moorline.verification.wang_dynamics:forced_equilibrium  # or  case: box.yaml
+      parameters: {sag_to_span: 1/60, inclination_deg: 50}
+    variations:                       # name -> list of values ("1/45" is read as 1/45)
+      sag_to_span: [1/45, 1/50, 1/60, 1/70, 1/80]
+      inclination_deg: [40, 44, 48, 50, 52, 54]
+    combine: one-at-a-time            # or grid (every combination)
+    statics: {tolerance: 1.0e-10}     # StaticsSettings fields (optional)
+    dynamics: {duration: 80, dt: 0.05, rayleigh_ratio: 0.03, rayleigh_frequencies: [1.6, 2.07]}
+    outputs:
+      window: {omega: 1.6, periods: 5}  # steady state: the last 5 periods of 2 pi / 1.6
+      quantities:
+        surge: amplitude box.x
+        max_tension: max tension
+
+Base case
+    ``case``: a case file (path relative to the study file), loaded with
+    :func:`moorline.io.load_case`; its parameters are dotted paths into the
+    :class:`~moorline.model.System` (``lines.C1.length``, ``environment.depth``,
+    ``bodies.box.mass``). ``builder``: ``"module:function"`` called with the parameters
+    as keyword arguments; it returns a :class:`~moorline.model.System`, or an object with
+    ``system`` and ``result`` (a static state solved by the builder, e.g.
+    :class:`~moorline.verification.wang_w1.Equilibrium`). Dotted parameters are applied to
+    the built system (and the static state is then re-solved).
+Statics and dynamics
+    The static state is solved (:func:`~moorline.solvers.statics.solve_statics` with the
+    ``statics`` settings, else the case's) unless the builder gave it; with a ``dynamics``
+    mapping (:class:`~moorline.model.DynamicsSettings` fields, plus ``output_every``) the
+    time-domain response from rest at the static state follows.
+Quantities
+    ``"<statistic> <signal>"``. Statistics over the steady window: ``amplitude`` (half the
+    peak-to-peak), ``mean``, ``max``, ``min``; ``static``: the value in the static state.
+    Signals: ``<body>.<dof>`` (dof ``x y z rx ry rz``: position and rotation vector of a
+    body), ``<point>.<x|y|z>``, ``tension`` (largest element tension at each time),
+    ``tension <line>`` (largest in that line), ``fairlead <line>`` (tension at end b).
+
+The case loop is separable: :func:`study_cases` lists the parameter sets,
+:func:`run_one` runs one (a pure function of the study and the parameters, returning a
+dict) and :func:`run_study` maps it over the distinct sets with any ``map``-like callable,
+e.g. ``lambda f, xs: client.gather(client.map(f, xs))`` for Dask.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib
+import itertools
+import logging
+import math
+import time
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import partial
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+import xarray as xr
+import yaml
+
+from .errors import CaseError, MoorlineError
+
+logger = logging.getLogger(__name__)
+
+Statistic = Literal["amplitude", "mean", "max", "min", "static"]
+STATISTICS: tuple[str, ...] = ("amplitude", "mean", "max", "min", "static")
+BODY_DOFS = ("x", "y", "z", "rx", "ry", "rz")
+TABLE_CSV, TABLE_NC, TRENDS_PNG = "table.csv", "table.nc", "trends.png"
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One output column: ``statistic`` of a ``signal`` (see the module docstring)."""
+
+    name: str
+    statistic: Statistic
+    signal: str
+    target: str = ""
+
+    @property
+    def unit(self) -> str:
+        """SI unit of the quantity (rad for body rotations, N for tensions, m otherwise)."""
+        if self.signal in ("tension", "fairlead"):
+            return "N"
+        dof = self.target.rsplit(".", 1)[-1]
+        return "rad" if dof in ("rx", "ry", "rz") else "m"
+
+
+@dataclass(frozen=True)
+class Study:
+    """A parameter study (see the module docstring for the file format).
+
+    Attributes
+    ----------
+    name
+        Study name (the output directory).
+    case, builder
+        Base case file, or ``"module:function"`` building the system (exactly one).
+    base
+        Base values of the parameters (builder keyword arguments or dotted paths).
+    variations
+        Parameter name -> values.
+    combine
+        ``one-at-a-time`` (each parameter varied alone, the others at their base values)
+        or ``grid`` (every combination).
+    statics, dynamics
+        Settings fields; ``dynamics`` empty: statics only. ``output_every`` in
+        ``dynamics`` is the output interval (default: the time step).
+    period, periods
+        Steady window: the last ``periods`` periods of length ``period`` [s].
+    quantities
+        The outputs.
+    description
+        Free text.
+    """
+
+    name: str
+    case: Path | None = None
+    builder: str | None = None
+    base: Mapping[str, Any] = field(default_factory=dict)
+    variations: Mapping[str, tuple[Any, ...]] = field(default_factory=dict)
+    combine: Literal["one-at-a-time", "grid"] = "one-at-a-time"
+    statics: Mapping[str, Any] = field(default_factory=dict)
+    dynamics: Mapping[str, Any] = field(default_factory=dict)
+    period: float = 0.0
+    periods: int = 1
+    quantities: tuple[Quantity, ...] = ()
+    description: str = ""
+
+
+# ----------------------------------------------------------------------------- reading
+def load_study(path: str | Path) -> Study:
+    """Read a study file.
+
+    Raises
+    ------
+    CaseError
+        The file cannot be read or is not a valid study (names the file and key).
+    """
+    file = str(path)
+    try:
+        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise CaseError(f"cannot read the study file: {exc.strerror or exc}", file) from None
+    except yaml.YAMLError as exc:
+        raise CaseError(f"not valid YAML: {exc}", file) from None
+    return study_from_dict(data, file=file, directory=Path(path).parent)
+
+
+def study_from_dict(data: Any, file: str | None = None, directory: Path | None = None
+                    ) -> Study:
+    """Validate a study given as a mapping (the content of a study file).
+
+    Parameters
+    ----------
+    data
+        The mapping.
+    file
+        File name for error messages.
+    directory
+        Directory that a relative ``base.case`` path is relative to.
+    """
+
+    def fail(reason: str, key: str | None = None) -> CaseError:
+        return CaseError(reason, file, key)
+
+    if not isinstance(data, Mapping):
+        raise fail("a study must be a mapping")
+    unknown = set(data) - {"name", "description", "base", "variations", "combine", "statics",
+                           "dynamics", "outputs"}
+    if unknown:
+        raise fail(f"unknown key(s) {', '.join(sorted(map(str, unknown)))}")
+    name = data.get("name")
+    if not isinstance(name, str) or not name.strip():
+        raise fail("needs a non-empty string", "name")
+    base = data.get("base")
+    if not isinstance(base, Mapping):
+        raise fail("needs a mapping with 'case' or 'builder'", "base")
+    if ("case" in base) == ("builder" in base):
+        raise fail("give exactly one of 'case' and 'builder'", "base")
+    case = builder = None
+    if "case" in base:
+        case = Path(str(base["case"]))
+        if not case.is_absolute() and directory is not None:
+            case = directory / case
+    else:
+        builder = str(base["builder"])
+        if ":" not in builder:
+            raise fail("must be 'module:function'", "base.builder")
+    params = base.get("parameters") or {}
+    if not isinstance(params, Mapping):
+        raise fail("must be a mapping", "base.parameters")
+    base_values = {str(k): _value(v, fail, f"base.parameters.{k}") for k, v in params.items()}
+    variations_in = data.get("variations") or {}
+    if not isinstance(variations_in, Mapping):
+        raise fail("must be a mapping name -> list of values", "variations")
+    variations: dict[str, tuple[Any, ...]] = {}
+    for key, values in variations_in.items():
+        if not isinstance(values, list) or not values:
+            raise fail("must be a non-empty list", f"variations.{key}")
+        variations[str(key)] = tuple(_value(v, fail, f"variations.{key}") for v in values)
+    combine = data.get("combine", "one-at-a-time")
+    if combine not in ("one-at-a-time", "grid"):
+        raise fail("must be 'one-at-a-time' or 'grid'", "combine")
+    statics = dict(data.get("statics") or {})
+    dynamics = {k: (tuple(v) if isinstance(v, list) else v)
+                for k, v in dict(data.get("dynamics") or {}).items()}
+    _check_fields(statics, "statics", fail)
+    _check_fields({k: v for k, v in dynamics.items() if k != "output_every"}, "dynamics", fail)
+    outputs = data.get("outputs") or {}
+    if not isinstance(outputs, Mapping):
+        raise fail("must be a mapping", "outputs")
+    window = outputs.get("window") or {}
+    period = float(window.get("period", 0.0))
+    if "omega" in window:
+        period = 2.0 * math.pi / float(window["omega"])
+    periods = int(window.get("periods", 1))
+    specs = outputs.get("quantities") or {}
+    if not isinstance(specs, Mapping) or not specs:
+        raise fail("needs a mapping name -> '<statistic> <signal>'", "outputs.quantities")
+    quantities = tuple(parse_quantity(str(k), str(v), fail) for k, v in specs.items())
+    if dynamics and period <= 0:
+        raise fail("dynamics outputs need 'period' or 'omega' > 0", "outputs.window")
+    if not dynamics and any(q.statistic != "static" for q in quantities):
+        raise fail("without 'dynamics' only 'static' quantities exist", "outputs.quantities")
+    return Study(name.strip(), case, builder, base_values, variations, combine, statics,
+                 dynamics, period, periods, quantities, str(data.get("description", "")))
+
+
+def _value(value: Any, fail: Callable[..., CaseError], key: str) -> Any:
+    """Numbers stay numbers; ``"a/b"`` becomes ``a/b``; other strings and booleans stay."""
+    if isinstance(value, str) and "/" in value:
+        try:
+            return float(Fraction(value.replace(" ", "")))
+        except (ValueError, ZeroDivisionError):
+            raise fail(f"{value!r} is not a number or fraction", key) from None
+    if isinstance(value, bool | str):
+        return value
+    if isinstance(value, int | float):
+        return float(value) if isinstance(value, float) else value
+    raise fail(f"{value!r}: values must be numbers, fractions 'a/b' or strings", key)
+
+
+def _check_fields(values: Mapping[str, Any], key: str, fail: Callable[..., CaseError]) -> None:
+    from .model import DynamicsSettings, StaticsSettings
+
+    cls = StaticsSettings if key == "statics" else DynamicsSettings
+    names = {f.name for f in dataclasses.fields(cls)} - {"kind"}
+    unknown = set(values) - names
+    if unknown:
+        raise fail(f"unknown setting(s) {', '.join(sorted(unknown))}", key)
+
+
+def parse_quantity(name: str, spec: str, fail: Callable[..., CaseError] | None = None
+                   ) -> Quantity:
+    """A :class:`Quantity` from ``"<statistic> <signal>"`` (see the module docstring)."""
+    fail = fail or (lambda reason, key=None: CaseError(reason, None, key))
+    words = spec.split()
+    key = f"outputs.quantities.{name}"
+    if len(words) not in (2, 3) or words[0] not in STATISTICS:
+        raise fail(f"{spec!r}: expected '<{'|'.join(STATISTICS)}> <signal>'", key)
+    statistic, signal = words[0], words[1]
+    if signal in ("tension", "fairlead"):
+        if signal == "fairlead" and len(words) != 3:
+            raise fail(f"{spec!r}: 'fairlead' needs a line name", key)
+        return Quantity(name, statistic, signal, words[2] if len(words) == 3 else "")  # type: ignore[arg-type]
+    if len(words) != 2 or "." not in signal:
+        raise fail(f"{spec!r}: signals are '<body>.<dof>', '<point>.<x|y|z>', "
+                   f"'tension [<line>]' or 'fairlead <line>'", key)
+    return Quantity(name, statistic, "pose", signal)  # type: ignore[arg-type]
+
+
+# ----------------------------------------------------------------------------- cases
+def study_cases(study: Study) -> list[tuple[str, dict[str, Any]]]:
+    """The parameter sets of a study as ``(series, parameters)``: ``series`` is the varied
+    parameter (one-at-a-time; the base set appears in every series it belongs to) or
+    ``grid``. A study without variations has the single case ``("base", base)``."""
+    base = dict(study.base)
+    if not study.variations:
+        return [("base", base)]
+    if study.combine == "grid":
+        names = list(study.variations)
+        return [("grid", {**base, **dict(zip(names, combo, strict=True))})
+                for combo in itertools.product(*study.variations.values())]
+    return [(name, {**base, name: value}) for name, values in study.variations.items()
+            for value in values]
+
+
+def _key(params: Mapping[str, Any]) -> tuple:
+    return tuple(sorted((k, repr(v)) for k, v in params.items()))
+
+
+def run_one(study: Study, params: Mapping[str, Any]) -> dict[str, Any]:
+    """Run one parameter set: build, static state, dynamics, quantities.
+
+    A failure of the analysis (a :class:`~moorline.errors.MoorlineError` other than bad
+    input, or a ``RuntimeError`` from a builder) does not raise: the quantities are NaN and
+    ``status`` says what happened.
+
+    Returns
+    -------
+    dict
+        The parameters, every quantity by name, ``status`` (``"ok"`` or the error) and
+        ``elapsed`` [s].
+    """
+    start = time.perf_counter()
+    row: dict[str, Any] = dict(params)
+    try:
+        row.update(_evaluate(study, params))
+        row["status"] = "ok"
+    except CaseError:
+        raise
+    except (MoorlineError, RuntimeError) as exc:
+        logger.warning("study %s, case %s failed: %s", study.name, dict(params), exc)
+        row.update({q.name: math.nan for q in study.quantities})
+        row["status"] = f"failed: {exc}"
+    row["elapsed"] = time.perf_counter() - start
+    return row
+
+
+def _evaluate(study: Study, params: Mapping[str, Any]) -> dict[str, float]:
+    from .model import DynamicsSettings, StaticsSettings
+    from .solvers.dynamics import simulate
+    from .solvers.statics import solve_statics
+
+    system, static = build(study, params)
+    if static is None:
+        settings = next((a for a in system.analyses if isinstance(a, StaticsSettings)),
+                        StaticsSettings())
+        settings = dataclasses.replace(settings, **study.statics)
+        static = solve_statics(system, settings)
+        if not static.success:
+            raise MoorlineError(f"statics did not converge: {static.message}")
+    result = None
+    if study.dynamics:
+        fields = {k: v for k, v in study.dynamics.items() if k != "output_every"}
+        settings_d = DynamicsSettings(**fields)
+        every = float(study.dynamics.get("output_every", settings_d.dt))
+        result = simulate(system, settings_d, initial=static, output_every=every)
+    return {q.name: gather(q, static, result, study.period, study.periods)
+            for q in study.quantities}
+
+
+def build(study: Study, params: Mapping[str, Any]) -> tuple[Any, Any]:
+    """The system of one parameter set and, when the builder solved it, its static state."""
+    dotted = {k: v for k, v in params.items() if "." in k}
+    plain = {k: v for k, v in params.items() if "." not in k}
+    static = None
+    if study.case is not None:
+        from .io import load_case
+
+        if plain:
+            raise CaseError(f"parameters of a case file are dotted paths into the system, "
+                            f"got {', '.join(sorted(plain))}", None, "variations")
+        system = load_case(study.case)
+    else:
+        module_name, func_name = str(study.builder).split(":")
+        try:
+            func = getattr(importlib.import_module(module_name), func_name)
+        except (ImportError, AttributeError) as exc:
+            raise CaseError(f"cannot import {study.builder}: {exc}", None,
+                            "base.builder") from None
+        built = func(**plain)
+        if hasattr(built, "system") and hasattr(built, "result"):
+            system, static = built.system, built.result
+        else:
+            system = built
+    if dotted:
+        for path, value in dotted.items():
+            system = set_path(system, path, value)
+        static = None
+    return system, static
+
+
+def set_path(obj: Any, path: str, value: Any) -> Any:
+    """A copy of a tree of frozen dataclasses, mappings and tuples with the item at the dotted
+    ``path`` replaced (mapping keys and field names by name, tuple items by index).
+
+    Raises
+    ------
+    CaseError
+        A step of the path does not exist.
+    """
+    head, _, rest = path.partition(".")
+    new = value if not rest else None
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        if head not in {f.name for f in dataclasses.fields(obj)}:
+            raise CaseError(f"no field {head!r} in {type(obj).__name__}", None, path)
+        child = getattr(obj, head)
+        new = set_path(child, rest, value) if rest else _like(child, value)
+        return dataclasses.replace(obj, **{head: new})
+    if isinstance(obj, Mapping):
+        if head not in obj:
+            raise CaseError(f"no entry {head!r} (have {', '.join(map(str, obj))})", None, path)
+        new = set_path(obj[head], rest, value) if rest else _like(obj[head], value)
+        return {**obj, head: new}
+    if isinstance(obj, tuple) and head.lstrip("-").isdigit() and abs(int(head)) < len(obj) + 1:
+        items = list(obj)
+        k = int(head)
+        items[k] = set_path(items[k], rest, value) if rest else _like(items[k], value)
+        return tuple(items)
+    raise CaseError(f"cannot step into {type(obj).__name__} with {head!r}", None, path)
+
+
+def _like(old: Any, value: Any) -> Any:
+    """``value`` converted to the kind of ``old`` (floats stay floats, lists become tuples)."""
+    if isinstance(old, float) and isinstance(value, int | float) and not isinstance(value, bool):
+        return float(value)
+    if isinstance(old, tuple) and isinstance(value, list):
+        return tuple(value)
+    return value
+
+
+# ----------------------------------------------------------------------------- outputs
+def steady_window(time: np.ndarray, period: float, periods: int) -> np.ndarray:
+    """Mask of the last ``periods`` periods of ``time`` (all of it when shorter)."""
+    time = np.asarray(time, dtype=float)
+    return time >= time[-1] - periods * period - 1e-9 * max(period, 1.0)
+
+
+def statistic(values: np.ndarray, which: str) -> float:
+    """``amplitude`` (half the peak-to-peak), ``mean``, ``max`` or ``min`` of a history."""
+    values = np.asarray(values, dtype=float)
+    if which == "amplitude":
+        return 0.5 * float(np.ptp(values))
+    return float({"mean": np.mean, "max": np.max, "min": np.min}[which](values))
+
+
+def gather(q: Quantity, static: Any, result: Any, period: float, periods: int) -> float:
+    """Value of one quantity from the static state and the dynamic result."""
+    if q.statistic == "static":
+        return _static_value(q, static)
+    window = steady_window(result.time, period, periods)
+    return statistic(_history(q, result)[window], q.statistic)
+
+
+def _history(q: Quantity, result: Any) -> np.ndarray:
+    mesh = result.mesh
+    if q.signal == "fairlead":
+        return result.end_tension(q.target, "b")
+    if q.signal == "tension":
+        tension = result.tension
+        if q.target:
+            tension = tension[:, mesh.element_line == mesh.line_index(q.target)]
+        return tension.max(axis=1)
+    owner, dof = q.target.rsplit(".", 1)
+    if owner in mesh.body_names:
+        return result.body_history(owner)[:, _dof(q, dof, BODY_DOFS)]
+    _known_point(q, mesh, owner)
+    return result.point_history(owner)[:, _dof(q, dof, ("x", "y", "z"))]
+
+
+def _static_value(q: Quantity, static: Any) -> float:
+    mesh = static.mesh
+    if q.signal == "fairlead":
+        return float(np.linalg.norm(static.end_force(q.target, "b")))
+    if q.signal == "tension":
+        tension = static.tension
+        if q.target:
+            tension = tension[mesh.element_line == mesh.line_index(q.target)]
+        return float(tension.max())
+    owner, dof = q.target.rsplit(".", 1)
+    if owner in mesh.body_names:
+        pose = static.body_pose[mesh.body_names.index(owner)]
+        return float(pose[_dof(q, dof, BODY_DOFS)])
+    _known_point(q, mesh, owner)
+    return float(static.point_position(owner)[_dof(q, dof, ("x", "y", "z"))])
+
+
+def _dof(q: Quantity, dof: str, allowed: tuple[str, ...]) -> int:
+    if dof not in allowed:
+        raise CaseError(f"{q.target!r}: component {dof!r} not one of {', '.join(allowed)}",
+                        None, f"outputs.quantities.{q.name}")
+    return allowed.index(dof)
+
+
+def _known_point(q: Quantity, mesh: Any, owner: str) -> None:
+    if owner not in mesh.point_names:
+        raise CaseError(f"{q.target!r}: no body or point {owner!r}", None,
+                        f"outputs.quantities.{q.name}")
+
+
+# ----------------------------------------------------------------------------- study
+def run_study(study: Study | Mapping[str, Any] | str | Path,
+              mapper: Callable[[Callable, Iterable], Iterable] = map) -> xr.Dataset:
+    """Run every distinct parameter set of a study and gather the table.
+
+    Parameters
+    ----------
+    study
+        A :class:`Study`, its mapping, or a study file.
+    mapper
+        ``map``-like: ``mapper(function, parameter_sets)`` -> results in order.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimension ``case`` (one row per series and value; a parameter set shared by several
+        series is run once); coordinates ``series`` and one per parameter; a variable per
+        quantity (attribute ``units``, ``spec``), ``status`` and ``elapsed``. Attributes:
+        study name, description, ``combine``, ``variations`` (names), ``quantities``
+        (names), and the settings.
+    """
+    if isinstance(study, str | Path):
+        study = load_study(study)
+    elif not isinstance(study, Study):
+        study = study_from_dict(study)
+    cases = study_cases(study)
+    distinct: dict[tuple, dict[str, Any]] = {}
+    for _, params in cases:
+        distinct.setdefault(_key(params), params)
+    outputs = dict(zip(distinct, mapper(partial(run_one, study), list(distinct.values())),
+                       strict=True))
+    return _table(study, cases, outputs)
+
+
+def _table(study: Study, cases: list[tuple[str, dict[str, Any]]],
+           outputs: Mapping[tuple, dict[str, Any]]) -> xr.Dataset:
+    rows = [outputs[_key(params)] for _, params in cases]
+    names = list(dict.fromkeys(k for _, params in cases for k in params))
+    coords: dict[str, Any] = {"case": np.arange(len(cases)),
+                              "series": ("case", [s for s, _ in cases])}
+    for name in names:
+        values = [params.get(name) for _, params in cases]
+        coords[name] = ("case", np.asarray(values))
+    data: dict[str, Any] = {}
+    for q in study.quantities:
+        data[q.name] = ("case", np.array([float(r[q.name]) for r in rows]),
+                        {"units": q.unit, "spec": f"{q.statistic} {q.signal}"
+                         + (f" {q.target}" if q.target else "")})
+    data["status"] = ("case", np.array([str(r["status"]) for r in rows], dtype=object))
+    data["elapsed"] = ("case", np.array([float(r["elapsed"]) for r in rows]), {"units": "s"})
+    attrs = {"study": study.name, "description": study.description, "combine": study.combine,
+             "variations": ",".join(study.variations), "parameters": ",".join(names),
+             "quantities": ",".join(q.name for q in study.quantities),
+             "base": str(study.case or study.builder),
+             "window_period": study.period, "window_periods": study.periods,
+             **{f"statics_{k}": _attr(v) for k, v in study.statics.items()},
+             **{f"dynamics_{k}": _attr(v) for k, v in study.dynamics.items()}}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _attr(value: Any) -> Any:
+    """NetCDF-friendly attribute value."""
+    if isinstance(value, bool):
+        return int(value)
+    if isinstance(value, tuple | list):
+        return np.asarray(value, dtype=float)
+    return value
+
+
+def write_study(table: xr.Dataset, directory: str | Path) -> list[Path]:
+    """Write ``table.csv``, ``table.nc`` and ``trends.png`` into ``directory``."""
+    from .plot import plot_sweep_trends
+
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    csv, nc, png = directory / TABLE_CSV, directory / TABLE_NC, directory / TRENDS_PNG
+    table.to_dataframe().to_csv(csv)
+    out = table.copy()
+    out["status"] = out["status"].astype(str)
+    out["series"] = out["series"].astype(str)
+    out.to_netcdf(nc)
+    plot_sweep_trends(table, png)
+    return [csv, nc, png]
+
+
+__all__ = ["Quantity", "Study", "build", "gather", "load_study", "parse_quantity",
+           "run_one", "run_study", "set_path", "statistic", "steady_window", "study_cases",
+           "study_from_dict", "write_study"]
