@@ -339,3 +339,77 @@ def plot_mode_shapes(dataset: xr.Dataset, path: str | Path, max_modes: int = 6,
     fig.suptitle(f"{case}: mode shapes (dashed: static shape)" if case
                  else "Mode shapes (dashed: static shape)")
     _save(fig, Path(path))
+
+
+# ----------------------------------------------------------------------------- parameter studies
+
+
+def plot_sweep_trends(dataset: xr.Dataset, path: str | Path) -> None:
+    """Plot every output of a parameter study against the varied parameter.
+
+    One panel per output (rows) and varied parameter (columns). One-at-a-time studies draw
+    each series (the cases where that parameter was varied) against its parameter; ``grid``
+    studies draw the outputs against the first varied parameter, one line per combination of
+    the others. Failed cases (NaN) leave gaps.
+
+    Parameters
+    ----------
+    dataset
+        The table of :func:`moorline.sweep.run_study`: dimension ``case``, coordinate
+        ``series`` and one per parameter, one variable per output (attribute ``units``);
+        attributes ``study``, ``variations`` and ``quantities`` (comma-separated names).
+    path
+        PNG file to write (parent directories are created).
+    """
+    outputs = [q for q in str(dataset.attrs.get("quantities", "")).split(",") if q]
+    varied = [v for v in str(dataset.attrs.get("variations", "")).split(",") if v]
+    series = [str(s) for s in dataset["series"].values]
+    grid = "grid" in series
+    columns = varied[:1] if grid else (varied or ["case"])
+    rows = max(1, len(outputs))
+    fig = Figure(figsize=(4.2 * len(columns), 2.6 * rows), layout="constrained")
+    axes = fig.subplots(rows, len(columns), squeeze=False)
+    for i, name in enumerate(outputs):
+        values = np.asarray(dataset[name].values, dtype=float)
+        unit = str(dataset[name].attrs.get("units", ""))
+        for j, parameter in enumerate(columns):
+            ax = axes[i, j]
+            x = (np.asarray(dataset[parameter].values, dtype=float) if parameter in dataset.coords
+                 else np.arange(len(values), dtype=float))
+            for label, mask in _sweep_groups(dataset, parameter, varied, series, grid):
+                order = np.argsort(x[mask])
+                ax.plot(x[mask][order], values[mask][order], marker="o", markersize=4,
+                        linewidth=1.2, label=label)
+            ax.set_ylabel(f"{name} [{unit}]" if unit else name, fontsize=9)
+            ax.grid(True, linewidth=0.3)
+            if i == rows - 1:
+                ax.set_xlabel(parameter)
+            if grid and i == 0 and len(varied) > 1:
+                ax.legend(fontsize=7)
+    study = str(dataset.attrs.get("study", "")).strip()
+    fig.suptitle(f"{study}: steady-state outputs" if study else "Parameter study")
+    _save(fig, Path(path))
+
+
+def _sweep_groups(dataset: xr.Dataset, parameter: str, varied: list[str], series: list[str],
+                  grid: bool) -> list[tuple[str, NDArray[np.bool_]]]:
+    """Cases drawn as one line: the series of ``parameter``, or (grid) each combination of
+    the other varied parameters."""
+    n = len(series)
+    if not grid:
+        mask = np.array([s == parameter for s in series]) if parameter in series else np.ones(
+            n, dtype=bool)
+        return [(parameter, mask)]
+    others = [v for v in varied if v != parameter]
+    if not others:
+        return [(parameter, np.ones(n, dtype=bool))]
+    keys = [tuple(dataset[o].values[k].item() for o in others) for k in range(n)]
+    groups = []
+    for key in dict.fromkeys(keys):
+        label = ", ".join(f"{o} = {v:.4g}" if isinstance(v, float) else f"{o} = {v}"
+                          for o, v in zip(others, key, strict=True))
+        groups.append((label, np.array([k == key for k in keys])))
+    return groups
+
+
+__all__ += ["plot_sweep_trends"]

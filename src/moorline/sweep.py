@@ -294,7 +294,13 @@ def study_cases(study: Study) -> list[tuple[str, dict[str, Any]]]:
 
 
 def _key(params: Mapping[str, Any]) -> tuple:
-    return tuple(sorted((k, repr(v)) for k, v in params.items()))
+    """Identity of a parameter set (``50`` and ``50.0`` are the same value)."""
+
+    def norm(v: Any) -> str:
+        numeric = isinstance(v, int | float) and not isinstance(v, bool)
+        return repr(float(v)) if numeric else repr(v)
+
+    return tuple(sorted((k, norm(v)) for k, v in params.items()))
 
 
 def run_one(study: Study, params: Mapping[str, Any]) -> dict[str, Any]:
@@ -389,7 +395,6 @@ def set_path(obj: Any, path: str, value: Any) -> Any:
         A step of the path does not exist.
     """
     head, _, rest = path.partition(".")
-    new = value if not rest else None
     if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
         if head not in {f.name for f in dataclasses.fields(obj)}:
             raise CaseError(f"no field {head!r} in {type(obj).__name__}", None, path)

@@ -117,7 +117,7 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
 
         return CoupledStepper(system, model, Coefficients.for_scheme("newmark", 0.0), tolerance,
                               settings.max_iterations, settings.stiffness_update,
-                              _rayleigh(settings))
+                              _rayleigh(settings), settings.variant)
     reason = fast_path_reason(model, fluid, settings.scheme, settings.variant)
     if reason is None and settings.fast_path:
         return FastStepper(model, coefficients, tolerance, settings.max_iterations,
