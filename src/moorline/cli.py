@@ -853,6 +853,55 @@ def _plot_group(ds: Any, kind: str, label: str, directory: Path) -> list[Path]:
     return files
 
 
+@cli.command()
+@click.argument("study", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--out", "out", type=click.Path(file_okay=False, path_type=Path),
+              default=Path("out"), show_default=True,
+              help="Output directory; results go to DIR/<study name>/.")
+@_json_option
+@_common_options
+def sweep(study: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> None:
+    """Run the parameter study STUDY (see moorline.sweep) and gather its outputs.
+
+    Writes DIR/<study>/table.csv, table.nc (one row per case: parameters, steady-state
+    outputs, status) and trends.png (each output against the varied parameter). Exit code 1
+    when a case failed.
+    """
+    _configure_logging(verbose)
+    from .sweep import load_study, run_study, study_cases, write_study
+
+    spec = load_study(study)
+    n_cases = len(study_cases(spec))
+    with _status(f"study {spec.name}: {n_cases} cases ...", quiet) as update:
+
+        def counted(function: Callable[..., Any], cases: list[Any]) -> Iterator[Any]:
+            for k, params in enumerate(cases):
+                update(f"study {spec.name}: run {k + 1} of {len(cases)} ({params}) ...")
+                yield function(params)
+
+        table = run_study(spec, mapper=counted)
+        files = write_study(table, out / _safe_name(spec.name, study.stem))
+    rows = table.to_dataframe().reset_index()
+    failed = [str(s) for s in table["status"].values if str(s) != "ok"]
+    if as_json:
+        from .io.writers import jsonable
+
+        click.echo(json.dumps(jsonable({"study": spec.name, "cases": rows.to_dict("records"),
+                                        "files": [str(f) for f in files]}),
+                              indent=2, allow_nan=False))
+    else:
+        result = Table(title=escape(f"{spec.name}: {len(rows)} cases"))
+        for column in rows.columns:
+            result.add_column(escape(str(column)))
+        for record in rows.itertuples(index=False):
+            result.add_row(*(escape(_g(v) if isinstance(v, float) else str(v))
+                             for v in record))
+        _stdout().print(result)
+    _note(f"wrote {', '.join(str(f) for f in files)}", quiet)
+    if failed:
+        _fail(f"{study}: {len(failed)} case(s) failed: {failed[0]}", EXIT_FAILED)
+
+
 def main() -> None:
     """Entry point of the ``moorline`` console script."""
     cli(prog_name="moorline")

@@ -140,8 +140,13 @@ def tangent_blocks(
     """
     nn = unit[:, :, None] * unit[:, None, :]
     geometric = (tension / length)[:, None, None]
-    k = dtension_dlength[:, None, None] * nn + geometric * (np.eye(3) - nn)
-    blocks = np.empty((len(length), 6, 6))
+    return pair_blocks(dtension_dlength[:, None, None] * nn + geometric * (np.eye(3) - nn))
+
+
+def pair_blocks(k: FloatArray) -> FloatArray:
+    """Element blocks ``[[k, -k], [-k, k]]`` (n_elements, 6, 6) of a 3x3 block per element: the
+    pattern of anything acting on the relative motion of an element's two nodes."""
+    blocks = np.empty((len(k), 6, 6))
     blocks[:, :3, :3] = k
     blocks[:, 3:, 3:] = k
     blocks[:, :3, 3:] = -k

@@ -170,3 +170,30 @@ def inverse_left_jacobian(phi: FloatArray) -> FloatArray:
         return np.eye(3) - 0.5 * P + P @ P / 12.0
     c = 1.0 / angle**2 - (1.0 + np.cos(angle)) / (2.0 * angle * np.sin(angle))
     return np.eye(3) - 0.5 * P + c * P @ P
+
+
+@dataclass(frozen=True)
+class BodyDofs:
+    """Layout of the coupled unknowns: the free node dofs, then six per free body; and the
+    extended node dofs (free nodes, then the attached nodes) the line tangent is assembled
+    over before the master-slave transformation."""
+
+    n_free: int
+    body_dof: NDArray[np.int64]
+    n_unknowns: int
+    ext_dofs: int
+    pattern: object
+
+    @classmethod
+    def of(cls, mesh: Mesh, bodies: list[Body]) -> BodyDofs:
+        """The layout of ``mesh`` with ``bodies`` (in mesh order)."""
+        from .assembly import BlockPattern
+
+        n_free = mesh.n_dofs
+        free = np.array([b.kind == "free" for b in bodies], dtype=bool)
+        body_dof = np.where(free, n_free + 6 * (np.cumsum(free) - 1), -1).astype(np.int64)
+        ext = mesh.dof_of_node.copy()
+        for k, node in enumerate(mesh.slave_node):
+            ext[node] = n_free + 3 * k + np.arange(3)
+        return cls(n_free, body_dof, n_free + 6 * int(free.sum()),
+                   n_free + 3 * len(mesh.slave_node), BlockPattern(mesh.elements, ext))

@@ -29,8 +29,8 @@ from numpy.typing import NDArray
 
 from ..mesh import rotation_matrix
 from ..model import System
-from .assembly import BlockPattern, gather_free, scatter_free
-from .bodies import body_loads, skew, transformation
+from .assembly import gather_free, scatter_free
+from .bodies import BodyDofs, body_loads, skew, transformation
 from .dynamic_model import DynamicModel
 from .excitation import motion_value
 
@@ -69,15 +69,10 @@ class CoupledStepper:
         self.free = mesh.free_nodes
         self.dof = mesh.dof_of_node
         self.bodies = [system.bodies[n] for n in mesh.body_names]
-        self.n_free = mesh.n_dofs
-        free = [b.kind == "free" for b in self.bodies]
-        self.body_dof = np.where(free, self.n_free + 6 * (np.cumsum(free) - 1), -1)
-        self.n_u = self.n_free + 6 * int(sum(free))
-        ext = mesh.dof_of_node.copy()
-        for k, node in enumerate(mesh.slave_node):
-            ext[node] = self.n_free + 3 * k + np.arange(3)
-        self.ext_dofs = self.n_free + 3 * len(mesh.slave_node)
-        self.pattern = BlockPattern(mesh.elements, ext)
+        layout = BodyDofs.of(mesh, self.bodies)
+        self.n_free, self.body_dof, self.n_u = (layout.n_free, layout.body_dof,
+                                                layout.n_unknowns)
+        self.ext_dofs, self.pattern = layout.ext_dofs, layout.pattern
         self.added = [np.asarray(b.added_mass if b.added_mass is not None else np.zeros((6, 6)),
                                  dtype=float) for b in self.bodies]
         self.damping = [np.asarray(b.damping if b.damping is not None else np.zeros((6, 6)),

@@ -11,8 +11,8 @@ from numpy.typing import NDArray
 
 from ..mesh import Mesh
 from ..model import StaticsSettings, System
-from .assembly import BlockPattern, gather_free, scatter_free
-from .bodies import Poses, body_loads, place_slaves, skew, transformation, world_arms
+from .assembly import gather_free, scatter_free
+from .bodies import BodyDofs, Poses, body_loads, place_slaves, skew, transformation, world_arms
 from .equilibrium import ForceState, StaticModel
 
 FloatArray = NDArray[np.float64]
@@ -25,16 +25,10 @@ class CoupledStatics:
         self.mesh = mesh
         self.model = StaticModel(mesh)
         self.bodies = [system.bodies[n] for n in mesh.body_names]
-        self.n_free = mesh.n_dofs
-        free = [b.kind == "free" for b in self.bodies]
-        offsets = self.n_free + 6 * (np.cumsum(free) - 1)
-        self.body_dof = np.where(free, offsets, -1).astype(np.int64)
-        self.n_unknowns = self.n_free + 6 * int(sum(free))
-        ext = mesh.dof_of_node.copy()
-        for k, node in enumerate(mesh.slave_node):
-            ext[node] = self.n_free + 3 * k + np.arange(3)
-        self.ext_dofs = self.n_free + 3 * len(mesh.slave_node)
-        self.pattern = BlockPattern(mesh.elements, ext)
+        layout = BodyDofs.of(mesh, self.bodies)
+        self.n_free, self.body_dof, self.n_unknowns = (layout.n_free, layout.body_dof,
+                                                       layout.n_unknowns)
+        self.ext_dofs, self.pattern = layout.ext_dofs, layout.pattern
 
     def residual(self, x: FloatArray, poses: Poses) -> tuple[FloatArray, ForceState]:
         """Out-of-balance forces at the free node dofs, then force and moment on every free

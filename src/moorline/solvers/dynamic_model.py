@@ -292,10 +292,4 @@ def _friction_coefficients(seabed_model) -> tuple[float, float, float] | None:
 
 def _axial_damping_blocks(unit: FloatArray, c: FloatArray) -> FloatArray:
     """Damping blocks ``c n n^T [[1, -1], [-1, 1]]`` of the Kelvin-Voigt axial dashpots."""
-    nn = c[:, None, None] * unit[:, :, None] * unit[:, None, :]
-    blocks = np.empty((len(c), 6, 6))
-    blocks[:, :3, :3] = nn
-    blocks[:, 3:, 3:] = nn
-    blocks[:, :3, 3:] = -nn
-    blocks[:, 3:, :3] = -nn
-    return blocks
+    return element.pair_blocks(c[:, None, None] * unit[:, :, None] * unit[:, None, :])
