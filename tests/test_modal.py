@@ -203,3 +203,45 @@ def test_modal_case_runs(tmp_path: Path) -> None:
     assert (directory / "modal1_mode_shapes.png").is_file()
     with xr.open_dataset(directory / "results.nc", group="modal2") as ds:
         assert ds.attrs["setting_added_mass"] == 0
+
+
+def test_modes_of_a_moored_body_include_its_six_rigid_body_modes():
+    """The Wang box on its four lines: each of the body's six dofs dominates a mode; the heave
+    mode lies between the quasi-static estimate (lines with their sag compliance, the
+    condensed 6x6 mooring stiffness) and the estimate with the sag frozen (axial EA/L only):
+    above the lines' own transverse frequencies their sag cannot follow the body, so the
+    lines stiffen dynamically towards EA/L."""
+    import numpy as np
+
+    from moorline.io import load_case
+    from moorline.model import ModalSettings
+    from moorline.solvers.modal import solve_modes
+    from moorline.solvers.statics import solve_statics
+    from moorline.solvers.stiffness import group_stiffness
+
+    system = load_case("cases/wang_box.yaml")
+    statics = solve_statics(system)
+    result = solve_modes(system, ModalSettings(n_modes=120), statics)  # all: dense solver
+    labels = set(result.dominant)
+    for dof in ("surge", "sway", "heave", "roll", "pitch", "yaw"):
+        assert f"box {dof}" in labels, (dof, result.dominant)
+    heave = result.omega[result.dominant.index("box heave")]
+    mesh = statics.mesh
+    attached = [mesh.point_names[int(n)] for n in mesh.slave_node]
+    k_lines = group_stiffness(statics, attached, statics.body_position("box"))[2, 2]
+    body = system.bodies["box"]
+    hs = body.hydrostatics
+    k_hydro = 1025 * 9.81 * hs.length * hs.width
+    lt = system.line_types["steel"] if "steel" in system.line_types else next(
+        iter(system.line_types.values()))
+    k_axial = 0.0
+    for line in system.lines.values():
+        a = statics.point_position(line.end_a)
+        b = statics.point_position(line.end_b)
+        chord = b - a
+        sin2 = (chord[2] / np.linalg.norm(chord)) ** 2
+        k_axial += lt.EA / line.length * sin2
+    low = np.sqrt((k_hydro + k_lines) / body.mass)
+    high = np.sqrt((k_hydro + k_axial) / body.mass)
+    # line inertia above the lines' own resonances pushes it a little further: 10 % margin
+    assert low < heave < 1.1 * high

@@ -190,17 +190,10 @@ class CoupledStepper:
         M = np.cross(c, F) + I_G @ al + np.cross(w, I_G @ w)
         return np.concatenate((F, M))
 
-    def mass_matrix(self, body, R) -> FloatArray:
+    @staticmethod
+    def mass_matrix(body, R) -> FloatArray:
         """Rigid-body 6x6 mass about the origin (world axes)."""
-        c = R @ np.asarray(body.center_of_gravity, float)
-        I_G = R @ np.asarray(body.inertia, float) @ R.T
-        S = skew(c)
-        M = np.zeros((6, 6))
-        M[:3, :3] = body.mass * np.eye(3)
-        M[:3, 3:] = -body.mass * S
-        M[3:, :3] = body.mass * S
-        M[3:, 3:] = I_G - body.mass * S @ S
-        return M
+        return rigid_mass(body, R)
 
     # ------------------------------------------------------------------ tangent
     def _tangent(self, ev, bs, arms, h) -> sp.csc_matrix:
@@ -312,3 +305,18 @@ class CoupledStepper:
             x1, dq, xs, v1, a1, bs, arms, ev, r, norm = (x_try, dq_try, xs_t, v_t, a_t, bs_t,
                                                          arms_t, ev_t, r_t, n_new)
         return s0, False, norm
+
+
+def rigid_mass(body, R: FloatArray) -> FloatArray:
+    """Rigid-body 6x6 mass matrix about the body origin, world axes, for rotation ``R``:
+    ``[[m I, -m [c x]], [m [c x], I_G - m [c x]^2]]`` with ``c = R c_body`` the centre of
+    gravity offset."""
+    c = R @ np.asarray(body.center_of_gravity, float)
+    I_G = R @ np.asarray(body.inertia, float) @ R.T
+    S = skew(c)
+    M = np.zeros((6, 6))
+    M[:3, :3] = body.mass * np.eye(3)
+    M[:3, 3:] = -body.mass * S
+    M[3:, :3] = body.mass * S
+    M[3:, 3:] = I_G - body.mass * S @ S
+    return M

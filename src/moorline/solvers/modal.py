@@ -104,7 +104,7 @@ def solve_modes(
                                f"linearize about ({statics.message})")
     mesh = statics.mesh
     if getattr(mesh, "body_names", ()):
-        raise MoorlineError("modal analysis of systems with bodies is not supported yet")
+        return _body_modes(system, statics, settings)
     if mesh.n_dofs == 0:
         raise MoorlineError(f"modal analysis of {system.name}: the model has no free node")
     K, M = modal_matrices(mesh, statics.positions, settings)
@@ -315,3 +315,92 @@ def _result(system: System, statics: StaticResult, settings: ModalSettings, lam:
         positions=statics.positions, tension=statics.tension, mesh=mesh, case=system.name,
         units=system.units, solver=solver, n_dofs=mesh.n_dofs,
         settings={k: v for k, v in asdict(settings).items() if k != "kind"})
+
+
+BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+def _body_modes(system: System, statics: StaticResult, settings: ModalSettings) -> ModalResult:
+    """Modes of lines and rigid bodies together: the coupled tangent (lines and bodies, with
+    the master-slave transformation; :mod:`moorline.solvers.coupled_statics`) and the mass of
+    the lines transformed the same way plus each body's rigid-body mass and added mass. A mode
+    whose kinetic energy is mostly in a body is labelled by the body's dominant dof."""
+    from ..mesh import rotation_matrix
+    from .bodies import Poses, transformation, world_arms
+    from .coupled_dynamics import rigid_mass
+    from .coupled_statics import CoupledStatics
+
+    mesh = statics.mesh
+    problem = CoupledStatics(system, mesh)
+    pose = statics.body_pose
+    poses = Poses(pose[:, :3].copy(), np.array([rotation_matrix(p[3:]) for p in pose]))
+    _, state = problem.residual(statics.positions, poses)
+    K = problem.tangent(statics.positions, poses, state)
+    K = ((K + K.T) * 0.5).tocsr()
+    P = transformation(mesh, problem.ext_dofs, problem.n_free, problem.body_dof,
+                       world_arms(mesh, poses))
+    M_ext = _line_mass(mesh, statics.positions, settings, problem.pattern)
+    M = (P.T @ M_ext @ P).tolil()
+    for b, body in enumerate(problem.bodies):
+        d = problem.body_dof[b]
+        if d >= 0:
+            added = np.asarray(body.added_mass if body.added_mass is not None
+                               else np.zeros((6, 6)), dtype=float)
+            if not settings.added_mass:
+                added = 0.0 * added
+            M[d:d + 6, d:d + 6] = (M[d:d + 6, d:d + 6].toarray()
+                                   + rigid_mass(body, poses.R[b]) + added)
+    M = M.tocsr()
+    lam, phi, solver = _eigen(K, M, settings)
+    phi = _fix_signs(phi)
+    ext = P @ phi
+    shapes = np.zeros((phi.shape[1], mesh.n_nodes, 3))
+    for j in range(phi.shape[1]):
+        shapes[j] = scatter_free(ext[: problem.n_free, j], mesh.dof_of_node)
+        shapes[j, mesh.slave_node] = ext[problem.n_free:, j].reshape(-1, 3)
+    energy = M.diagonal()[:, None] * phi**2
+    energy /= np.maximum(energy.sum(axis=0, keepdims=True), np.finfo(float).tiny)
+    share, effective = _shares(shapes, mesh, statics)
+    dominant = []
+    for j in range(phi.shape[1]):
+        label = AXES[int(np.argmax(share[j]))]
+        for b, name in enumerate(mesh.body_names):
+            d = problem.body_dof[b]
+            if d >= 0 and energy[d:d + 6, j].sum() > 0.5:
+                label = f"{name} {BODY_DOFS[int(np.argmax(energy[d:d + 6, j]))]}"
+        dominant.append(label)
+    omega = np.sign(lam) * np.sqrt(np.abs(lam))
+    return ModalResult(
+        success=True, message=f"{len(lam)} modes ({solver}, {problem.n_unknowns} dofs incl. "
+        f"{6 * int(np.sum(problem.body_dof >= 0))} body dofs)", omega=omega,
+        mode_shapes=shapes, participation=share, effective_mass=effective,
+        dominant=tuple(dominant), positions=statics.positions, tension=statics.tension,
+        mesh=mesh, case=system.name, units=system.units, solver=solver,
+        n_dofs=problem.n_unknowns,
+        settings={k: v for k, v in asdict(settings).items() if k != "kind"})
+
+
+def _line_mass(mesh: Mesh, x: FloatArray, settings: ModalSettings, pattern) -> sp.csr_matrix:
+    """The lines' mass (and added mass) assembled over ``pattern``'s dofs."""
+    point_mass = mesh.node_mass.copy()
+    el_blocks = None
+    if settings.mass == "consistent":
+        el_blocks = element.consistent_mass_blocks(mesh.length0, mesh.mass_per_length)
+    else:
+        point_mass += element.lumped_mass(mesh.elements, mesh.length0, mesh.mass_per_length,
+                                          mesh.n_nodes)
+    if settings.added_mass and mesh.water_density > 0:
+        added = hydro.added_mass_blocks(x, mesh.elements, mesh.length0, mesh.diameter, mesh.Ca,
+                                        mesh.Cat, mesh.water_density)
+        el_blocks = added if el_blocks is None else el_blocks + added
+        point_mass += mesh.water_density * mesh.node_Ca * mesh.node_volume
+    return pattern.assemble(el_blocks, point_mass[:, None, None] * np.eye(3))
+
+
+def _shares(shapes: FloatArray, mesh: Mesh, statics: StaticResult):
+    """Direction shares of the node motion (lumped line mass weights) for body systems."""
+    weight = element.lumped_mass(mesh.elements, mesh.length0, mesh.mass_per_length,
+                                 mesh.n_nodes) + mesh.node_mass
+    energy = np.einsum("n,jnc->jc", weight, shapes**2)
+    share = energy / np.maximum(energy.sum(axis=1, keepdims=True), np.finfo(float).tiny)
+    return share, energy

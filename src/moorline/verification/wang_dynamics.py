@@ -20,12 +20,17 @@ from ..solvers.bodies import body_loads, skew, transformation
 from ..solvers.dynamic_model import DynamicModel
 from ..solvers.dynamics import simulate
 from ..solvers.stiffness import group_stiffness
+from ..sweep import run_study, steady_window
+from .core import Row
 from .wang_w1 import (
+    DEPTH,
     INCLINATION_DEG,
     SAG_TO_SPAN,
     SEGMENTS,
+    WEIGHT,
     Equilibrium,
     Layout,
+    parabolic_top_force,
     wang_equilibrium,
 )
 
@@ -205,39 +210,45 @@ def rayleigh_coefficients(ratio: float, frequencies: tuple[float, float]) -> tup
 
 
 # ----------------------------------------------------------------------------- signals
-def steady_window(time: FloatArray, period: float, n_periods: int) -> NDArray[np.bool_]:
-    """Mask of the last ``n_periods`` whole periods of ``time``."""
-    time = np.asarray(time, float)
-    return time >= time[-1] - n_periods * period - 1e-9 * period
-
-
-def harmonic_fit(time: FloatArray, signal: FloatArray, omega: float) -> tuple[float, float,
-                                                                             float]:
-    """Least-squares ``mean + a cos(w t) + b sin(w t)``: (mean, amplitude, phase [rad]) with
-    ``signal ~ mean + amplitude sin(w t + phase)``."""
+def harmonic_fit(time: FloatArray, signal: FloatArray, omega: float
+                 ) -> tuple[float, float, float]:
+    """Least-squares ``mean + amplitude sin(omega t + phase)``: (mean, amplitude, phase
+    [rad])."""
     t = np.asarray(time, float)
     A = np.column_stack((np.ones_like(t), np.cos(omega * t), np.sin(omega * t)))
     c = np.linalg.lstsq(A, np.asarray(signal, float), rcond=None)[0]
     return float(c[0]), float(math.hypot(c[1], c[2])), float(math.atan2(c[1], c[2]))
 
 
-def dominant_period(time: FloatArray, signal: FloatArray) -> tuple[float, float]:
-    """Period of the largest spectral peak of a uniformly sampled signal (mean removed,
-    Hann window, parabolic interpolation of the peak); also the bin width as a period
-    uncertainty ``T^2 df``."""
+def crossing_period(time: FloatArray, signal: FloatArray) -> float:
+    """Mean period between up-crossings of the mean (linear interpolation of the crossing
+    times): (last crossing - first crossing) / (number of crossings - 1)."""
     t = np.asarray(time, float)
     y = np.asarray(signal, float) - np.mean(signal)
-    dt = float(np.mean(np.diff(t)))
+    k = np.flatnonzero((y[:-1] < 0.0) & (y[1:] >= 0.0))
+    if len(k) < 2:
+        return math.nan
+    crossings = t[k] - y[k] * (t[k + 1] - t[k]) / (y[k + 1] - y[k])
+    return float((crossings[-1] - crossings[0]) / (len(crossings) - 1))
+
+
+def dominant_period(time: FloatArray, signal: FloatArray) -> tuple[float, float]:
+    """Period of the largest spectral peak of a uniformly sampled signal (mean removed), and
+    half the bin width expressed as a period, ``T^2 df / 2`` (the resolution)."""
+    t = np.asarray(time, float)
+    y = np.asarray(signal, float) - np.mean(signal)
     n = len(y)
-    spec = np.abs(np.fft.rfft(y * np.hanning(n)))
-    k = int(np.argmax(spec[1:])) + 1
-    shift = 0.0
-    if 0 < k < len(spec) - 1:
-        a, b, c = np.log(spec[k - 1:k + 2] + 1e-300)
-        shift = 0.5 * (a - c) / (a - 2 * b + c)
-    df = 1.0 / (n * dt)
-    T = 1.0 / ((k + shift) * df)
-    return T, T * T * df
+    df = 1.0 / (n * float(np.mean(np.diff(t))))
+    k = int(np.argmax(np.abs(np.fft.rfft(y))[1:])) + 1
+    T = 1.0 / (k * df)
+    return T, 0.5 * T * T * df
+
+
+def spearman(a: FloatArray, b: FloatArray) -> float:
+    """Spearman rank correlation of two samples without ties."""
+    ra = np.argsort(np.argsort(np.asarray(a, float)))
+    rb = np.argsort(np.argsort(np.asarray(b, float)))
+    return float(np.corrcoef(ra, rb)[0, 1])
 
 
 # ----------------------------------------------------------------------------- W2
@@ -291,3 +302,210 @@ def forced_run(sag_to_span: float = SAG_TO_SPAN, inclination_deg: float = INCLIN
                   "out_of_plane": float(max(half[1], half[3], half[5]))}
     return ForcedRun(eq, result, rayleigh_frequencies, amplitudes,
                      float(result.tension[window].max()))
+
+
+def quasi_static_response(eq: Equilibrium, rayleigh: tuple[float, float],
+                          amplitude: float = FORCE_AMPLITUDE, omega: float = OMEGA
+                          ) -> FloatArray:
+    """Complex 6-dof amplitudes of the rigid box on its quasi-static mooring stiffness.
+
+    ``(K - w^2 M + i w (a0 M + a1 K)) X = (amplitude, 0, ...)`` with ``K`` of
+    :func:`body_stiffness` and ``M`` the rigid box: the lines act as springs without inertia
+    or drag.
+    """
+    K = body_stiffness(eq)
+    M = _rigid_mass(eq.system.bodies[BODY], _rotation(eq.result.body_pose[0, 3:]))
+    force = np.zeros(6)
+    force[0] = amplitude
+    C = rayleigh[0] * M + rayleigh[1] * K
+    return np.linalg.solve(K - omega**2 * M + 1j * omega * C, force)
+
+
+def run_w2(quick: bool = False) -> list[Row]:
+    """Case W2: the response of the box to ``F_x = 1e5 sin(1.6 t)`` N (module docstring).
+
+    Parameters
+    ----------
+    quick
+        Shorter runs (40 s, dt 0.1 s; the small-amplitude run 60 s) for the fast tests: the
+        tolerances then cover the remaining start-up transient.
+    """
+    duration, dt, small_duration = (40.0, 0.1, 60.0) if quick else (80.0, 0.05, 120.0)
+    run = forced_run(duration=duration, dt=dt)
+    rayleigh = rayleigh_coefficients(RAYLEIGH_RATIO, run.rayleigh_frequencies)
+    result, amp = run.result, run.amplitudes
+    window = steady_window(result.time, PERIOD, 5)
+    t, pose = result.time[window], result.body_history(BODY)[window]
+    surge_mean = harmonic_fit(t, pose[:, 0], OMEGA)[0]
+    heave_period, heave_resolution = dominant_period(t, pose[:, 2])
+    qs = quasi_static_response(run.eq, rayleigh)
+    static_tension = float(run.eq.result.tension.max())
+    rows = [
+        Row(CASE_W2, "steady surge period (up-crossings) vs forcing period 2 pi / 1.6",
+            PERIOD, crossing_period(t, pose[:, 0]), 2e-3, unit="s",
+            note=f"last 5 periods of {duration:g} s, dt {dt:g} s"),
+        Row(CASE_W2, "steady heave period: second order, half the forcing period", PERIOD / 2,
+            heave_period, heave_resolution / (PERIOD / 2), unit="s",
+            note="linear heave vanishes by the x -> -x symmetry; tolerance: half an FFT bin "
+            f"of the window; heave amplitude {amp['z']:.4g} m, mean set-down "
+            f"{float(np.mean(pose[:, 2]) - run.eq.result.body_pose[0, 2]):.3g} m"),
+        Row(CASE_W2, "mean surge in the steady state (symmetric mooring, zero-mean force)",
+            0.0, surge_mean, 0.01 * amp["x"], relative=False, unit="m",
+            note="tolerance 1 % of the surge amplitude"),
+        Row(CASE_W2, "out-of-plane motion (sway, roll, yaw) under in-plane forcing", 0.0,
+            amp["out_of_plane"], 1e-6, relative=False,
+            note="largest half peak-to-peak of y [m], rx, rz [rad]"),
+        Row(CASE_W2, "steady surge amplitude vs quasi-static surge-pitch estimate",
+            float(abs(qs[0])), amp["x"], 0.25, unit="m",
+            note=f"rigid box on group_stiffness + hydrostatics, Rayleigh damping, no line "
+            f"inertia or drag (line mass + added mass = 28 % of the box); pitch "
+            f"{amp['ry']:.4g} rad vs {abs(qs[4]):.4g}; max tension {run.max_tension:.4g} N "
+            f"(static {static_tension:.4g} N)"),
+    ]
+    rows += _small_amplitude_rows(small_duration, dt)
+    if not quick:
+        fine = forced_run(duration=duration, dt=dt / 2)
+        rows.append(Row(CASE_W2, f"surge amplitude, dt {dt:g} s vs {dt / 2:g} s",
+                        fine.amplitudes["x"], amp["x"], 5e-3, unit="m",
+                        note=f"pitch {amp['ry']:.5g} vs {fine.amplitudes['ry']:.5g} rad, max "
+                        f"tension {run.max_tension:.6g} vs {fine.max_tension:.6g} N"))
+    return rows
+
+
+def _small_amplitude_rows(duration: float, dt: float) -> list[Row]:
+    """1 kN without line drag against the linearized model in the frequency domain."""
+    amplitude = 1.0e3
+    run = forced_run(duration=duration, dt=dt, amplitude=amplitude, line_drag=False)
+    linear = linearize(run.eq.system, run.eq.result)
+    rayleigh = rayleigh_coefficients(RAYLEIGH_RATIO, run.rayleigh_frequencies)
+    force = np.array([amplitude, 0.0, 0.0, 0.0, 0.0, 0.0])
+    X = linear.response(OMEGA, force, rayleigh)[linear.body]
+    window = steady_window(run.result.time, PERIOD, 5)
+    t, pose = run.result.time[window], run.result.body_history(BODY)[window]
+    _, ax, phx = harmonic_fit(t, pose[:, 0], OMEGA)
+    _, ary, _ = harmonic_fit(t, pose[:, 4], OMEGA)
+    static = np.linalg.solve(body_stiffness(run.eq), force)[0]
+    zero = float(abs(linear.response(0.0, force, (0.0, 0.0))[linear.body][0]))
+    freqs = linear.frequencies()
+    near = freqs[np.argsort(np.abs(freqs - OMEGA))[:3]]
+    note = (f"1 kN, no line drag, {duration:g} s; linearized frequencies nearest 1.6 rad/s: "
+            f"{', '.join(f'{w:.3f}' for w in sorted(near))}")
+    return [
+        Row(CASE_W2, "small amplitude: surge amplitude vs linearized model", float(abs(X[0])),
+            ax, 0.02, unit="m", note=note),
+        Row(CASE_W2, "small amplitude: pitch amplitude vs linearized model", float(abs(X[4])),
+            ary, 0.02, unit="rad"),
+        Row(CASE_W2, "small amplitude: surge phase vs linearized model",
+            float(np.angle(X[0])), phx, 0.05, relative=False, unit="rad",
+            note="phase of x against sin(1.6 t)"),
+        Row(CASE_W2, "linearized model at zero frequency vs mooring stiffness (surge)",
+            float(static), zero, 1e-6, unit="m",
+            note="static compliance of the assembled model vs group_stiffness + hydrostatics"),
+    ]
+
+
+# ----------------------------------------------------------------------------- W3
+W3_SAG_TO_SPAN = ("1/45", "1/50", "1/60", "1/70", "1/80")
+W3_INCLINATION = (40, 44, 48, 50, 52, 54)
+#: Rayleigh frequencies of every W3 case: the forcing and the base case's
+#: :func:`surge_pitch_frequency` (2.0678 rad/s)
+W3_RAYLEIGH = (1.6, 2.0678)
+
+
+def w3_study(quick: bool = False) -> dict:
+    """The W3 study as a :mod:`moorline.sweep` mapping (``cases/studies/wang_w3.yaml``).
+
+    ``quick``: three values per series (1/45, 1/60, 1/80; 44, 50, 54 deg) and 40 s at
+    dt 0.1 s (the amplitudes are then within ~3 % of their steady values).
+    """
+    sag = W3_SAG_TO_SPAN[::2] if quick else W3_SAG_TO_SPAN
+    inclination = (44, 50, 54) if quick else W3_INCLINATION
+    duration, dt = (40.0, 0.1) if quick else (80.0, 0.05)
+    return {
+        "name": CASE_W3,
+        "description": "Wang, Er and Iu W3, steady-state response vs sag-to-span and "
+                       "inclination",
+        "base": {"builder": "moorline.verification.wang_dynamics:forced_equilibrium",
+                 "parameters": {"sag_to_span": "1/60", "inclination_deg": 50}},
+        "variations": {"sag_to_span": list(sag), "inclination_deg": list(inclination)},
+        "combine": "one-at-a-time",
+        "dynamics": {"duration": duration, "dt": dt, "rayleigh_ratio": RAYLEIGH_RATIO,
+                     "rayleigh_frequencies": list(W3_RAYLEIGH), "output_every": dt},
+        "outputs": {"window": {"omega": OMEGA, "periods": 5},
+                    "quantities": {"surge": "amplitude box.x", "heave": "amplitude box.z",
+                                   "pitch": "amplitude box.ry",
+                                   "max_tension": "max tension",
+                                   "static_tension": "static tension"}},
+    }
+
+
+def run_w3(quick: bool = False) -> list[Row]:
+    """Case W3: the trends of the paper's Figs. 7 and 8 (module docstring)."""
+    table = run_study(w3_study(quick))
+    series = np.asarray(table["series"].values).astype(str)
+    ratio = np.asarray(table["sag_to_span"].values, float)
+    angle = np.asarray(table["inclination_deg"].values, float)
+    value = {k: np.asarray(table[k].values, float) for k in
+             ("surge", "heave", "pitch", "max_tension", "static_tension")}
+    rayleigh = rayleigh_coefficients(RAYLEIGH_RATIO, W3_RAYLEIGH)
+    estimate = np.empty((len(ratio), 2))
+    pretension = np.empty(len(ratio))
+    for k, (r, a) in enumerate(zip(ratio, angle, strict=True)):
+        eq = forced_equilibrium(float(r), float(a))
+        X = quasi_static_response(eq, rayleigh)
+        estimate[k] = abs(X[0]), abs(X[4])
+        chord = (DEPTH - eq.draft) / math.sin(math.radians(a))
+        pretension[k] = parabolic_top_force(chord, float(a), float(r), WEIGHT)[0]
+    s, i = series == "sag_to_span", series == "inclination_deg"
+    s = np.flatnonzero(s)[np.argsort(-ratio[s])]  # 1/45 first: tauter along the series
+    i = np.flatnonzero(i)[np.argsort(angle[i])]
+    taut = np.arange(len(s), dtype=float)
+
+    def listing(idx: NDArray[np.int64], key: str, fmt: str = ".4g") -> str:
+        return ", ".join(f"{value[key][k]:{fmt}}" for k in idx)
+
+    sags = ", ".join(f"1/{1 / ratio[k]:.0f}" for k in s)
+    angles = ", ".join(f"{angle[k]:g}" for k in i)
+    rows = []
+    for key, fig, unit in (("surge", "7a", "m"), ("heave", "7b", "m"), ("pitch", "7c", "rad")):
+        rows.append(Row(CASE_W3, f"Fig. {fig}: {key} amplitude falls as the line gets tauter "
+                        f"(Spearman vs {sags})", -1.0, spearman(value[key][s], taut), 0.15,
+                        relative=False, note=f"{listing(s, key)} {unit}; tolerance: one "
+                        "adjacent pair may swap"))
+    t_max, t_static = value["max_tension"], value["static_tension"]
+    rows.append(Row(
+        CASE_W3, "Fig. 7d: max tension follows the parabolic pretension w cos(theta) l / "
+        "(8 d/l) along d/l (Spearman)", 1.0, spearman(t_max[s], pretension[s]), 0.15,
+        relative=False,
+        note=f"NOT the paper's minimum near 1/60: max tension {listing(s, 'max_tension')} N "
+        f"rises with tautness (lowest at 1/{1 / ratio[s][np.argmin(t_max[s])]:.0f}); "
+        f"dynamic part max - static {', '.join(f'{t_max[k] - t_static[k]:.3g}' for k in s)} N"))
+    rising = spearman(value["surge"][i], angle[i])
+    for key, col, fig in (("surge", 0, "8a"), ("pitch", 1, "8c")):
+        rows.append(Row(
+            CASE_W3, f"Fig. {fig}: {key} amplitude vs inclination ({angles} deg) follows the "
+            "quasi-static surge-pitch estimate (Spearman)", 1.0,
+            spearman(value[key][i], estimate[i, col]), 0.15, relative=False,
+            note=f"{listing(i, key)} vs estimate "
+            f"{', '.join(f'{estimate[k, col]:.4g}' for k in i)}; NOT the paper's trend: it "
+            f"rises with inclination (Spearman {rising:+.2f}), the paper's falls"))
+    rows.append(Row(
+        CASE_W3, "Fig. 8b: heave amplitude (second order) vs inclination follows the "
+        "quasi-static surge estimate (Spearman)", 1.0,
+        spearman(value["heave"][i], estimate[i, 0]), 0.15, relative=False,
+        note=f"{listing(i, 'heave')} m; NOT the paper's trend (falling)"))
+    grid = np.sort(angle[i])
+    centre = int(np.argmin(np.abs(grid - INCLINATION_DEG)))
+    step = float(np.min(np.abs(np.delete(grid, centre) - grid[centre])))
+    rows.append(Row(
+        CASE_W3, "Fig. 8d: inclination of the least max tension (paper: near 50 deg)",
+        INCLINATION_DEG, float(angle[i][np.argmin(t_max[i])]), step, relative=False,
+        unit="deg", note=f"max tension {listing(i, 'max_tension')} N at {angles} deg; "
+        "tolerance: one grid step"))
+    everything = np.unique(np.column_stack((ratio, angle)), axis=0, return_index=True)[1]
+    rows.append(Row(
+        CASE_W3, "surge amplitude across all cases follows the quasi-static surge-pitch "
+        "estimate (Spearman)", 1.0, spearman(value["surge"][everything],
+                                             estimate[everything, 0]), 0.15, relative=False,
+        note="rigid box on the mooring stiffness at 1.6 rad/s, Rayleigh damping"))
+    return rows
