@@ -377,6 +377,11 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
         with _status("plotting ...", context.quiet):
             plot_tension_history(ds, files[0])
             plot_motion_history(ds, files[1])
+            if "body_pose" in ds.variables:
+                from .plot import plot_body_motion
+
+                files.append(context.directory / f"{prefix}body_motion.png")
+                plot_body_motion(ds, files[-1])
     return Outcome("dynamics", success, message, summary, files)
 
 
@@ -799,13 +804,15 @@ def _g(value: Any) -> str:
 @click.argument("results", type=click.Path(dir_okay=False, path_type=Path))
 @click.option("--out", "out", type=click.Path(file_okay=False, path_type=Path), default=None,
               help="Directory for the plots (default: next to RESULTS).")
+@click.option("--animate", is_flag=True,
+              help="Also write an animated GIF of every dynamics group (animation.gif).")
 @_common_options
-def plot(results: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
+def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: bool) -> None:
     """Plot a saved RESULTS file (results.nc) again.
 
     Statics groups give configuration_xz.png and configuration_3d.png, dynamics groups
-    tension_history.png and motion_history.png (prefixed with the group name when a kind
-    repeats).
+    tension_history.png and motion_history.png (and body_motion.png with bodies; with
+    --animate, animation.gif), prefixed with the group name when a kind repeats.
     """
     _configure_logging(verbose)
     from .io.writers import read_group, result_groups
@@ -827,6 +834,12 @@ def plot(results: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
     with _status("plotting ...", quiet):
         for name, ds in datasets.items():
             files.extend(_plot_group(ds, groups[name], name or groups[name], directory))
+            if animate and groups[name] == "dynamics" and ds.sizes.get("time", 0):
+                from .plot import animate_run
+
+                files.append(directory / f"{_prefix(name or 'dynamics', 'dynamics')}"
+                                         "animation.gif")
+                animate_run(ds, files[-1])
     _note(f"wrote {', '.join(str(f) for f in files)}", quiet)
 
 
@@ -850,6 +863,11 @@ def _plot_group(ds: Any, kind: str, label: str, directory: Path) -> list[Path]:
              directory / f"{prefix}motion_history.png"]
     plot_tension_history(ds, files[0])
     plot_motion_history(ds, files[1])
+    if "body_pose" in ds.variables:
+        from .plot import plot_body_motion
+
+        files.append(directory / f"{prefix}body_motion.png")
+        plot_body_motion(ds, files[-1])
     return files
 
 

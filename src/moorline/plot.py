@@ -413,3 +413,59 @@ def _sweep_groups(dataset: xr.Dataset, parameter: str, varied: list[str], series
 
 
 __all__ += ["plot_sweep_trends"]
+
+
+def plot_body_motion(dataset: xr.Dataset, path: str | Path) -> None:
+    """Six panels per run: body positions x, y, z and rotations about x, y, z (degrees) vs
+    time, one line per body, from a dynamics dataset with ``body_pose(time, body, dof)``."""
+    pose = dataset["body_pose"].values
+    time = dataset["time"].values
+    names = [str(b) for b in dataset["body"].values]
+    fig = Figure(figsize=(11, 7), constrained_layout=True)
+    labels = ("x", "y", "z", "rotation x", "rotation y", "rotation z")
+    for k in range(6):
+        ax = fig.add_subplot(2, 3, k + 1)
+        scale = 1.0 if k < 3 else 180.0 / np.pi
+        for b, name in enumerate(names):
+            ax.plot(time, pose[:, b, k] * scale, label=name)
+        unit = "deg" if k >= 3 else ("ft" if dataset.attrs.get("units") == "US" else "m")
+        ax.set_title(f"{labels[k]} [{unit}]")
+        ax.set_xlabel("time [s]")
+        ax.grid(True, lw=0.4)
+    fig.axes[0].legend(fontsize=8)
+    fig.suptitle(_history_title(dataset, "body motion"))
+    _save(fig, Path(path))
+
+
+def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
+                view: str = "xz") -> None:
+    """An animated GIF of a dynamics dataset: the lines (and the points) in the x-z (or
+    x-y) plane at up to ``frames`` output times (Pillow writer; no screen needed)."""
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
+    pos = dataset["position"].values
+    time = dataset["time"].values
+    el = dataset["element_nodes"].values
+    a, b = (0, 2) if view == "xz" else (0, 1)
+    picks = np.unique(np.linspace(0, len(time) - 1, min(frames, len(time))).astype(int))
+    fig = Figure(figsize=(8, 5), constrained_layout=True)
+    ax = fig.add_subplot(1, 1, 1)
+    lo, hi = pos[..., [a, b]].min(axis=(0, 1)), pos[..., [a, b]].max(axis=(0, 1))
+    pad = 0.05 * float(np.max(hi - lo))
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal")
+    ax.set_xlabel(view[0])
+    ax.set_ylabel(view[1])
+    lines = [ax.plot([], [], lw=1.2, color="tab:blue")[0] for _ in range(len(el))]
+    title = ax.set_title("")
+
+    def draw(i: int):
+        p = pos[picks[i]]
+        for line, (n1, n2) in zip(lines, el, strict=True):
+            line.set_data([p[n1, a], p[n2, a]], [p[n1, b], p[n2, b]])
+        title.set_text(f"{dataset.attrs.get('case', '')}  t = {time[picks[i]]:.2f} s")
+        return [*lines, title]
+
+    animation = FuncAnimation(fig, draw, frames=len(picks), blit=False)
+    animation.save(str(path), writer=PillowWriter(fps=15))

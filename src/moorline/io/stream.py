@@ -91,6 +91,8 @@ class HistoryWriter:
         with _sigint_deferred():
             for name in RECORD_VARIABLES:
                 self.ds[name][i] = record[name]
+            if "body_pose" in self.ds.variables:
+                self.ds["body_pose"][i] = record["body_pose"]
             self.ds["time"][i] = t
             self.count += 1
             self.last_time = float(t)
@@ -130,6 +132,14 @@ def _define(ds: netCDF4.Dataset | netCDF4.Group, mesh: Mesh, units: dict[str, st
     for name, (dims, key) in RECORD_VARIABLES.items():
         var = ds.createVariable(name, "f8", ("time", *dims), zlib=False)
         var.units = units.get(key, key)
+    if mesh.body_names:
+        ds.createDimension("body", len(mesh.body_names))
+        ds.createDimension("dof", 6)
+        var = ds.createVariable("body_pose", "f8", ("time", "body", "dof"), zlib=False)
+        var.units = f"{units.get('length', 'length')} (x, y, z), rad (rotation vector)"
+        ds.createVariable("body", str, ("body",))[:] = np.array(mesh.body_names, dtype=object)
+        ds.createVariable("dof", str, ("dof",))[:] = np.array(
+            ["x", "y", "z", "rx", "ry", "rz"], dtype=object)
     _coordinates(ds, mesh)
 
 
