@@ -39,8 +39,13 @@ def surge(ramp_time: float = 10.0) -> Motion:
     return Motion("harmonic", amplitude=AMPLITUDE, period=PERIOD, ramp_time=ramp_time)
 
 
-def oc3_three_lines(segments: int, ramp_time: float = 10.0) -> System:
-    """The three OC3 lines, ``segments`` elements each, all fairleads in harmonic surge."""
+def oc3_three_lines(segments: int, ramp_time: float = 10.0, BA: float = -0.8) -> System:
+    """The three OC3 lines, ``segments`` elements each, all fairleads in harmonic surge.
+
+    ``BA``: internal axial damping [N s], or minus a damping ratio of each segment's axial mode
+    (MoorDyn's convention, the default -0.8: then the damping coefficient is proportional to
+    the segment length and changes with the mesh).
+    """
     points: dict[str, Point] = {}
     lines: dict[str, Line] = {}
     motion = surge(ramp_time)
@@ -51,13 +56,13 @@ def oc3_three_lines(segments: int, ramp_time: float = 10.0) -> System:
         points[fair] = Point(fair, "prescribed", (FAIR_R * c, FAIR_R * s, FAIR_Z),
                              motion=motion)
         lines[f"line{k}"] = Line(f"line{k}", "chain", LENGTH, segments, anchor, fair)
-    return System("oc3-three-lines", environment=environment(), line_types={"chain": chain()},
+    return System("oc3-three-lines", environment=environment(), line_types={"chain": chain(BA)},
                   points=points, lines=lines)
 
 
-def oc3_one_line(segments: int, ramp_time: float = 10.0) -> System:
+def oc3_one_line(segments: int, ramp_time: float = 10.0, BA: float = -0.8) -> System:
     """Line 1 of :func:`oc3_three_lines` alone (for the cost-per-step scaling)."""
-    full = oc3_three_lines(segments, ramp_time)
+    full = oc3_three_lines(segments, ramp_time, BA)
     keep = ("anchor1", "fairlead1")
     return System("oc3-one-line", environment=full.environment, line_types=full.line_types,
                   points={k: full.points[k] for k in keep},
