@@ -15,6 +15,8 @@ register("tuah-ex3", "tuah_ex3:run")
 register("tuah-ex4", "tuah_ex4:run")
 register("steady-current", "steady_current:run")
 register("wang-w1", "wang_w1:run")
+register("wang-w2", "wang_dynamics:run_w2")
+register("wang-w3", "wang_dynamics:run_w3")
 register("modes-string", "modes_string:run")
 register("modes-irvine", "modes_irvine:run")
 
