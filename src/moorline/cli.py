@@ -920,6 +920,58 @@ def sweep(study: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> 
         _fail(f"{study}: {len(failed)} case(s) failed: {failed[0]}", EXIT_FAILED)
 
 
+@cli.command()
+@click.argument("case", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--body", "body", required=True, metavar="NAME", help="The body (box or cylinder).")
+@click.option("--omega", "omega", required=True, type=click.FloatRange(min=0.0, min_open=True),
+              metavar="W", help="Reference frequency [rad/s] (e.g. the wave or forcing one).")
+@click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="File to write (default: <case>_<body>_bem.yaml here).")
+@click.option("--panel", "panel", type=click.FloatRange(min=0.0, min_open=True), default=None,
+              help="Panel size [case length] (default: a twentieth of the width/diameter).")
+@click.option("--whole-case", is_flag=True,
+              help="Write the whole case with added_mass and damping replaced (no comments).")
+@click.option("--shape", type=click.Choice(["box", "cylinder"]), default=None,
+              help="Hull to mesh for a body with matrix hydrostatics (with --size, --draft).")
+@click.option("--size", default=None, metavar="A,B[,C]",
+              help="Box length,width,height or cylinder diameter,height [case length].")
+@click.option("--draft", type=click.FloatRange(min=0.0, min_open=True), default=None,
+              help="Draft [case length] (default: from a box/cylinder body's position).")
+@_common_options
+def bem(case: Path, body: str, omega: float, out: Path | None, panel: float | None,
+        whole_case: bool, shape: str | None, size: str | None, draft: float | None,
+        quiet: bool, verbose: bool) -> None:
+    """Added mass, damping, hydrostatics and exciting forces of a body from capytaine.
+
+    Needs the [bem] extra. Prints the case's constants next to the BEM values at W and
+    writes a YAML snippet (bodies.NAME.added_mass and damping) to merge into CASE; see
+    moorline.bem. A body with matrix hydrostatics needs --shape, --size and --draft (its
+    origin stays at its position's height).
+    """
+    _configure_logging(verbose)
+    from .bem import write_body_table
+
+    _load(case)
+    out = out if out is not None else Path(f"{case.stem}_{_safe_name(body, 'body')}_bem.yaml")
+    try:
+        dims = None if size is None else [float(v) for v in size.split(",")]
+    except ValueError:
+        raise click.BadParameter(f"{size!r} is not comma-separated numbers",
+                                 param_hint="--size") from None
+    with _status(f"solving BEM problems of {body} at {omega:g} rad/s ...", quiet):
+        table = write_body_table(case, body, omega, out, panel_size=panel, draft=draft,
+                                 shape=shape, dimensions=dims, whole_case=whole_case)
+    a = table.coefficients.attrs
+    result = Table(title=escape(f"{case.name}: body {body}, omega {omega:g} rad/s, capytaine "
+                                f"{a['capytaine_version']}, {a['n_panels']} panels"))
+    for name in ("quantity", "unit", "case", "BEM"):
+        result.add_column(name, justify="left" if name in ("quantity", "unit") else "right")
+    for quantity, unit, value, computed in table.rows:
+        result.add_row(escape(quantity), escape(unit), _g(value), _g(computed))
+    _stdout().print(result)
+    _note(f"wrote {table.path}", quiet)
+
+
 def main() -> None:
     """Entry point of the ``moorline`` console script."""
     cli(prog_name="moorline")
