@@ -17,6 +17,8 @@ register("steady-current", "steady_current:run")
 register("wang-w1", "wang_w1:run")
 register("wang-w2", "wang_dynamics:run_w2")
 register("wang-w3", "wang_dynamics:run_w3")
+register("tuah-ex5", "tuah_ex5:run")
+register("tuah-ex7", "tuah_ex7:run")
 register("modes-string", "modes_string:run")
 register("modes-irvine", "modes_irvine:run")
 
