@@ -19,6 +19,7 @@ register("wang-w2", "wang_dynamics:run_w2")
 register("wang-w3", "wang_dynamics:run_w3")
 register("tuah-ex5", "tuah_ex5:run")
 register("tuah-ex7", "tuah_ex7:run")
+register("tuah-ex6", "tuah_ex6:run")
 register("modes-string", "modes_string:run")
 register("modes-irvine", "modes_irvine:run")
 

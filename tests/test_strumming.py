@@ -1,0 +1,200 @@
+"""Wake oscillator (Tuah 1982 eq. 3.2.b.1-3.2.b.8) and strumming by mode superposition."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from moorline.errors import MoorlineError
+from moorline.model import DynamicsSettings
+from moorline.physics import wake
+from moorline.solvers.dynamics import simulate
+from moorline.solvers.statics import solve_statics
+from moorline.solvers.strumming import StrummingSettings, solve_strumming
+from moorline.verification import tuah_ex6
+
+WS = 10.0
+CL0 = 0.2
+
+
+def free_wake(G, H, cl_start, duration, forcing=None, F=0.0):
+    """Integrate the wake oscillator alone (the structure's velocity / D given by
+    ``forcing(t)``)."""
+
+    def rhs(t, y):
+        u = 0.0 if forcing is None else forcing(t)
+        return [y[1], float(wake.wake_acceleration(y[0], y[1], WS, G, H, F, CL0, u, 1.0))]
+
+    t = np.linspace(0.0, duration, int(duration * 200) + 1)
+    sol = solve_ivp(rhs, (0.0, duration), [cl_start, 0.0], t_eval=t, rtol=1e-10, atol=1e-12,
+                    method="DOP853")
+    return sol.t, sol.y[0], sol.y[1]
+
+
+def frequency(t, y):
+    """Mean circular frequency from upward zero crossings (linear interpolation)."""
+    i = np.flatnonzero((y[:-1] < 0) & (y[1:] >= 0))
+    crossings = t[i] - y[i] * (t[i + 1] - t[i]) / (y[i + 1] - y[i])
+    return 2 * math.pi / np.mean(np.diff(crossings))
+
+
+def test_limit_cycle_is_exact_circle():
+    """E = C_L^2 + (C_L'/w_s)^2 = C_L0^2 is invariant: C_L0 cos(w_s t) for any G, H."""
+    t, cl, rate = free_wake(1.65, 0.48, CL0, 20.0)
+    energy = cl**2 + (rate / WS) ** 2
+    assert np.abs(np.sqrt(energy) / CL0 - 1).max() < 1e-7
+    assert frequency(t, cl) == pytest.approx(WS, rel=1e-6)
+
+
+def test_limit_cycle_from_small_amplitude_and_logistic_growth():
+    """From a small start the amplitude grows to C_L0 at w_s; for small eps = G C_L0^2 the
+    averaged energy follows the van der Pol (averaging) law dE/dt = G w_s (C_L0^2 - E) E."""
+    G, E0 = 0.5, (0.05 * CL0) ** 2
+    t, cl, rate = free_wake(G, 0.0, math.sqrt(E0), 150.0)
+    energy = cl**2 + (rate / WS) ** 2
+    late = t > 120.0
+    assert np.sqrt(energy[late]).max() == pytest.approx(CL0, rel=1e-5)
+    assert frequency(t[late], cl[late]) == pytest.approx(WS, rel=1e-5)
+    rate0 = G * WS * CL0**2
+    logistic = CL0**2 / (1 + (CL0**2 / E0 - 1) * np.exp(-rate0 * t))
+    half = float(np.interp(0.5 * CL0**2, energy, t))  # energy grows monotonically here
+    assert half == pytest.approx(math.log(CL0**2 / E0 - 1) / rate0, rel=0.02)
+    assert np.abs(energy - logistic).max() < 0.03 * CL0**2
+
+
+def test_h_shifts_the_frequency():
+    """At small amplitude (bracket ~ C_L0^2) the frequency is w_s sqrt(1 + H C_L0^2)."""
+    t, cl, _ = free_wake(1e-4, 2.0, 1e-3 * CL0, 5.0)
+    assert frequency(t, cl) == pytest.approx(WS * math.sqrt(1 + 2.0 * CL0**2), rel=1e-3)
+
+
+@pytest.mark.parametrize("ratio, locked", [(0.96, True), (1.04, True), (0.7, False)])
+def test_lock_in_of_the_forced_wake(ratio, locked):
+    """Driven by a structure vibrating at w near w_s (U'/D = Y w cos w t), the wake locks to
+    w; far from w_s it keeps shedding near w_s."""
+    w = ratio * WS
+    t, cl, _ = free_wake(1.65, 0.48, CL0, 80.0, forcing=lambda s: 1.0 * w * math.cos(w * s),
+                         F=0.04)
+    measured = frequency(t[t > 50.0], cl[t > 50.0])
+    if locked:
+        assert measured == pytest.approx(w, rel=2e-3)
+    else:
+        assert abs(measured - w) > 0.1 * w
+
+
+def test_lift_force_direction_and_magnitude():
+    x = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    v = np.zeros_like(x)
+    flow = np.array([[0.3, 1.5, 0.0]])  # the tangential part does not count
+    f = wake.lift_forces(np.array([0.25]), x, v, flow, np.array([[0, 1]]), 2.0, 0.1, 1025.0)
+    expected = 0.5 * 1025.0 * 0.1 * 0.25 * 1.5**2 * 2.0 / 2
+    assert f.shape == (1, 2, 3)
+    assert np.allclose(f[0, 0], [0.0, 0.0, expected]) and np.allclose(f[0, 1], f[0, 0])
+    # a moving element: relative velocity
+    v[:] = [0.0, 0.5, 0.0]
+    f = wake.lift_forces(np.array([0.25]), x, v, flow, np.array([[0, 1]]), 2.0, 0.1, 1025.0)
+    assert f[0, 0, 2] == pytest.approx(expected * (1.0 / 1.5) ** 2)
+
+
+def test_wake_parameters_and_damping():
+    """Eq. 3.2.b.5-3.2.b.8 at the Ex6 data, by hand."""
+    ws, d, m, rho, nu, st = 15.72, 0.05, 0.0192, 2.0, 1.13e-5, 0.18
+    p = wake.wake_parameters(ws, d, m, rho, nu, st)
+    k_s = 45 * math.sqrt(nu / ws) / d
+    s_g = 2 * math.pi * st**2 * k_s
+    assert float(p.k_s) == pytest.approx(k_s)
+    assert float(p.S_G) == pytest.approx(s_g)
+    assert math.log10(float(p.G)) == pytest.approx(0.25 - 0.21 * s_g)
+    assert math.log10(float(p.h) * s_g**2) == pytest.approx(-0.24 + 0.66 * s_g)
+    assert float(p.xi) == pytest.approx(k_s * rho * d**2 / (4 * math.pi * m))
+    assert float(p.F * p.H / p.G) == pytest.approx(4 * s_g * float(p.xi))
+    xi_n = float(wake.modal_damping_ratio(ws, d, m, rho, nu))
+    # eq. 3.2.b.8 in k_s form: 4 pi m xi / (rho D^2) = 48 (nu / w)^(1/2) / D
+    assert 4 * math.pi * m * xi_n / (rho * d**2) == pytest.approx(48 / 45 * k_s)
+    assert float(wake.strouhal_frequency(0.695, 0.05, 0.18)) == pytest.approx(15.7204,
+                                                                                rel=1e-4)
+
+
+def _steady(**kw):
+    system = tuah_ex6.ex6_system()
+    statics = solve_statics(system)
+    options = {"viscosity": 1.13e-5, "strouhal": 0.18, "added_mass": False, "duration": 3.0,
+               "dt": 0.001} | kw
+    settings = StrummingSettings(**options)
+    return solve_strumming(system, settings, statics)
+
+
+def test_mode_refresh_carries_the_state():
+    """Refreshing the modes at an unchanged in-line state changes nothing."""
+    once, refreshed = _steady(), _steady(refresh_every=7)
+    assert refreshed.counters["refreshes"] > 100
+    scale = np.abs(once.displacement).max()
+    assert scale > 1e-3
+    assert np.abs(once.displacement - refreshed.displacement).max() < 1e-9 * scale
+    assert np.allclose(once.lift_coefficient, refreshed.lift_coefficient, atol=1e-9)
+
+
+def test_runge_kutta_order():
+    results = [_steady(duration=1.0, substeps=n) for n in (1, 2, 4)]
+    u = [r.displacement[:, 3, 2] for r in results]
+    e1, e2 = np.abs(u[0] - u[2]).max(), np.abs(u[1] - u[2]).max()
+    assert e1 > 0 and math.log2(e1 / e2) > 3.5  # fourth order: (1 - 1/16)/(1/4 - 1/16) ~ 5
+
+
+def test_coupled_lock_in_to_the_natural_frequency():
+    """With the shedding frequency near the fundamental (signed coupling) the wake and the
+    string synchronize: C_L and the displacement share one frequency, pulled from w_s towards
+    w_1; far from any mode the string just follows the shedding."""
+    w1 = tuah_ex6.cross_flow_fundamental()
+    results = {}
+    for label, target in (("near", 1.03 * w1), ("far", 1.6 * w1)):
+        strouhal = target * tuah_ex6.DIAMETER / (2 * math.pi * tuah_ex6.SPEED)
+        r = _steady(duration=20.0, strouhal=strouhal, n_modes=2)
+        late = r.time > 12.0
+        ws = float(r.strouhal_frequency[0].mean())
+        results[label] = (ws, frequency(r.time[late], r.displacement[late, 3, 2]),
+                          frequency(r.time[late], r.lift_coefficient[late, 1]))
+    ws, f_u, f_cl = results["near"]
+    # the wake sheds at the structure's frequency, not at its own (the element oscillators
+    # modulate each other a little: equal within a tenth of the shift, not exactly)
+    assert abs(f_cl - f_u) < 0.1 * abs(ws - f_u)
+    assert abs(f_u - w1) < 0.5 * abs(ws - w1)
+    ws, f_u, f_cl = results["far"]
+    assert f_u == pytest.approx(ws, rel=5e-3) and f_cl == pytest.approx(ws, rel=5e-3)
+
+
+def test_in_line_velocity_enters_the_relative_velocity():
+    """Coupling to the in-line dynamics: w_s at every in-line step is built from the fluid
+    velocity minus the in-line velocity of the simulate output."""
+    system = tuah_ex6.ex6_system()
+    inline = simulate(system, DynamicsSettings(duration=0.2, dt=0.001, tolerance=1e-8),
+                      initial=solve_statics(system), output_every=0.001)
+    r = solve_strumming(system, StrummingSettings(viscosity=1.13e-5, strouhal=0.18,
+                                                  added_mass=False), inline)
+    k = 150
+    x, v = inline.positions[k], inline.velocities[k]
+    e = inline.mesh.elements
+    flow = np.array([0.0, tuah_ex6.SPEED, 0.0])
+    v_nr, _ = wake.relative_normal_velocity(x, v, flow, e)
+    expected = wake.strouhal_frequency(np.linalg.norm(v_nr, axis=1), tuah_ex6.DIAMETER, 0.18)
+    assert np.allclose(r.strouhal_frequency[k], expected, rtol=1e-12)
+    assert np.abs(v[:, 1]).max() > 0.01  # the in-line motion is not negligible here
+    assert r.strouhal_frequency[k].max() < r.strouhal_frequency[0].max() * 0.999
+
+
+def test_needs_water():
+    system = tuah_ex6.ex6_system()
+    from dataclasses import replace
+
+    dry = replace(system, environment=replace(system.environment, water_density=0.0))
+    with pytest.raises(MoorlineError):
+        solve_strumming(dry, StrummingSettings(viscosity=1e-5, duration=0.01),
+                        solve_statics(dry))
+
+
+def test_tuah_ex6_rows_pass():
+    rows = tuah_ex6.run()
+    assert len(rows) == 5
+    failed = [r for r in rows if not r.passed]
+    assert not failed, "\n".join(f"{r.quantity}: {r.reference} vs {r.computed}" for r in failed)
