@@ -109,3 +109,39 @@ def test_floating_cylinder_follows_a_long_wave():
     omega, k = 2 * np.pi / 20.0, 1025 * 9.81 * area
     expected = 0.5 * k / abs(k - mass * omega**2 + 1j * 1e4 * omega)
     assert amplitude == pytest.approx(expected, rel=5e-2)
+
+
+def test_wave_excitation_table_drives_the_linear_heave_response():
+    """A body with a heave exciting-force table (per unit wave amplitude, interpolated at the
+    wave frequency) responds with ``a |X3| / |k - (m + A) w^2 + i B w|`` in steady state."""
+    from moorline.model import WaveExcitation, Waves
+
+    lt = LineType("rope", diameter=0.02, mass_per_length=0.0, EA=1e5, displaced_area=0.0,
+                  Cd=0.0, Ca=0.0, Ct=0.0)
+    k_heave, mass, added, damping, x3 = 4.0e5, 2.0e4, 5.0e3, 2.0e4, 3.0e5
+    stiffness = np.diag([1e5, 1e5, k_heave, 1e7, 1e7, 1e7])
+    table = WaveExcitation(omegas=(0.5, 1.5),
+                           amplitude=((0.0, 0.0, x3, 0.0, 0.0, 0.0),) * 2,
+                           phase_deg=((0.0,) * 6,) * 2)
+    body = Body("b", position=(0.0, 0.0, 0.0), mass=mass,
+                inertia=((1e5, 0, 0), (0, 1e5, 0), (0, 0, 1e5)),
+                added_mass=tuple(map(tuple, np.diag([0, 0, added, 0, 0, 0]))),
+                damping=tuple(map(tuple, np.diag([1e4, 1e4, damping, 1e5, 1e5, 1e5]))),
+                hydrostatics=Hydrostatics("matrix", stiffness=tuple(map(tuple, stiffness)),
+                                          volume=mass / 1025),
+                excitation=table)
+    points = {"a": Point("a", "fixed", (0.0, 0.0, -30.0)),
+              "p": Point("p", "body", (0.0, 0.0, 0.0), body="b")}
+    lines = {"l": Line("l", "rope", 35.0, 2, "a", "p")}  # slack: carries nothing
+    env = Environment(depth=30.0, water_density=1025.0, gravity=9.81,
+                      waves=Waves(kind="airy", height=2.0, period=2 * np.pi))
+    system = System("exc", environment=env, line_types={"rope": lt}, points=points,
+                    lines=lines, bodies={"b": body})
+    start = solve_statics(system)
+    result = simulate(system, DynamicsSettings(duration=60.0, dt=0.05, ramp_time=10.0),
+                      initial=start, output_every=0.05)
+    z = result.body_history("b")[:, 2]
+    late = result.time > 40.0
+    amplitude = 0.5 * (z[late].max() - z[late].min())
+    expected = 1.0 * x3 / abs(k_heave - (mass + added) * 1.0**2 + 1j * damping * 1.0)
+    assert amplitude == pytest.approx(expected, rel=0.02)

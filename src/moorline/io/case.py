@@ -34,6 +34,7 @@ from moorline.model import (
     Seabed,
     StaticsSettings,
     System,
+    WaveExcitation,
     Waves,
 )
 
@@ -220,6 +221,15 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             fail(f"only body points take 'body'; this point is {point.kind}",
                  f"points.{name}.body")
     for name, body in bodies.items():
+        ex = body.excitation
+        if ex is not None:
+            n = len(ex.omegas)
+            rows_ok = all(len(r) == 6 for r in ex.amplitude + ex.phase)
+            if n < 1 or len(ex.amplitude) != n or len(ex.phase) != n or not rows_ok:
+                fail(f"needs one row of 6 amplitudes and 6 phases per frequency ({n})",
+                     f"bodies.{name}.excitation")
+            if any(b <= a for a, b in zip(ex.omegas, ex.omegas[1:], strict=False)):
+                fail("omegas must increase strictly", f"bodies.{name}.excitation.omegas")
         hs = body.hydrostatics
         need = {"box": ("length", "width", "height"), "cylinder": ("diameter", "height"),
                 "matrix": ()}.get(hs.kind, ())
@@ -436,7 +446,15 @@ def _body(name: str, spec: Any, source: str | None) -> Body:
                                   center_of_buoyancy=tuple(hs.center_of_buoyancy)),
         force=(*spec.force, *spec.moment),
         force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"),
-        drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads)
+        drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads,
+        excitation=_excitation(spec.excitation))
+
+
+def _excitation(spec: Any) -> WaveExcitation | None:
+    if spec is None:
+        return None
+    return WaveExcitation(tuple(spec.omegas), tuple(tuple(r) for r in spec.amplitude),
+                          tuple(tuple(r) for r in spec.phase))
 
 
 def _current(spec: Any) -> Current:

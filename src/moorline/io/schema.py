@@ -258,6 +258,16 @@ class HydrostaticsSpec(_Spec):
     center_of_buoyancy: Vector3 = (0.0, 0.0, 0.0)
 
 
+class ExcitationSpec(_Spec):
+    """``bodies.<name>.excitation``: wave exciting force per unit wave amplitude over
+    frequency: ``omegas`` [rad/s], ``amplitude`` and ``phase`` [deg], one row of 6 per
+    frequency (plain numbers in the case's units)."""
+
+    omegas: list[float]
+    amplitude: list[list[float]]
+    phase: list[list[float]]
+
+
 class BodySpec(_Spec):
     """``bodies.<name>``: a rigid body (see :class:`moorline.model.Body`). Matrices (inertia,
     added mass, damping, hydrostatic stiffness) are plain numbers in the case's units."""
@@ -277,6 +287,7 @@ class BodySpec(_Spec):
     drag_area: Annotated[list[quantity("area", ge=0.0)], AfterValidator(_three)] = (0.0,) * 3
     Cd: Coefficient = 1.0
     wave_loads: bool = False
+    excitation: ExcitationSpec | None = None
 
 
 class PointSpec(_Spec):

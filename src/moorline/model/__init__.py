@@ -10,7 +10,7 @@ from .analysis import (
     StaticMethod,
     StaticsSettings,
 )
-from .body import Body, Hydrostatics
+from .body import Body, Hydrostatics, WaveExcitation
 from .components import Line, LineType, Motion, Point, PointKind
 from .environment import Current, Environment, Seabed, Waves
 from .system import System, UnitSystem
@@ -36,5 +36,6 @@ __all__ = [
     "StaticsSettings",
     "System",
     "UnitSystem",
+    "WaveExcitation",
     "Waves",
 ]

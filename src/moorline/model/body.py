@@ -39,6 +39,28 @@ class Hydrostatics:
 
 
 @dataclass(frozen=True)
+class WaveExcitation:
+    """First-order wave exciting force per unit wave amplitude, over frequency (from a
+    diffraction code, e.g. ``moorline bem``), about the body origin, world axes.
+
+    Attributes
+    ----------
+    omegas
+        Circular frequencies [rad/s], increasing.
+    amplitude
+        Force (and moment) amplitude per unit wave amplitude, (n_omega, 6).
+    phase_deg
+        Phase of each component [deg], (n_omega, 6): the force is
+        ``a |X| cos(omega t - k x_0 + phase)`` for a wave ``eta = a cos(k x - omega t)``
+        passing the body origin ``x_0`` (Tuah 1982 sec. 3.2.c).
+    """
+
+    omegas: tuple[float, ...]
+    amplitude: tuple[tuple[float, ...], ...]
+    phase_deg: tuple[tuple[float, ...], ...]
+
+
+@dataclass(frozen=True)
 class Body:
     """A six-degree-of-freedom rigid body.
 
@@ -71,6 +93,9 @@ class Body:
     drag_area, Cd
         Quadratic drag on the relative velocity at the body origin, per world direction:
         ``1/2 rho Cd A_i |u_i| u_i`` (a small body such as a disc buoy).
+    excitation
+        Wave exciting forces (amplitude and phase per dof over frequency, interpolated at the
+        environment's regular wave), used instead of the long-wave model.
     wave_loads
         Long-wave (small-body) excitation from the fluid field at the body origin: the
         Froude-Krylov and added-mass force ``(rho V + A) a_fluid`` and, with a box or cylinder
@@ -93,3 +118,4 @@ class Body:
     drag_area: Vector3 = (0.0, 0.0, 0.0)
     Cd: float = 1.0
     wave_loads: bool = False
+    excitation: WaveExcitation | None = None

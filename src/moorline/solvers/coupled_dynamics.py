@@ -78,6 +78,7 @@ class CoupledStepper:
         self.damping = [np.asarray(b.damping if b.damping is not None else np.zeros((6, 6)),
                                    dtype=float) for b in self.bodies]
         self.rayleigh = rayleigh
+        self._origin0 = [np.asarray(b.position, dtype=float) for b in self.bodies]
         self.variant = variant  # "iterative"; otherwise one solve per step (residual feedback)
         self.C_rayleigh: sp.csr_matrix | None = None
         self.lu = None
@@ -137,6 +138,7 @@ class CoupledStepper:
             gen -= self._inertia(body, bs, b) + self.added[b] @ bs.acc[b]
             gen -= self.damping[b] @ bs.vel[b]
             gen[:3] += self._fluid_loads(body, bs, b, t1)[0]
+            gen += self._excitation(body, b, t1)
             r[d:d + 6] = gen
         if self.C_rayleigh is not None:
             r -= self.C_rayleigh @ self._velocity(v1, bs)
@@ -173,6 +175,27 @@ class CoupledStepper:
             force += rho * volume * a[0] + self.added[b][:3, :3] @ a[0]
             force[2] += rho * g * area_wp * float(eta[0])
         return force, dF_dv
+
+    def _excitation(self, body, b: int, t: float) -> FloatArray:
+        """Wave exciting force of the body's table at the environment's regular wave (ramped
+        like the wave field), about the body origin."""
+        table = body.excitation
+        wave = getattr(self.model.fluid, "wave", self.model.fluid)
+        omega = getattr(wave, "omega", None)
+        if table is None or omega is None:
+            return np.zeros(6)
+        omegas = np.asarray(table.omegas, dtype=float)
+        amp = np.array([np.interp(omega, omegas, np.asarray(table.amplitude)[:, j])
+                        for j in range(6)])
+        phase = np.radians([np.interp(omega, omegas, np.asarray(table.phase_deg)[:, j])
+                            for j in range(6)])
+        k = float(wave.wave_number)
+        heading = np.radians(getattr(wave, "heading_deg", 0.0))
+        x0 = self._origin0[b]
+        along = x0[0] * np.cos(heading) + x0[1] * np.sin(heading)
+        ramp = _ramp(t, getattr(wave, "ramp_time", 0.0))
+        wave_phase = float(getattr(wave, "phase", 0.0))  # eta = a cos(k x - w t + phase)
+        return ramp * wave.amplitude * amp * np.cos(omega * t - k * along - wave_phase + phase)
 
     @staticmethod
     def _history(body, t: float) -> FloatArray:
@@ -320,3 +343,9 @@ def rigid_mass(body, R: FloatArray) -> FloatArray:
     M[3:, :3] = body.mass * S
     M[3:, 3:] = I_G - body.mass * S @ S
     return M
+
+
+def _ramp(t: float, ramp_time: float) -> float:
+    from .excitation import ramp
+
+    return ramp(t, ramp_time)[0]
