@@ -129,3 +129,28 @@ def test_fixed_body_points_follow_the_pose():
     assert np.allclose(mesh.node_position[node], np.array([1.0, 2.0, 1.5]) + R @ [13, 5, -2.5])
     result = solve_statics(replace(system))
     assert result.success
+
+
+def test_small_rotations_reduce_to_the_linear_small_angle_form(floating):
+    """The rotation-vector statics under a small extra moment matches the small-rotation
+    (linear) form of the sources, K6 dq = dF, with K6 the lines' condensed stiffness plus the
+    body's hydrostatic and gravity stiffness; to second order in the angle."""
+    from moorline.solvers.bodies import body_loads
+    from moorline.solvers.stiffness import group_stiffness
+
+    base_system = box_system()
+    body = base_system.bodies["box"]
+    r0 = floating.body_position("box")
+    R0 = rotation_matrix(floating.body_rotation("box"))
+    K6 = group_stiffness(floating, [f"f{k}" for k in range(4)], r0)
+    K6 += body_loads(body, r0, R0, G, RHO)[1]
+    extra = np.array([0.0, 0.0, 0.0, 0.0, 2.0e5, 0.0])  # a pitch moment about the origin
+    pushed = replace(body, force=tuple(np.asarray(body.force) + extra))
+    result = solve_statics(replace(base_system, bodies={"box": pushed}),
+                           initial=floating.positions)
+    assert result.success, result.message
+    dq = np.concatenate((result.body_position("box") - r0,
+                         result.body_rotation("box") - floating.body_rotation("box")))
+    linear = np.linalg.solve(K6, extra)
+    assert dq[4] == pytest.approx(linear[4], rel=0.02)
+    assert np.abs(dq[4]) < 0.01  # small: the linear form applies

@@ -43,10 +43,14 @@ def test_dynamics_with_a_body_streams_its_pose_and_animates(tmp_path):
     assert result.exit_code == 0, result.output
     folder = out / "wang-box"
     assert (folder / "body_motion.png").is_file()
+    assert (folder / "snapshots_3d.png").is_file()
     with xr.open_dataset(folder / "results.nc", group="dynamics") as ds:
         pose = ds["body_pose"].values
         assert pose.shape[1:] == (1, 6)
         assert np.ptp(pose[:, 0, 0]) > 1e-3  # the harmonic surge force moves the box
+        mooring = ds["body_mooring_force"].values
+        assert mooring.shape == pose.shape and np.isfinite(mooring).all()
+        assert mooring[0, 0, 2] < 0  # the lines pull the box down
     result = CliRunner().invoke(cli, ["plot", str(folder / "results.nc"), "--animate",
                                       "--quiet"])
     assert result.exit_code == 0, result.output

@@ -378,10 +378,12 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
             plot_tension_history(ds, files[0])
             plot_motion_history(ds, files[1])
             if "body_pose" in ds.variables:
-                from .plot import plot_body_motion
+                from .plot import plot_body_motion, plot_snapshots
 
                 files.append(context.directory / f"{prefix}body_motion.png")
                 plot_body_motion(ds, files[-1])
+                files.append(context.directory / f"{prefix}snapshots_3d.png")
+                plot_snapshots(ds, files[-1])
     return Outcome("dynamics", success, message, summary, files)
 
 

@@ -469,3 +469,27 @@ def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
 
     animation = FuncAnimation(fig, draw, frames=len(picks), blit=False)
     animation.save(str(path), writer=PillowWriter(fps=15))
+
+
+def plot_snapshots(dataset: xr.Dataset, path: str | Path, times: list[float] | None = None
+                   ) -> None:
+    """The system in 3D at a few times of a dynamics dataset (default: four times spread over
+    the run), one panel each."""
+    time = dataset["time"].values
+    pos = dataset["position"].values
+    el = dataset["element_nodes"].values
+    picks = times if times is not None else list(np.linspace(time[0], time[-1], 4))
+    fig = Figure(figsize=(12, 3.6), constrained_layout=True)
+    lo, hi = pos.min(axis=(0, 1)), pos.max(axis=(0, 1))
+    for k, t in enumerate(picks):
+        i = int(np.argmin(np.abs(time - t)))
+        ax = fig.add_subplot(1, len(picks), k + 1, projection="3d")
+        p = pos[i]
+        for n1, n2 in el:
+            ax.plot(*zip(p[n1], p[n2], strict=True), color="tab:blue", lw=1.0)
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(lo[1], hi[1])
+        ax.set_zlim(lo[2], hi[2])
+        ax.set_title(f"t = {time[i]:.2f} s", fontsize=9)
+    fig.suptitle(_history_title(dataset, "snapshots"))
+    _save(fig, Path(path))

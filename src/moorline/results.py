@@ -210,6 +210,8 @@ class DynamicResult:
     units: str = "SI"
     settings: dict = field(default_factory=dict)
     body_pose: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
+    body_velocity: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
+    body_mooring_force: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
 
     def body_history(self, body: str) -> FloatArray:
         """Pose history of a body (n_t, 6): position and rotation vector."""
@@ -262,6 +264,8 @@ class DynamicResult:
         )
         if m.body_names:
             ds["body_pose"] = (("time", "body", "dof"), self.body_pose)
+            ds["body_velocity"] = (("time", "body", "dof"), self.body_velocity)
+            ds["body_mooring_force"] = (("time", "body", "dof"), self.body_mooring_force)
             ds = ds.assign_coords(body=list(m.body_names),
                                   dof=["x", "y", "z", "rx", "ry", "rz"])
         return ds

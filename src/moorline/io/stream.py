@@ -91,8 +91,9 @@ class HistoryWriter:
         with _sigint_deferred():
             for name in RECORD_VARIABLES:
                 self.ds[name][i] = record[name]
-            if "body_pose" in self.ds.variables:
-                self.ds["body_pose"][i] = record["body_pose"]
+            for name in ("body_pose", "body_velocity", "body_mooring_force"):
+                if name in self.ds.variables:
+                    self.ds[name][i] = record[name]
             self.ds["time"][i] = t
             self.count += 1
             self.last_time = float(t)
@@ -137,6 +138,11 @@ def _define(ds: netCDF4.Dataset | netCDF4.Group, mesh: Mesh, units: dict[str, st
         ds.createDimension("dof", 6)
         var = ds.createVariable("body_pose", "f8", ("time", "body", "dof"), zlib=False)
         var.units = f"{units.get('length', 'length')} (x, y, z), rad (rotation vector)"
+        var = ds.createVariable("body_velocity", "f8", ("time", "body", "dof"), zlib=False)
+        var.units = f"{units.get('velocity', 'velocity')}, rad/s"
+        var = ds.createVariable("body_mooring_force", "f8", ("time", "body", "dof"),
+                                zlib=False)
+        var.units = f"{units.get('force', 'force')}, moment about the body origin"
         ds.createVariable("body", str, ("body",))[:] = np.array(mesh.body_names, dtype=object)
         ds.createVariable("dof", str, ("dof",))[:] = np.array(
             ["x", "y", "z", "rx", "ry", "rz"], dtype=object)

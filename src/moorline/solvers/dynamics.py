@@ -245,14 +245,18 @@ class _Recorder:
         self.writer = writer
         self.records: dict[str, list] = {k: [] for k in
                                          ("time", "position", "velocity", "tension",
-                                          "end_force", "body_pose")}
+                                          "end_force", "body_pose", "body_velocity",
+                                          "body_mooring_force")}
 
     def add(self, state: StepState) -> None:
         record = {"position": state.x.copy(), "velocity": state.v.copy(),
                   "tension": state.evaluation.tension.copy(),
                   "end_force": _end_forces(self.mesh, state),
                   "body_pose": (state.bodies.pose() if state.bodies is not None
-                                else np.zeros((0, 6)))}
+                                else np.zeros((0, 6))),
+                  "body_velocity": (state.bodies.vel.copy() if state.bodies is not None
+                                    else np.zeros((0, 6))),
+                  "body_mooring_force": _mooring_forces(self.mesh, state)}
         self.records["time"].append(state.t)
         for key, value in record.items():
             self.records[key].append(value)
@@ -265,7 +269,26 @@ class _Recorder:
         return DynamicResult(ok, message, arrays["time"], arrays["position"],
                              arrays["velocity"], arrays["tension"], arrays["end_force"],
                              counters, self.mesh, system.name, system.units, settings,
-                             body_pose=arrays["body_pose"])
+                             body_pose=arrays["body_pose"],
+                             body_velocity=arrays["body_velocity"],
+                             body_mooring_force=arrays["body_mooring_force"])
+
+
+def _mooring_forces(mesh: Mesh, state: StepState) -> FloatArray:
+    """Force and moment (about each body's origin, world axes) the lines exert on every body
+    through its attached nodes (n_bodies, 6)."""
+    if state.bodies is None:
+        return np.zeros((0, 6))
+    out = np.zeros((len(mesh.body_names), 6))
+    el = mesh.elements
+    f = state.evaluation.element_forces
+    for k, node in enumerate(mesh.slave_node):
+        b = mesh.slave_body[k]
+        force = f[el[:, 0] == node, 0].sum(axis=0) + f[el[:, 1] == node, 1].sum(axis=0)
+        arm = state.x[node] - state.bodies.r[b]
+        out[b, :3] += force
+        out[b, 3:] += np.cross(arm, force)
+    return out
 
 
 def _end_forces(mesh: Mesh, state: StepState) -> FloatArray:
