@@ -981,3 +981,22 @@ def main() -> None:
 
 if __name__ == "__main__":  # pragma: no cover
     main()
+
+
+@cli.command()
+@click.argument("deck", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="Case file to write (default: the deck's name with .yaml).")
+@_common_options
+def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
+    """Convert a MoorDyn input file DECK into a moorline case file (YAML)."""
+    _configure_logging(verbose)
+    from .io.case_writer import write_case
+    from .io.moordyn import read_moordyn
+
+    if not deck.is_file():
+        raise CaseError("no such file", str(deck))
+    system = read_moordyn(deck)
+    target = out if out is not None else deck.with_suffix(".yaml")
+    write_case(system, target, header=f"converted by moorline from the MoorDyn deck {deck}")
+    _note(f"wrote {target}", quiet)

@@ -490,7 +490,9 @@ def _statics(spec: StaticsSpec, units: str) -> StaticsSettings:
 
 
 def _dynamics(spec: DynamicsSpec, units: str) -> DynamicsSettings:
-    return DynamicsSettings(**spec.model_dump())
+    values = spec.model_dump(warnings=False)
+    values["rayleigh_frequencies"] = tuple(values["rayleigh_frequencies"])
+    return DynamicsSettings(**values)
 
 
 def _modal(spec: ModalSpec, units: str) -> ModalSettings:

@@ -107,6 +107,12 @@ def _positive_int(value: Any) -> int:
     return n
 
 
+def _pair(values: list[float]) -> tuple[float, float]:
+    if len(values) != 2:
+        raise _fail(f"must be 2 numbers, got {len(values)}")
+    return (values[0], values[1])
+
+
 def _three(values: list[float]) -> tuple[float, float, float]:
     if len(values) != 3:
         raise _fail(f"must be 3 numbers [x, y, z], got {len(values)}")
@@ -354,6 +360,10 @@ class DynamicsSpec(_Spec):
     ramp_time: quantity("time", ge=0.0) = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
     fast_path: bool = True
+    rayleigh_ratio: quantity("dimensionless", ge=0.0) = 0.0
+    rayleigh_frequencies: Annotated[list[quantity("dimensionless", ge=0.0)],
+                                    AfterValidator(lambda v: _pair(v))] = Field(
+        default_factory=lambda: [0.0, 0.0])
 
 
 def _band(values: list[float]) -> list[float]:

@@ -1,0 +1,127 @@
+"""Write a :class:`~moorline.model.System` as a YAML case file (the inverse of
+:func:`moorline.io.load_case` for the fields a case file has); used by ``moorline convert``."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, fields, is_dataclass
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from ..model import Body, Line, LineType, Motion, Point, System
+
+
+def system_to_dict(system: System) -> dict[str, Any]:
+    """The case-file mapping of a system (values in the system's units)."""
+    env = system.environment
+    out: dict[str, Any] = {"name": system.name, "units": system.units}
+    environment: dict[str, Any] = {"water_density": env.water_density,
+                                   "gravity": env.gravity}
+    if math.isfinite(env.depth):
+        environment["depth"] = env.depth
+    environment["seabed"] = {k: v for k, v in asdict(env.seabed).items() if v is not None}
+    current = env.current
+    environment["current"] = ({"z_levels": list(current.z_levels),
+                               "speeds": list(current.speeds),
+                               "headings": list(current.headings_deg)} if current.z_levels
+                              else {"speed": current.speed, "heading": current.heading_deg})
+    waves = env.waves
+    environment["waves"] = ({"kind": "none"} if waves.kind == "none" else
+                            {"kind": waves.kind, "height": waves.height,
+                             "period": waves.period, "heading": waves.heading_deg,
+                             "phase": waves.phase_deg, "stretching": waves.stretching})
+    out["environment"] = environment
+    out["line_types"] = {n: _line_type(lt) for n, lt in system.line_types.items()}
+    if system.bodies:
+        out["bodies"] = {n: _body(b) for n, b in system.bodies.items()}
+    out["points"] = {n: _point(p) for n, p in system.points.items()}
+    out["lines"] = {n: _line(line) for n, line in system.lines.items()}
+    out["analyses"] = [_analysis(a) for a in system.analyses]
+    out["output"] = {"every": system.output.every}
+    return out
+
+
+def write_case(system: System, path: str | Path, header: str = "") -> Path:
+    """Write ``system`` as a YAML case file, with an optional comment ``header``."""
+    path = Path(path)
+    text = yaml.safe_dump(_plain(system_to_dict(system)), sort_keys=False,
+                          default_flow_style=None, width=100)
+    comment = "".join(f"# {line}\n" for line in header.splitlines())
+    path.write_text(comment + text, encoding="utf-8")
+    return path
+
+
+def _line_type(lt: LineType) -> dict[str, Any]:
+    data = asdict(lt)
+    data.pop("name")
+    if data["displaced_area"] is None:
+        data.pop("displaced_area")
+    return data
+
+
+def _point(p: Point) -> dict[str, Any]:
+    data: dict[str, Any] = {"kind": p.kind, "position": list(p.position)}
+    for key in ("mass", "volume", "Cd", "drag_area", "Ca"):
+        if getattr(p, key):
+            data[key] = getattr(p, key)
+    if any(p.force):
+        data["force"] = list(p.force)
+    if p.initial_position is not None:
+        data["initial_position"] = list(p.initial_position)
+    if p.body is not None:
+        data["body"] = p.body
+    for key in ("motion", "force_history"):
+        if getattr(p, key) is not None:
+            data[key] = _motion(getattr(p, key))
+    return data
+
+
+def _motion(m: Motion) -> dict[str, Any]:
+    if m.kind == "harmonic":
+        return {"kind": "harmonic", "amplitude": list(m.amplitude), "period": m.period,
+                "phase": m.phase_deg, "ramp_time": m.ramp_time}
+    return {"kind": "table", "times": list(m.times), "values": [list(v) for v in m.values],
+            "ramp_time": m.ramp_time}
+
+
+def _line(line: Line) -> dict[str, Any]:
+    data = {"type": line.line_type, "length": line.length, "segments": line.segments,
+            "end_a": line.end_a, "end_b": line.end_b}
+    if line.initial_shape is not None:
+        data["initial_shape"] = [list(r) for r in line.initial_shape]
+    return data
+
+
+def _body(b: Body) -> dict[str, Any]:
+    hs = {k: v for k, v in asdict(b.hydrostatics).items() if v not in (None, 0.0)}
+    data: dict[str, Any] = {
+        "kind": b.kind, "position": list(b.position),
+        "rotation": [math.degrees(a) for a in b.rotation], "mass": b.mass,
+        "center_of_gravity": list(b.center_of_gravity),
+        "inertia": [b.inertia[i][i] for i in range(3)], "hydrostatics": hs,
+        "force": list(b.force[:3]), "moment": list(b.force[3:])}
+    for key in ("added_mass", "damping"):
+        if getattr(b, key) is not None:
+            data[key] = [list(r) for r in getattr(b, key)]
+    if b.force_history is not None:
+        data["force_history"] = _motion(b.force_history)
+    return data
+
+
+def _analysis(a: Any) -> dict[str, Any]:
+    return {f.name: getattr(a, f.name) for f in fields(a)}
+
+
+def _plain(value: Any) -> Any:
+    """Tuples to lists, numpy scalars to floats, dataclasses to dicts (YAML-safe)."""
+    if is_dataclass(value):
+        value = asdict(value)
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_plain(v) for v in value]
+    if hasattr(value, "item"):
+        return value.item()
+    return value

@@ -1,0 +1,36 @@
+"""moorline convert: a MoorDyn deck becomes a case file that loads back into the same system;
+and any case survives write -> load."""
+
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from moorline.cli import cli
+from moorline.io import load_case
+from moorline.io.case_writer import write_case
+from moorline.io.moordyn import read_moordyn
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _comparable(system):
+    return replace(system, source=None, analyses=())
+
+
+def test_convert_moordyn_deck_round_trips(tmp_path):
+    deck = ROOT / "tests" / "data" / "moordyn" / "oc3.dat"
+    out = tmp_path / "oc3.yaml"
+    result = CliRunner().invoke(cli, ["convert", str(deck), "--out", str(out), "--quiet"])
+    assert result.exit_code == 0, result.output
+    assert _comparable(load_case(out)) == _comparable(read_moordyn(deck))
+
+
+@pytest.mark.parametrize("case", ["oc3_line.yaml", "oc3_dynamics.yaml", "wang_box.yaml",
+                                  "tuah_ex2.yaml"])
+def test_case_files_survive_write_and_load(tmp_path, case):
+    system = load_case(ROOT / "cases" / case)
+    again = load_case(write_case(system, tmp_path / case))
+    assert _comparable(again) == _comparable(system)
+    assert again.analyses == system.analyses
