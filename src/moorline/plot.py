@@ -493,3 +493,51 @@ def plot_snapshots(dataset: xr.Dataset, path: str | Path, times: list[float] | N
         ax.set_title(f"t = {time[i]:.2f} s", fontsize=9)
     fig.suptitle(_history_title(dataset, "snapshots"))
     _save(fig, Path(path))
+
+
+# ----------------------------------------------------------------------------- strumming
+
+
+def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
+                   max_modes: int = 6) -> None:
+    """Plot the lift coefficient of a few elements and the modal amplitudes against time.
+
+    Parameters
+    ----------
+    dataset
+        A strumming dataset (:meth:`moorline.solvers.strumming.StrummingResult.to_xarray`):
+        ``lift_coefficient(time, element)``, ``modal_amplitude(time, mode)``, optional
+        ``omega(mode)`` and the attribute ``CL0`` (drawn as +-C_L0).
+    path
+        PNG file to write (parent directories are created).
+    max_elements
+        Elements drawn: those with the largest peak ``|C_L|``.
+    max_modes
+        Modes drawn: those with the largest peak amplitude.
+    """
+    time = np.asarray(dataset["time"].values, dtype=float)
+    cl = np.asarray(dataset["lift_coefficient"].values, dtype=float)
+    z = np.asarray(dataset["modal_amplitude"].values, dtype=float)
+    omega = (np.asarray(dataset["omega"].values, dtype=float) if "omega" in dataset
+             else np.full(z.shape[1], np.nan))
+    fig = Figure(figsize=(9.0, 6.0), layout="constrained")
+    axes = fig.subplots(2, 1, sharex=True)
+    for e in np.argsort(-np.abs(cl).max(axis=0))[:max_elements]:
+        axes[0].plot(time, cl[:, e], linewidth=0.8, label=f"element {int(e) + 1}")
+    if "CL0" in dataset.attrs:
+        cl0 = float(dataset.attrs["CL0"])
+        for sign in (1.0, -1.0):
+            axes[0].axhline(sign * cl0, color="k", linestyle="--", linewidth=0.8,
+                            label="stationary C_L0" if sign > 0 else None)
+    axes[0].set_ylabel("lift coefficient C_L")
+    for m in np.sort(np.argsort(-np.abs(z).max(axis=0))[:max_modes]):
+        axes[1].plot(time, z[:, m], linewidth=0.8,
+                     label=f"mode {int(m) + 1} ({omega[m]:.3g} rad/s)")
+    axes[1].set_ylabel("modal amplitude z_n")
+    axes[1].set_xlabel("time [s]")
+    for ax in axes:
+        ax.grid(True, linewidth=0.3)
+        ax.legend(fontsize=7, loc="upper right")
+    axes[0].set_title(_history_title(dataset, "strumming: lift coefficient and modal "
+                                              "amplitudes"))
+    _save(fig, Path(path))

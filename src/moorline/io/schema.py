@@ -356,7 +356,7 @@ class DynamicsSpec(_Spec):
     tolerance: quantity("dimensionless", gt=0.0) = 1.0e-6
     max_iterations: PositiveInt = 20
     stiffness_update: PositiveInt = 20
-    max_step_cuts: Annotated[int, Field(ge=0, le=20)] = 6
+    max_step_cuts: Annotated[int, Field(ge=0, le=20)] = 10
     ramp_time: quantity("time", ge=0.0) = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
     fast_path: bool = True

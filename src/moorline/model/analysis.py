@@ -111,7 +111,7 @@ class DynamicsSettings:
     tolerance: float = 1.0e-6
     max_iterations: int = 20
     stiffness_update: int = 20
-    max_step_cuts: int = 6
+    max_step_cuts: int = 10
     ramp_time: float = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
     fast_path: bool = True

@@ -90,11 +90,18 @@ def simulate(
     recorder.add(state)
     n_steps = int(round(settings.duration / settings.dt))
     next_output, cuts = every, 0
+    level, calm = 0, 0  # sub-steps 2**level per output step while Newton struggles
     for k in range(1, n_steps + 1):
         target = k * settings.dt
-        state, used_cuts = _advance(stepper, excitation, state, target - state.t,
-                                    settings.max_step_cuts, mesh)
+        h = (target - state.t) / 2**level
+        used_cuts = 0
+        for i in range(2**level):
+            step = target - state.t if i == 2**level - 1 else h
+            state, used = _advance(stepper, excitation, state, step,
+                                   settings.max_step_cuts - level, mesh)
+            used_cuts += used
         cuts += used_cuts
+        level, calm = _adapt(level, calm, used_cuts, settings.max_step_cuts)
         if state.t >= next_output - 1e-9 * settings.dt or k == n_steps:
             recorder.add(state)
             next_output += every
@@ -125,6 +132,18 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     logger.info("general stepper (compiled step not used: %s)", reason or "disabled")
     return Stepper(model, coefficients, settings.variant, tolerance, settings.max_iterations,
                    settings.stiffness_update)
+
+
+def _adapt(level: int, calm: int, used_cuts: int, max_cuts: int) -> tuple[int, int]:
+    """Sub-step level for the next step: one level finer after a step that needed cuts (slack
+    snaps and touchdowns last several steps; retrying the full step each time wastes the
+    failed iterations), one level coarser after ten calm steps."""
+    if used_cuts:
+        return min(level + 1, max(max_cuts - 1, 0)), 0
+    calm += 1
+    if level and calm >= 10:
+        return level - 1, 0
+    return level, calm
 
 
 def _rayleigh(settings: DynamicsSettings) -> tuple[float, float] | None:

@@ -45,6 +45,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
+import xarray as xr
 from numpy.typing import NDArray
 
 from ..errors import MoorlineError
@@ -160,6 +161,31 @@ class StrummingResult:
     def node_displacement(self, node: int) -> FloatArray:
         """Strumming displacement history of one node (n_t, 3)."""
         return self.displacement[:, node]
+
+    def to_xarray(self) -> xr.Dataset:
+        """The histories as an :class:`xarray.Dataset`.
+
+        Returns
+        -------
+        xarray.Dataset
+            ``lift_coefficient`` (time, element), ``modal_amplitude`` (time, mode),
+            ``displacement`` (time, node, xyz: the transverse strumming displacement),
+            ``strouhal_frequency`` and ``normal_speed`` (time, element), ``omega`` and
+            ``damping_ratio`` (mode); attribute ``CL0``.
+        """
+        return xr.Dataset(
+            {"lift_coefficient": (("time", "element"), self.lift_coefficient),
+             "modal_amplitude": (("time", "mode"), self.modal_amplitude),
+             "displacement": (("time", "node", "xyz"), self.displacement),
+             "strouhal_frequency": (("time", "element"), self.strouhal_frequency),
+             "normal_speed": (("time", "element"), self.normal_speed),
+             "omega": (("mode",), self.omega),
+             "damping_ratio": (("mode",), self.damping_ratio)},
+            coords={"time": self.time, "element": np.arange(self.mesh.n_elements),
+                    "node": np.arange(self.mesh.n_nodes),
+                    "mode": np.arange(len(self.omega)), "xyz": ["x", "y", "z"]},
+            attrs={"kind": "strumming", "CL0": self.settings.CL0,
+                   "strouhal": self.settings.strouhal})
 
 
 @dataclass

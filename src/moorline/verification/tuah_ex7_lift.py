@@ -50,6 +50,19 @@ What is checked
 * The lift coefficient against the stationary-cylinder ``C_L0``: the largest ``|C_L|`` of
   the shedding elements over ``C_L0`` (the source: it grows above the stationary one), and
   the rms ``C_L`` over ``C_L0 / sqrt(2)``.
+
+Results (30 s run, window 9-30 s, resolution 0.30 rad/s)
+--------------------------------------------------------
+* Fast part: the fairlead sway's fast peak is at 24.3 rad/s, at the coupled mode of
+  24.5 rad/s (lock-in), against the weighted shedding frequency 25.5 rad/s (which sweeps with
+  a standard deviation of 9.3 rad/s over the wave cycle). With the signed ``U_T'`` the fast
+  peak is at 14.2 rad/s (the 14.3 rad/s modes), outside that band.
+* Slow part: NOT reproduced. The strumming sway of the fairlead (up to 0.32 ft) is dominated
+  by the coupled system's slow modes (the disc's sway at 0.079 rad/s, the legs' pendulum modes
+  at 0.24-0.71 rad/s), excited by the slow content of the lift while ``w_s`` sweeps through
+  zero at the flow reversals; the spectrum has no peak at the wave frequency. That row fails.
+* Lift: ``|C_L|`` reaches 4.0 ``C_L0`` (rms 1.5 times the stationary rms): above the
+  stationary lift, as the source says.
 """
 
 from __future__ import annotations
@@ -84,7 +97,7 @@ STROUHAL = wake.DEFAULT_STROUHAL
 SUBSTEPS = 10  # RK4 steps per in-line step: 0.001 s at dt 0.01 s (the source's)
 MIN_REYNOLDS = 40.0  # no vortex shedding below
 DURATION, FAST_DURATION = 30.0, 21.0  # s
-FAST_BAND = 6.0  # rad/s: the sway spectrum's fast peak is sought above, the slow one below
+FAST_BAND = 10.0  # rad/s: the sway spectrum's fast peak is sought above, the slow one below
 FAIRLEAD_NODE = 0
 
 
