@@ -1,0 +1,147 @@
+"""The JSON summaries of analyses (``--json`` output and ``summary.json``): plain dicts built
+from result objects and datasets, in the case's units."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["dynamics_summary", "modal_summary", "statics_summary"]
+
+
+def statics_summary(result: Any, with_stiffness: bool = True) -> dict[str, Any]:
+    """The ``--json`` object of a static result.
+
+    Parameters
+    ----------
+    result
+        A :class:`~moorline.results.StaticResult`.
+    with_stiffness
+        Add the 3x3 restoring stiffness of free and prescribed points (only computed when the
+        result converged: away from equilibrium it means nothing).
+
+    Returns
+    -------
+    dict
+        ``{"case", "converged", "iterations", "units", "method", "message",
+        "lines": {id: {"end_a": {"force", "tension"}, "end_b": ..., "max_tension",
+        "seabed_length"}}, "points": {id: {"kind", "position", "stiffness"?}}}``; forces are
+        those the line exerts on its end points, in the case's units.
+    """
+    mesh = result.mesh
+    lines: dict[str, Any] = {}
+    for name in mesh.line_names:
+        entry: dict[str, Any] = {}
+        for end in ("a", "b"):
+            force = np.asarray(result.end_force(name, end), dtype=float)
+            entry[f"end_{end}"] = {"force": (force + 0.0).tolist(),  # no -0.0
+                                   "tension": float(np.linalg.norm(force))}
+        # the largest tension is often at an end (the fairlead), not at an element midpoint
+        ends = [entry["end_a"]["tension"], entry["end_b"]["tension"]]
+        entry["max_tension"] = float(np.nanmax([*result.line_tension(name), *ends]))
+        entry["seabed_length"] = float(result.seabed_length(name))
+        lines[name] = entry
+    points: dict[str, Any] = {}
+    for name, kind in zip(mesh.point_names, mesh.point_kind, strict=True):
+        point: dict[str, Any] = {"kind": kind,
+                                 "position": np.asarray(result.point_position(name)).tolist()}
+        if with_stiffness and result.success and kind in ("free", "prescribed"):
+            from .solvers import stiffness
+
+            point["stiffness"] = np.asarray(stiffness.point_stiffness(result, name)).tolist()
+        points[name] = point
+    summary = {
+        "case": result.case, "converged": bool(result.success),
+        "iterations": int(result.iterations), "units": result.units, "method": result.method,
+        "message": result.message, "lines": lines, "points": points,
+    }
+    if mesh.body_names:
+        summary["bodies"] = _bodies_summary(result, with_stiffness)
+    return summary
+
+
+def _bodies_summary(result: Any, with_stiffness: bool) -> dict[str, Any]:
+    """Pose of every body and, at a converged equilibrium, its 6x6 mooring stiffness (lines
+    only) about its origin."""
+    from .solvers import stiffness
+
+    mesh = result.mesh
+    out: dict[str, Any] = {}
+    for b, name in enumerate(mesh.body_names):
+        entry: dict[str, Any] = {
+            "position": result.body_position(name).tolist(),
+            "rotation_deg": np.degrees(result.body_rotation(name)).tolist()}
+        attached = [mesh.point_names[int(n)] for n, k in zip(mesh.slave_node, mesh.slave_body,
+                                                              strict=True) if k == b]
+        if with_stiffness and result.success and attached:
+            entry["mooring_stiffness"] = np.asarray(stiffness.group_stiffness(
+                result, attached, result.body_position(name))).tolist()
+        out[name] = entry
+    return out
+
+
+def dynamics_summary(ds: Any, settings: Any, success: bool, message: str,
+                     counters: dict[str, int]) -> dict[str, Any]:
+    """The ``--json`` object of a dynamics analysis, from its histories.
+
+    Parameters
+    ----------
+    ds
+        The dynamics group read back (or :meth:`~moorline.results.DynamicResult.to_xarray`):
+        ``time``, ``end_force(time, line, end, xyz)``, ``position(time, node, xyz)``,
+        ``point_node`` and the coordinate ``point_kind``.
+    settings
+        The :class:`~moorline.model.DynamicsSettings`.
+    success, message
+        How the run ended.
+    counters
+        Solver counters (``steps``, ``iterations``, ``factorizations``, ``step_cuts``, ...);
+        empty when the run failed.
+
+    Returns
+    -------
+    dict
+        ``{"converged", "message", "duration", "dt", "records", "time_start", "time_end",
+        "lines": {id: {"end_a": {"max", "min", "mean", "std"}, "end_b": ...}},
+        "points": {id: {"kind", "min": [x, y, z], "max": [x, y, z]}}, "counters"}``;
+        statistics over the output records, in the case's units.
+    """
+    time = np.asarray(ds["time"].values, dtype=float)
+    tension = np.linalg.norm(np.asarray(ds["end_force"].values, dtype=float), axis=-1)
+    lines = {str(name): {f"end_{end}": _stats(tension[:, k, j]) for j, end in enumerate("ab")}
+             for k, name in enumerate(ds["line"].values)}
+    position = np.asarray(ds["position"].values, dtype=float)
+    kinds = ds["point_kind"].values if "point_kind" in ds.coords else [""] * ds.sizes["point"]
+    points = {}
+    for name, kind, node in zip(ds["point"].values, kinds, ds["point_node"].values,
+                                strict=True):
+        path = position[:, int(node)]
+        empty = np.full(3, np.nan)
+        points[str(name)] = {"kind": str(kind),
+                             "min": (path.min(axis=0) if len(path) else empty).tolist(),
+                             "max": (path.max(axis=0) if len(path) else empty).tolist()}
+    return {"converged": bool(success), "message": message,
+            "duration": float(settings.duration), "dt": float(settings.dt),
+            "records": int(len(time)),
+            "time_start": float(time[0]) if len(time) else None,
+            "time_end": float(time[-1]) if len(time) else None,
+            "lines": lines, "points": points, "counters": counters}
+
+
+def _stats(values: np.ndarray) -> dict[str, float]:
+    if not len(values):
+        return dict.fromkeys(("max", "min", "mean", "std"), math.nan)
+    return {"max": float(values.max()), "min": float(values.min()),
+            "mean": float(values.mean()), "std": float(values.std())}
+
+
+def modal_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of a modal result (:class:`~moorline.results.ModalResult`):
+    ``{"case", "modes": [{"index", "omega", "period", "dominant"}]}``, ``index`` numbering
+    the modes from 1 in increasing frequency, ``omega`` in rad/s, ``period`` in s."""
+    modes = [{"index": k + 1, "omega": float(result.omega[k]),
+              "period": float(result.period[k]), "dominant": str(result.dominant[k])}
+             for k in range(result.n_modes)]
+    return {"case": result.case, "modes": modes}
