@@ -142,21 +142,7 @@ def modal_matrices(mesh: Mesh, x: FloatArray,
     model = StaticModel(mesh)
     K = model.tangent(x)
     K = ((K + K.T) * 0.5).tocsr()
-    eye = np.eye(3)
-    point_mass = mesh.node_mass.copy()
-    el_blocks = None
-    if settings.mass == "consistent":
-        el_blocks = element.consistent_mass_blocks(mesh.length0, mesh.mass_per_length)
-    else:
-        point_mass += element.lumped_mass(mesh.elements, mesh.length0, mesh.mass_per_length,
-                                          mesh.n_nodes)
-    rho = mesh.water_density
-    if settings.added_mass and rho > 0:
-        added = hydro.added_mass_blocks(x, mesh.elements, mesh.length0, mesh.diameter, mesh.Ca,
-                                        mesh.Cat, rho)
-        el_blocks = added if el_blocks is None else el_blocks + added
-        point_mass += rho * mesh.node_Ca * mesh.node_volume
-    M = model.pattern.assemble(el_blocks, point_mass[:, None, None] * eye)
+    M = _line_mass(mesh, x, settings, model.pattern)
     return K, M
 
 
