@@ -312,7 +312,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
                 plot_body_motion(ds, files[-1])
                 files.append(context.directory / f"{prefix}snapshots_3d.png")
                 plot_snapshots(ds, files[-1])
-    return Outcome("dynamics", success, message, summary, files)
+    return Outcome("dynamics", success, message, summary, files,
+                   result if success else None)
 
 
 @contextmanager
@@ -387,11 +388,46 @@ def run_modal(settings: Any, context: RunContext, label: str) -> Outcome:
     return Outcome("modal", bool(result.success), result.message, summary, [path], result)
 
 
+def run_strumming(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Strumming by wake oscillators and mode superposition on the run's preceding dynamics
+    (or static) state: group ``label`` of the results file and ``strumming.png``."""
+    from dataclasses import asdict
+
+    from .io.writers import write_group
+    from .plot import plot_strumming
+    from .solvers.statics import solve_statics
+    from .solvers.strumming import StrummingSettings, solve_strumming
+
+    system = context.system
+    previous = context.latest("dynamics") or context.latest("statics")
+    inline = previous.result if previous is not None and previous.success else None
+    if inline is None:
+        inline = solve_statics(system)
+    values = {k: v for k, v in asdict(settings).items() if k != "kind"}
+    path = context.directory / f"{_prefix(label, 'strumming')}strumming.png"
+    with _status(f"strumming of {system.name} ...", context.quiet) as update:
+        try:
+            result = solve_strumming(system, StrummingSettings(**values), inline)
+        except MoorlineError as exc:
+            return Outcome("strumming", False, str(exc), {"converged": False,
+                                                          "message": str(exc)})
+        update("writing results ...")
+        ds = result.to_xarray()
+        write_group(ds, context.results, label)
+        plot_strumming(ds, path)
+    summary = {"converged": True, "message": f"{len(result.time)} steps",
+               "max_lift_coefficient": float(abs(result.lift_coefficient).max()),
+               "max_displacement": float(abs(result.displacement).max()),
+               "modes": [float(w) for w in result.omega]}
+    return Outcome("strumming", True, summary["message"], summary, [path], result)
+
+
 #: Runner of each analysis kind a case may list: (settings, context, label) -> Outcome.
 RUNNERS: dict[str, Callable[[Any, RunContext, str], Outcome]] = {
     "statics": run_statics,
     "dynamics": run_dynamics,
     "modal": run_modal,
+    "strumming": run_strumming,
 }
 
 

@@ -33,6 +33,7 @@ from moorline.model import (
     Point,
     Seabed,
     StaticsSettings,
+    StrummingAnalysis,
     System,
     WaveExcitation,
     Waves,
@@ -46,6 +47,7 @@ from .schema import (
     MotionSpec,
     PointSpec,
     StaticsSpec,
+    StrummingSpec,
     describe_errors,
 )
 from .units import default_value
@@ -547,6 +549,14 @@ def _header_rows(path: Path) -> int:
     return 0
 
 
+def _strumming(spec: StrummingSpec, units: str) -> StrummingAnalysis:
+    values = spec.model_dump()
+    if values["viscosity"] is None:
+        values["viscosity"] = default_value("viscosity", units)
+    return StrummingAnalysis(**values)
+
+
 _ANALYSES: dict[type[BaseModel], Callable[[Any, str], Any]] = {
-    StaticsSpec: _statics, DynamicsSpec: _dynamics, ModalSpec: _modal}
+    StaticsSpec: _statics, DynamicsSpec: _dynamics, ModalSpec: _modal,
+    StrummingSpec: _strumming}
 """How each analysis spec becomes its settings object; extend with new analysis kinds."""

@@ -383,8 +383,24 @@ class ModalSpec(_Spec):
     added_mass: bool = True
 
 
+class StrummingSpec(_Spec):
+    """``analyses[i]`` with ``kind: strumming`` (see :class:`moorline.model.StrummingAnalysis`)."""
+
+    kind: Literal["strumming"]
+    viscosity: quantity("area/time", gt=0.0) | None = None
+    strouhal: quantity("dimensionless", gt=0.0) = 0.2
+    CL0: quantity("dimensionless", gt=0.0) = 0.2
+    n_modes: PositiveInt = 6
+    substeps: PositiveInt = 1
+    refresh_every: Annotated[int, Field(ge=0)] = 0
+    duration: quantity("time", gt=0.0) = 10.0
+    dt: quantity("time", gt=0.0) = 0.001
+    transverse_velocity: Literal["signed", "magnitude"] = "signed"
+
+
 # Add new analyses as further members of this union.
-AnalysisSpec = Annotated[Union[StaticsSpec, DynamicsSpec, ModalSpec],  # noqa: UP007
+AnalysisSpec = Annotated[Union[StaticsSpec, DynamicsSpec, ModalSpec,  # noqa: UP007
+                               StrummingSpec],
                          Field(discriminator="kind")]
 
 

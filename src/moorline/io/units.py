@@ -77,6 +77,7 @@ DIMENSIONS: dict[str, Dimension] = {
     "mass/length": Dimension("mass per length", "kg/m", "slug/ft"),
     "mass/length^3": Dimension("mass density", "kg/m**3", "slug/ft**3"),
     "force/length^3": Dimension("force per length^3", "N/m**3", "lbf/ft**3"),
+    "area/time": Dimension("kinematic viscosity", "m**2/s", "ft**2/s"),
     "force*time": Dimension("force*time", "N*s", "lbf*s"),
     "force*time/length": Dimension("force*time per length", "N*s/m", "lbf*s/ft"),
     "force*time/length^3": Dimension("force*time per length^3", "N*s/m**3", "lbf*s/ft**3"),
@@ -92,6 +93,7 @@ DEFAULTS: dict[str, tuple[float, str]] = {
     "pseudo_dt": (1.0, "s"),
     "output_every": (0.1, "s"),
     "slip_velocity": (0.01, "m/s"),
+    "viscosity": (1.0e-6, "m**2/s"),
 }
 """Defaults of dimensional quantities as physical values; converted to the case's system."""
 

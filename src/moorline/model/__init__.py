@@ -9,6 +9,7 @@ from .analysis import (
     OutputSettings,
     StaticMethod,
     StaticsSettings,
+    StrummingAnalysis,
 )
 from .body import Body, Hydrostatics, WaveExcitation
 from .components import Line, LineType, Motion, Point, PointKind
@@ -34,6 +35,7 @@ __all__ = [
     "Seabed",
     "StaticMethod",
     "StaticsSettings",
+    "StrummingAnalysis",
     "System",
     "UnitSystem",
     "WaveExcitation",

@@ -146,3 +146,22 @@ class ModalSettings:
     band: tuple[float, float] | None = None
     mass: ModalMass = "lumped"
     added_mass: bool = True
+
+
+@dataclass(frozen=True)
+class StrummingAnalysis:
+    """Strumming (vortex-induced vibration) settings of a case (Tuah 1982 sec. 3.2.b): see
+    :class:`moorline.solvers.strumming.StrummingSettings` for the meaning of each field. The
+    in-line state is the run's preceding dynamics result when there is one, else its static
+    state held for ``duration`` (a steady current)."""
+
+    kind: Literal["strumming"] = "strumming"
+    viscosity: float = 1.0e-6
+    strouhal: float = 0.2
+    CL0: float = 0.2
+    n_modes: int = 6
+    substeps: int = 1
+    refresh_every: int = 0
+    duration: float = 10.0
+    dt: float = 0.001
+    transverse_velocity: Literal["signed", "magnitude"] = "signed"

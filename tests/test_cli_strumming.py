@@ -1,0 +1,33 @@
+"""`kind: strumming` in a case file runs through `moorline run` after the in-line dynamics:
+the results file gets a strumming group (lift coefficients, modal amplitudes) and a plot."""
+
+from dataclasses import replace
+
+import numpy as np
+import xarray as xr
+from click.testing import CliRunner
+
+from moorline.cli import cli
+from moorline.io import load_case
+from moorline.io.case_writer import write_case
+from moorline.model import DynamicsSettings, OutputSettings, StaticsSettings, StrummingAnalysis
+from moorline.verification.tuah_ex6 import ex6_system
+
+
+def test_strumming_analysis_runs_from_a_case_file(tmp_path):
+    system = ex6_system(gravity=32.174)
+    analyses = (StaticsSettings(start="straight"),
+                DynamicsSettings(duration=2.0, dt=0.005, tolerance=1e-8),
+                StrummingAnalysis(viscosity=1.13e-5, strouhal=0.18, n_modes=4))
+    system = replace(system, analyses=analyses, output=OutputSettings(every=0.005))
+    path = write_case(system, tmp_path / "ex6.yaml")
+    assert load_case(path).analyses[2] == analyses[2]
+    result = CliRunner().invoke(cli, ["run", str(path), "--out", str(tmp_path / "out"),
+                                      "--quiet"])
+    assert result.exit_code == 0, result.output
+    folder = tmp_path / "out" / system.name
+    assert (folder / "strumming.png").is_file()
+    with xr.open_dataset(folder / "results.nc", group="strumming") as ds:
+        cl = ds["lift_coefficient"].values
+        assert cl.shape[1] == 4 and np.isfinite(cl).all()
+        assert np.abs(cl).max() > 0.1  # shedding established (C_L0 = 0.2)
