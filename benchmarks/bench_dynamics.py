@@ -55,20 +55,18 @@ Without the ``moordyn`` package (``pip install -e .[compare]``) only moorline is
 from __future__ import annotations
 
 import argparse
-import contextlib
 import dataclasses
 import json
 import math
-import os
 import sys
 import time
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from moorline.compare.moordyn_runner import silenced_fd
 from moorline.errors import ConvergenceError
 from moorline.model import DynamicsSettings
 from moorline.solvers.dynamics import simulate
@@ -219,21 +217,6 @@ def moordyn_version() -> str:
         return "unknown"
 
 
-@contextlib.contextmanager
-def silenced_stderr() -> Iterator[None]:
-    """Send file descriptor 2 to /dev/null (MoorDyn reports errors there from C++)."""
-    sys.stderr.flush()
-    saved = os.dup(2)
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    try:
-        os.dup2(devnull, 2)
-        yield
-    finally:
-        os.dup2(saved, 2)
-        os.close(saved)
-        os.close(devnull)
-
-
 class StableSteps:
     """MoorDyn's largest stable step per segment count, cached in a JSON file."""
 
@@ -271,7 +254,7 @@ class StableSteps:
         print(f"  searching MoorDyn's largest stable step at {segments} segments "
               "(cached afterwards) ...", flush=True)
         tic = time.perf_counter()
-        with silenced_stderr():  # the unstable trials make MoorDyn print NaN errors
+        with silenced_fd(2):  # the unstable trials make MoorDyn print NaN errors
             found = largest_stable_dt(oc3_three_lines(segments, BA=self.ba))
         seconds = time.perf_counter() - tic
         dt = found["dt"]

@@ -79,23 +79,26 @@ def _import_moordyn() -> Any:
 
 
 @contextlib.contextmanager
-def _silenced_stdout(active: bool) -> Iterator[None]:
-    """Send the process's file descriptor 1 to /dev/null (MoorDyn writes there from C++)."""
+def silenced_fd(fd: int, active: bool = True) -> Iterator[None]:
+    """Send a file descriptor of the process (1: stdout, 2: stderr) to /dev/null while the
+    block runs (MoorDyn writes banners and errors there from C++)."""
+    stream = {1: sys.stdout, 2: sys.stderr}.get(fd)
     if not active:
         yield
         return
     try:
-        sys.stdout.flush()
-        saved = os.dup(1)
+        if stream is not None:
+            stream.flush()
+        saved = os.dup(fd)
     except (OSError, ValueError, AttributeError):
         yield
         return
     devnull = os.open(os.devnull, os.O_WRONLY)
     try:
-        os.dup2(devnull, 1)
+        os.dup2(devnull, fd)
         yield
     finally:
-        os.dup2(saved, 1)
+        os.dup2(saved, fd)
         os.close(saved)
         os.close(devnull)
 
@@ -249,7 +252,7 @@ def run_moordyn(system: System, duration: float, dt: float, output_every: float,
 def _simulate(moordyn: Any, system: System, deck: Path, coupled: list[_Coupled],
               n_couple: int, stride: int, h: float, quiet: bool) -> dict[str, Any]:
     start = time.perf_counter()
-    with _silenced_stdout(quiet):
+    with silenced_fd(1, quiet):
         md = moordyn.Create(str(deck))
         try:
             if quiet:
