@@ -194,7 +194,9 @@ def test_failed_solve_exits_1_with_message(tmp_path: Path) -> None:
 
 
 def test_verify_json_is_a_list_of_rows() -> None:
-    result = _invoke("verify", "--json", "--quiet")
+    # two quick cases: the slow ones run in `make verify` (tests/test_verification.py)
+    result = _invoke("verify", "--case", "tuah-ex1", "--case", "modes-string", "--json",
+                     "--quiet")
     rows = json.loads(result.stdout)
     assert isinstance(rows, list)
     keys = {"case", "quantity", "reference", "computed", "tolerance", "passed"}

@@ -31,3 +31,26 @@ def test_strumming_analysis_runs_from_a_case_file(tmp_path):
         cl = ds["lift_coefficient"].values
         assert cl.shape[1] == 4 and np.isfinite(cl).all()
         assert np.abs(cl).max() > 0.1  # shedding established (C_L0 = 0.2)
+
+
+def test_strumming_options_round_trip_through_a_case_file(tmp_path):
+    system = ex6_system(gravity=32.174)
+    strumming = StrummingAnalysis(viscosity=1.13e-5, n_modes=0, refresh_every=1,
+                                  min_reynolds=40.0, nonpositive_modes="keep",
+                                  drag_damping=True, taut_axial=True,
+                                  held_body_dofs=("yaw", "roll"))
+    system = replace(system, analyses=(StaticsSettings(start="straight"), strumming))
+    path = write_case(system, tmp_path / "ex6.yaml")
+    assert load_case(path).analyses[1] == strumming
+
+
+def test_bad_held_body_dof_names_the_field(tmp_path):
+    path = tmp_path / "bad.yaml"
+    strumming = StrummingAnalysis(viscosity=1e-5, held_body_dofs=("yaw",))
+    system = replace(ex6_system(gravity=32.174), analyses=(StaticsSettings(), strumming))
+    text = write_case(system, path).read_text()
+    assert text.count("yaw") == 1
+    path.write_text(text.replace("yaw", "twist"))
+    result = CliRunner().invoke(cli, ["statics", str(path), "--out", str(tmp_path / "o")])
+    assert result.exit_code == 2
+    assert "held_body_dofs" in result.output and "bad.yaml" in result.output

@@ -198,3 +198,92 @@ def test_tuah_ex6_rows_pass():
     assert len(rows) == 5
     failed = [r for r in rows if not r.passed]
     assert not failed, "\n".join(f"{r.quantity}: {r.reference} vs {r.computed}" for r in failed)
+
+
+def test_taut_axial_tangent_of_a_slack_element():
+    """``taut_axial``: a slack element keeps EA / L0 along its axis and no geometric part; a
+    taut one is unchanged."""
+    from moorline.physics import element
+    from moorline.solvers.equilibrium import StaticModel
+
+    system = tuah_ex6.ex6_system()
+    statics = solve_statics(system)
+    mesh = statics.mesh
+    x = statics.positions.copy()
+    model = StaticModel(mesh)
+    assert np.allclose(model.tangent(x, taut_axial=True).toarray(),
+                       model.tangent(x).toarray())  # all taut at the pretension
+    # shorten the string: every element slack
+    x_slack = x[0] + 0.9 * (x - x[0])
+    length, unit = element.element_geometry(x_slack, mesh.elements)
+    expected = element.tangent_blocks(length, unit, np.zeros(mesh.n_elements),
+                                      mesh.EA / mesh.length0)
+    K = model.tangent(x_slack, pattern=None, taut_axial=True).toarray()
+    assert np.allclose(K, model.pattern.assemble(expected).toarray())
+    assert np.abs(model.tangent(x_slack).toarray()).max() < 1e-4 * np.abs(K).max()
+
+
+def test_slack_state_needs_nonpositive_modes_keep():
+    system = tuah_ex6.ex6_system()
+    statics = solve_statics(system)
+    from dataclasses import replace
+
+    x = statics.positions[0] + 0.9 * (statics.positions - statics.positions[0])
+    slack = replace(statics, positions=x)
+    settings = StrummingSettings(viscosity=1.13e-5, strouhal=0.18, duration=0.05, dt=0.001)
+    with pytest.raises(MoorlineError, match="nonpositive_modes"):
+        solve_strumming(system, settings, slack)
+    r = solve_strumming(system, replace(settings, nonpositive_modes="keep", n_modes=0), slack)
+    assert np.all(np.isfinite(r.displacement)) and np.any(r.omega <= 0)
+
+
+def test_modal_drag_damping_is_the_drag_jacobian():
+    """``drag_damping``: phi^T (-dF_drag/dv) phi against central differences of the Morison
+    drag along the modes; it adds damping to the strumming."""
+    from moorline.physics import hydro
+    from moorline.solvers.strumming import _ModeSource
+
+    system = tuah_ex6.ex6_system()
+    statics = solve_statics(system)
+    mesh, x = statics.mesh, statics.positions
+    settings = StrummingSettings(viscosity=1.13e-5, strouhal=0.18, n_modes=4)
+    source = _ModeSource(system, mesh, settings, float(mesh.water_density))
+    modes = source.at(x, np.zeros((0, 6)), 0.0)
+    rng = np.random.default_rng(1)
+    v = 0.01 * rng.standard_normal(x.shape)
+    v[~mesh.free_nodes] = 0.0
+    flow = np.array([0.0, tuah_ex6.SPEED, 0.0])
+    C = source.drag_damping(x, v, flow, modes.phi)
+
+    def modal_force(q):
+        u = v + np.einsum("m,mnc->nc", q, modes.shapes)
+        f, _, _ = hydro.drag_forces(x, u, flow, mesh.elements, mesh.length0, mesh.diameter,
+                                    mesh.Cd, mesh.Ct, float(mesh.water_density))
+        nodal = hydro.sum_to_nodes(f, mesh.elements, mesh.n_nodes)
+        return np.einsum("mnc,nc->m", modes.shapes, nodal)
+
+    h = 1e-6
+    fd = np.column_stack([-(modal_force(h * e) - modal_force(-h * e)) / (2 * h)
+                          for e in np.eye(len(modes.omega))])
+    assert np.allclose(C, fd, rtol=1e-6, atol=1e-8 * np.abs(fd).max())
+    plain = _steady(duration=2.0)
+    damped = _steady(duration=2.0, drag_damping=True)
+    assert np.abs(damped.displacement).max() < 0.9 * np.abs(plain.displacement).max()
+
+
+def test_held_body_dofs():
+    from moorline.verification import tuah_ex7
+
+    system, static = tuah_ex7.static_state()
+    settings = StrummingSettings(viscosity=1.13e-5, n_modes=0, duration=0.02, dt=0.01,
+                                 nonpositive_modes="keep", min_reynolds=40.0)
+    from dataclasses import replace
+
+    free = solve_strumming(system, settings, static)
+    held = solve_strumming(system, replace(settings, held_body_dofs=("yaw",)), static)
+    assert len(free.omega) == 24 and len(held.omega) == 23
+    # the yaw mode (no stiffness but the statics regularization: the legs meet on the
+    # disc's axis) is the one removed
+    assert np.sum(np.abs(free.omega) < 0.05) == 1 and np.all(np.abs(held.omega) > 0.05)
+    with pytest.raises(MoorlineError, match="held_body_dofs"):
+        solve_strumming(system, replace(settings, held_body_dofs=("twist",)), static)

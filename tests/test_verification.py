@@ -6,7 +6,7 @@ import pytest
 
 from moorline.verification import CASES, run_cases
 
-SLOW = {"wang-w2", "wang-w3", "tuah-ex5", "tuah-ex7", "tuah-ex6"}
+SLOW = {"wang-w2", "wang-w3", "tuah-ex5", "tuah-ex7", "tuah-ex6", "tuah-ex7-lift"}
 
 
 @pytest.mark.parametrize(

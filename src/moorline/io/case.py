@@ -553,6 +553,7 @@ def _strumming(spec: StrummingSpec, units: str) -> StrummingAnalysis:
     values = spec.model_dump()
     if values["viscosity"] is None:
         values["viscosity"] = default_value("viscosity", units)
+    values["held_body_dofs"] = tuple(values["held_body_dofs"])
     return StrummingAnalysis(**values)
 
 

@@ -390,12 +390,17 @@ class StrummingSpec(_Spec):
     viscosity: quantity("area/time", gt=0.0) | None = None
     strouhal: quantity("dimensionless", gt=0.0) = 0.2
     CL0: quantity("dimensionless", gt=0.0) = 0.2
-    n_modes: PositiveInt = 6
+    n_modes: Annotated[int, Field(ge=0)] = 6
     substeps: PositiveInt = 1
     refresh_every: Annotated[int, Field(ge=0)] = 0
     duration: quantity("time", gt=0.0) = 10.0
     dt: quantity("time", gt=0.0) = 0.001
     transverse_velocity: Literal["signed", "magnitude"] = "signed"
+    min_reynolds: quantity("dimensionless", ge=0.0) = 0.0
+    nonpositive_modes: Literal["error", "keep"] = "error"
+    drag_damping: bool = False
+    taut_axial: bool = False
+    held_body_dofs: list[Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]] = []
 
 
 # Add new analyses as further members of this union.

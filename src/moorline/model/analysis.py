@@ -165,3 +165,8 @@ class StrummingAnalysis:
     duration: float = 10.0
     dt: float = 0.001
     transverse_velocity: Literal["signed", "magnitude"] = "signed"
+    min_reynolds: float = 0.0
+    nonpositive_modes: Literal["error", "keep"] = "error"
+    drag_damping: bool = False
+    taut_axial: bool = False
+    held_body_dofs: tuple[str, ...] = ()

@@ -49,11 +49,13 @@ class CoupledStatics:
             out[self.body_dof[b]: self.body_dof[b] + 6] = generalized
         return out, state
 
-    def tangent(self, x: FloatArray, poses: Poses, state: ForceState):
-        """Exact tangent ``-d(residual)/d(unknowns)`` (CSC)."""
+    def tangent(self, x: FloatArray, poses: Poses, state: ForceState,
+                taut_axial: bool = False):
+        """Exact tangent ``-d(residual)/d(unknowns)`` (CSC); ``taut_axial``: see
+        :meth:`moorline.solvers.equilibrium.StaticModel.tangent`."""
         arms = world_arms(self.mesh, poses)
         P = transformation(self.mesh, self.ext_dofs, self.n_free, self.body_dof, arms)
-        K = (P.T @ self.model.tangent(x, self.pattern) @ P).tolil()
+        K = (P.T @ self.model.tangent(x, self.pattern, taut_axial) @ P).tolil()
         for b, body in enumerate(self.bodies):
             d = self.body_dof[b]
             if d < 0:

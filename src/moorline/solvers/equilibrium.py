@@ -63,12 +63,20 @@ class StaticModel:
         state = self.forces(x, lam)
         return gather_free(state.nodal, self.mesh.dof_of_node), state
 
-    def tangent(self, x: FloatArray, pattern: BlockPattern | None = None) -> sp.csr_matrix:
-        """Exact tangent ``-dR/dx`` assembled over ``pattern`` (default: the free dofs)."""
+    def tangent(self, x: FloatArray, pattern: BlockPattern | None = None,
+                taut_axial: bool = False) -> sp.csr_matrix:
+        """Exact tangent ``-dR/dx`` assembled over ``pattern`` (default: the free dofs).
+
+        With ``taut_axial`` every element gets the taut axial stiffness ``EA / L0`` and the
+        geometric stiffness of ``max(T, 0)``, slack ones included: the stiffness against
+        perturbations that do not change which elements are slack (strumming modes).
+        """
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
         tension, dT = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
                                                 m.slack_smoothing)
+        if taut_axial:
+            tension, dT = np.maximum(tension, 0.0), m.EA / m.length0
         blocks = element.tangent_blocks(length, unit, tension, dT)
         node_blocks = None
         if np.isfinite(m.seabed_z):

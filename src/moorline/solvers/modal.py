@@ -66,7 +66,7 @@ def solve_modes(
     Parameters
     ----------
     system
-        The problem (lines and points; systems with bodies are not supported yet).
+        The problem (lines, points and rigid bodies).
     settings
         Number of modes or frequency band, mass model, added mass; default: the first modal
         analysis of the system, else :class:`~moorline.model.ModalSettings` defaults.
@@ -84,7 +84,7 @@ def solve_modes(
     ConvergenceError
         When the statics did not converge (there is no equilibrium to linearize about).
     MoorlineError
-        When the model has no free dof, a free dof without mass, or bodies.
+        When the model has no free dof or a free dof without mass.
 
     Notes
     -----
@@ -121,8 +121,8 @@ def _default_settings(system: System) -> ModalSettings:
     return ModalSettings()
 
 
-def modal_matrices(mesh: Mesh, x: FloatArray,
-                   settings: ModalSettings) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+def modal_matrices(mesh: Mesh, x: FloatArray, settings: ModalSettings,
+                   taut_axial: bool = False) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """Stiffness and mass matrices over the free dofs at positions ``x``.
 
     Parameters
@@ -133,6 +133,9 @@ def modal_matrices(mesh: Mesh, x: FloatArray,
         Node positions of the equilibrium (n_nodes, 3).
     settings
         Mass model (``lumped``/``consistent``) and whether to add the added mass.
+    taut_axial
+        Taut axial stiffness in slack elements too
+        (:meth:`~moorline.solvers.equilibrium.StaticModel.tangent`).
 
     Returns
     -------
@@ -140,7 +143,7 @@ def modal_matrices(mesh: Mesh, x: FloatArray,
         Symmetric CSR matrices (n_dofs, n_dofs).
     """
     model = StaticModel(mesh)
-    K = model.tangent(x)
+    K = model.tangent(x, taut_axial=taut_axial)
     K = ((K + K.T) * 0.5).tocsr()
     M = _line_mass(mesh, x, settings, model.pattern)
     return K, M
@@ -306,26 +309,55 @@ def _result(system: System, statics: StaticResult, settings: ModalSettings, lam:
 BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
-def _body_modes(system: System, statics: StaticResult, settings: ModalSettings) -> ModalResult:
-    """Modes of lines and rigid bodies together: the coupled tangent (lines and bodies, with
-    the master-slave transformation; :mod:`moorline.solvers.coupled_statics`) and the mass of
-    the lines transformed the same way plus each body's rigid-body mass and added mass. A mode
-    whose kinetic energy is mostly in a body is labelled by the body's dominant dof."""
+def body_modal_matrices(system: System, mesh: Mesh, positions: FloatArray,
+                        body_pose: FloatArray, settings: ModalSettings, problem=None,
+                        taut_axial: bool = False):
+    """Stiffness and mass of lines and rigid bodies together at a state.
+
+    The coupled tangent (lines and bodies, with the master-slave transformation of Tuah
+    (1982) eq. 3.3.6-3.3.10; :mod:`moorline.solvers.coupled_statics`) and the mass of the
+    lines transformed the same way plus each body's rigid-body mass and added mass.
+
+    Parameters
+    ----------
+    system, mesh
+        The problem and its discretization (with bodies).
+    positions
+        Node positions (n_nodes, 3).
+    body_pose
+        Body poses (n_bodies, 6): position and rotation vector.
+    settings
+        Mass model and added mass.
+    problem
+        A :class:`~moorline.solvers.coupled_statics.CoupledStatics` of ``system`` and
+        ``mesh`` to reuse (built when not given).
+    taut_axial
+        Taut axial stiffness in slack elements too
+        (:meth:`~moorline.solvers.equilibrium.StaticModel.tangent`).
+
+    Returns
+    -------
+    K, M : scipy.sparse.csr_matrix
+        Symmetric matrices over the unknowns (free line dofs, then 6 per free body).
+    P : scipy.sparse matrix
+        Map from the unknowns to the extended dofs (free line dofs, then the slave nodes).
+    problem : CoupledStatics
+        Its dof numbering (``n_free``, ``body_dof``, ``bodies``).
+    """
     from ..mesh import rotation_matrix
     from .bodies import Poses, transformation, world_arms
     from .coupled_dynamics import rigid_mass
     from .coupled_statics import CoupledStatics
 
-    mesh = statics.mesh
-    problem = CoupledStatics(system, mesh)
-    pose = statics.body_pose
-    poses = Poses(pose[:, :3].copy(), np.array([rotation_matrix(p[3:]) for p in pose]))
-    _, state = problem.residual(statics.positions, poses)
-    K = problem.tangent(statics.positions, poses, state)
+    problem = problem or CoupledStatics(system, mesh)
+    poses = Poses(body_pose[:, :3].copy(), np.array([rotation_matrix(p[3:])
+                                                     for p in body_pose]))
+    _, state = problem.residual(positions, poses)
+    K = problem.tangent(positions, poses, state, taut_axial)
     K = ((K + K.T) * 0.5).tocsr()
     P = transformation(mesh, problem.ext_dofs, problem.n_free, problem.body_dof,
                        world_arms(mesh, poses))
-    M_ext = _line_mass(mesh, statics.positions, settings, problem.pattern)
+    M_ext = _line_mass(mesh, positions, settings, problem.pattern)
     M = (P.T @ M_ext @ P).tolil()
     for b, body in enumerate(problem.bodies):
         d = problem.body_dof[b]
@@ -336,14 +368,29 @@ def _body_modes(system: System, statics: StaticResult, settings: ModalSettings) 
                 added = 0.0 * added
             M[d:d + 6, d:d + 6] = (M[d:d + 6, d:d + 6].toarray()
                                    + rigid_mass(body, poses.R[b]) + added)
-    M = M.tocsr()
-    lam, phi, solver = _eigen(K, M, settings)
-    phi = _fix_signs(phi)
+    return K, M.tocsr(), P, problem
+
+
+def body_mode_shapes(phi: FloatArray, P, problem, mesh: Mesh) -> FloatArray:
+    """Node displacements (n_modes, n_nodes, 3) of coupled modes ``phi`` (n_unknowns,
+    n_modes): the free nodes' own dofs, the slave nodes' from the bodies' rigid motion."""
     ext = P @ phi
     shapes = np.zeros((phi.shape[1], mesh.n_nodes, 3))
-    for j in range(phi.shape[1]):
-        shapes[j] = scatter_free(ext[: problem.n_free, j], mesh.dof_of_node)
-        shapes[j, mesh.slave_node] = ext[problem.n_free:, j].reshape(-1, 3)
+    free = mesh.dof_of_node >= 0
+    shapes[:, free] = ext[: problem.n_free][mesh.dof_of_node[free]].T
+    shapes[:, mesh.slave_node] = ext[problem.n_free:].T.reshape(phi.shape[1], -1, 3)
+    return shapes
+
+
+def _body_modes(system: System, statics: StaticResult, settings: ModalSettings) -> ModalResult:
+    """Modes of lines and rigid bodies together (:func:`body_modal_matrices`). A mode whose
+    kinetic energy is mostly in a body is labelled by the body's dominant dof."""
+    mesh = statics.mesh
+    K, M, P, problem = body_modal_matrices(system, mesh, statics.positions, statics.body_pose,
+                                           settings)
+    lam, phi, solver = _eigen(K, M, settings)
+    phi = _fix_signs(phi)
+    shapes = body_mode_shapes(phi, P, problem, mesh)
     energy = M.diagonal()[:, None] * phi**2
     energy /= np.maximum(energy.sum(axis=0, keepdims=True), np.finfo(float).tiny)
     share, effective = _shares(shapes, mesh, statics)

@@ -11,9 +11,11 @@ about the in-line state:
    3.2.b.4), the wake parameters ``G, H, F`` (eq. 3.2.b.5-6), the lift direction
    ``theta x V_NR`` (eq. 3.2.b.1) -- all held over the in-line step;
 3. and 4. every ``refresh_every`` in-line steps (only once when 0): mass and tangent
-   stiffness at the in-line positions (:func:`moorline.solvers.modal.modal_matrices`) and the
-   lowest ``n_modes`` natural frequencies and mass-normalized modes; the strumming state is
-   carried over by projection, ``z = Phi^T M u``, ``z' = Phi^T M u'``;
+   stiffness at the in-line state (:func:`moorline.solvers.modal.modal_matrices`; with bodies
+   those of lines and bodies together, :func:`moorline.solvers.modal.body_modal_matrices`)
+   and the lowest ``n_modes`` natural frequencies and mass-normalized modes (all when 0); the
+   strumming state is carried over by projection, ``z = Phi^T M u``, ``z' = Phi^T M u'``
+   (exact with all modes);
 5. to 8. the wake oscillators (one per element, eq. 3.2.b.3) and the modal equations
    ``z_n'' + 2 xi_n w_n z_n' + w_n^2 z_n = phi_n . F_L`` (eq. 3.2.b.7, 3.2.b.9 with
    ``phi^T M phi = 1``) are integrated together by the classical fourth-order Runge-Kutta
@@ -42,6 +44,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from dataclasses import replace as dataclass_replace
 from typing import Literal
 
 import numpy as np
@@ -51,9 +54,10 @@ from numpy.typing import NDArray
 from ..errors import MoorlineError
 from ..mesh import Mesh
 from ..model import ModalMass, ModalSettings, System
-from ..physics import wake
+from ..physics import hydro, wake
 from ..results import DynamicResult, StaticResult
-from .modal import _eigen, modal_matrices
+from .assembly import BlockPattern
+from .modal import BODY_DOFS, _eigen, body_modal_matrices, body_mode_shapes, modal_matrices
 
 FloatArray = NDArray[np.float64]
 
@@ -71,7 +75,8 @@ class StrummingSettings:
     CL0
         Lift-coefficient amplitude of the stationary cylinder.
     n_modes
-        Number of (lowest) modes superposed.
+        Number of (lowest) modes superposed; 0: all of them (a complete basis: the state is
+        carried over exactly when the modes are refreshed).
     mass, added_mass
         Mass model of the modal analysis (Tuah uses the consistent mass, eq. 3.1.12) and
         whether the added mass is included.
@@ -84,6 +89,42 @@ class StrummingSettings:
         the still cable is established, the wake on its stationary limit cycle).
     duration, dt
         Duration and in-line step when the in-line state is steady (a static result).
+    min_reynolds
+        Elements whose Reynolds number ``|V_NR| D / nu`` is below this shed no vortices:
+        their wake oscillator is held (``C_L`` frozen) and they carry no lift. Needed in
+        waves, where the flow at every element reverses twice per period and ``w_s -> 0``
+        makes the empirical ``k_s`` (eq. 3.2.b.6) diverge; a cylinder sheds no vortices below
+        ``Re ~ 40``. Default 0: every element with ``|V_NR| > 0`` sheds.
+    nonpositive_modes
+        What to do with modes of non-positive ``w^2`` at an in-line state (a slack line, a
+        mechanism such as a single-point-moored body's yaw, a linearization about a
+        non-equilibrium state that is momentarily unstable): ``error`` (default) stops;
+        ``keep`` integrates their modal equations with ``w_n^2`` as it is (``<= 0``) and the
+        damping of eq. 3.2.b.8 at ``|w_n|``.
+    drag_damping
+        Add to the modal damping of eq. 3.2.b.8 the Morison drag linearized about the
+        in-line relative velocity (the exact Jacobian ``-dF_drag/dv`` of
+        :func:`moorline.physics.hydro.drag_forces` at each in-line step, projected on the
+        modes: a full modal damping matrix). Not in the source, whose modal equations carry
+        only the viscous damping of eq. 3.2.b.8; without it a slack part of a line (no
+        stiffness) has neither restoring nor damping against the lift. Default ``False``.
+    taut_axial
+        Modes with the taut axial stiffness ``EA / L0`` in every element, slack ones
+        included (and the geometric stiffness of ``max(T, 0)``). The strumming perturbation
+        is transverse ("the transverse motion is assumed to fluctuate about the inline
+        motion", sec. 3.2.b): it does not decide which elements are slack, the in-line
+        motion does. Without it a slack element has no axial stiffness, the lift drifts the
+        slack legs along their length and every snap of the in-line motion pumps that drift
+        into the tangent's ``EA / L0``: the linearized perturbation grows without bound
+        (Tuah's Example 7 with modes refreshed). Default ``False`` (the exact tangent).
+    held_body_dofs
+        Rigid-body degrees of freedom (``surge``, ``sway``, ``heave``, ``roll``, ``pitch``,
+        ``yaw``) held fixed in the strumming modes of every body. A mechanism whose
+        linearized stiffness turns negative at the in-line states (the yaw of a disc moored
+        at one keel point: none at rest, negative when the disc is tilted and the keel swings
+        off its axis) makes the linear perturbation grow exponentially: an instability of the
+        in-line motion, not strumming; holding it keeps the analysis to the lines'
+        transverse vibration.
     transverse_velocity
         ``signed`` (default): the wake oscillator is driven by the strumming velocity along
         the lift direction, ``U_T' = e_L . u'`` (Griffin et al. 1975; this is what
@@ -104,6 +145,11 @@ class StrummingSettings:
     duration: float = 0.0
     dt: float = 0.001
     transverse_velocity: Literal["signed", "magnitude"] = "signed"
+    min_reynolds: float = 0.0
+    nonpositive_modes: Literal["error", "keep"] = "error"
+    drag_damping: bool = False
+    taut_axial: bool = False
+    held_body_dofs: tuple[str, ...] = ()
 
 
 @dataclass
@@ -190,11 +236,13 @@ class StrummingResult:
 
 @dataclass
 class _Modes:
-    omega: FloatArray        # (n_modes,)
-    phi: FloatArray          # free dofs (n_dofs, n_modes)
+    lam: FloatArray          # (n_modes,) w_n^2, signed
+    omega: FloatArray        # (n_modes,) sign(w_n^2) |w_n|
+    phi: FloatArray          # over the unknowns (n_unknowns, n_modes)
     shapes: FloatArray       # (n_modes, n_nodes, 3)
-    M: object                # mass matrix over the free dofs
-    xi: FloatArray           # (n_modes,) eq. 3.2.b.8
+    M: object                # mass matrix over the unknowns
+    xi: FloatArray           # (n_modes,) eq. 3.2.b.8 at |w_n|
+    two_xi_w: FloatArray     # (n_modes,) 2 xi_n |w_n|
 
 
 @dataclass(frozen=True)
@@ -207,7 +255,7 @@ class _Coupling:
 
     B: FloatArray            # (n_elements, n_modes)
     c: FloatArray            # (n_elements,)
-    two_xi_w: FloatArray     # (n_modes,)
+    two_xi_w: FloatArray     # (n_modes,) or a full modal damping matrix (n_modes, n_modes)
     w2: FloatArray           # (n_modes,)
     ws: FloatArray           # (n_elements,), 1 where inactive
     G: FloatArray
@@ -221,7 +269,8 @@ class _Coupling:
     def rhs(self, state: tuple[FloatArray, ...]) -> tuple[FloatArray, ...]:
         """Time derivative of ``(z, z', C_L, C_L')`` (eq. 3.2.b.3 and 3.2.b.7)."""
         z, zd, cl, cld = state
-        zdd = self.B.T @ (self.c * cl) - self.two_xi_w * zd - self.w2 * z
+        damping = (self.two_xi_w @ zd if self.two_xi_w.ndim == 2 else self.two_xi_w * zd)
+        zdd = self.B.T @ (self.c * cl) - damping - self.w2 * z
         u_t = self.B @ zd
         cldd = wake.wake_acceleration(cl, cld, self.ws, self.G, self.H, self.F, self.CL0,
                                       np.abs(u_t) if self.rectify else u_t, self.D)
@@ -238,22 +287,27 @@ class _Coupling:
 
 
 def _in_line_states(inline: StaticResult | DynamicResult, settings: StrummingSettings,
-                    start_time: float) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """In-line step times (n_t,), positions and velocities (n_t, n_nodes, 3)."""
+                    start_time: float) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """In-line step times (n_t,), positions and velocities (n_t, n_nodes, 3), body poses
+    (n_t, n_bodies, 6)."""
     if isinstance(inline, DynamicResult):
         keep = inline.time >= start_time - 1e-9 * max(1.0, abs(start_time))
         t = inline.time[keep]
         if len(t) < 2:
             raise MoorlineError("strumming: the in-line history has fewer than two steps "
                                 f"after t = {start_time}")
-        return t, inline.positions[keep], inline.velocities[keep]
+        pose = inline.body_pose[keep] if inline.body_pose.size else \
+            np.zeros((len(t), 0, 6))
+        return t, inline.positions[keep], inline.velocities[keep], pose
     if settings.duration <= 0 or settings.dt <= 0:
         raise MoorlineError("strumming about a steady in-line state needs duration > 0 and "
                             "dt > 0")
     n = int(round(settings.duration / settings.dt))
     t = start_time + settings.dt * np.arange(n + 1)
     x = np.broadcast_to(inline.positions, (n + 1, *inline.positions.shape))
-    return t, x, np.zeros_like(x)
+    pose = np.asarray(getattr(inline, "body_pose", None) if getattr(inline, "body_pose", None)
+                      is not None else np.zeros((0, 6)), float).reshape(-1, 6)
+    return t, x, np.zeros_like(x), np.broadcast_to(pose, (n + 1, *pose.shape))
 
 
 def _element_mass(mesh: Mesh, rho: float) -> FloatArray:
@@ -261,37 +315,101 @@ def _element_mass(mesh: Mesh, rho: float) -> FloatArray:
     return mesh.mass_per_length + rho * mesh.Ca * math.pi * mesh.diameter**2 / 4.0
 
 
-def _modes(mesh: Mesh, x: FloatArray, settings: StrummingSettings, rho: float) -> _Modes:
-    """Steps 3-4: modes at the in-line positions ``x``, with eq. 3.2.b.8 damping."""
-    modal = ModalSettings(n_modes=settings.n_modes, mass=settings.mass,
-                          added_mass=settings.added_mass)
-    K, M = modal_matrices(mesh, x, modal)
-    lam, phi, _ = _eigen(K, M, modal)
-    lam, phi = lam[: settings.n_modes], phi[:, : settings.n_modes]
-    if np.any(lam <= 0):
-        raise MoorlineError("strumming: non-positive eigenvalue at the in-line state (a "
-                            "slack or unstable line); strumming needs a taut line")
-    omega = np.sqrt(lam)
-    shapes = np.zeros((phi.shape[1], mesh.n_nodes, 3))
-    mask = mesh.dof_of_node >= 0
-    shapes[:, mask] = phi[mesh.dof_of_node[mask]].T
-    # eq. 3.2.b.8 with rho D / m weighted by the mode's kinetic energy per element
-    m = _element_mass(mesh, rho)
-    a, b = mesh.elements[:, 0], mesh.elements[:, 1]
-    energy = (mesh.length0 * m)[None] * ((shapes[:, a] ** 2).sum(-1) + (shapes[:, b] ** 2)
-                                         .sum(-1))
-    energy /= np.maximum(energy.sum(axis=1, keepdims=True), np.finfo(float).tiny)
-    coefficient = energy @ (mesh.diameter / m)
-    xi = wake.modal_damping_ratio(omega, coefficient, 1.0, rho, settings.viscosity)
-    return _Modes(omega, phi, shapes, M, xi)
+class _ModeSource:
+    """Steps 3-4 of Tuah (1982) sec. 3.2.b: mass, tangent stiffness, natural frequencies and
+    mass-normalized modes at an in-line state, of the lines alone
+    (:func:`moorline.solvers.modal.modal_matrices`) or of lines and rigid bodies together
+    (:func:`moorline.solvers.modal.body_modal_matrices`: a body's modal displacement moves
+    its fairlead nodes rigidly), with the damping of eq. 3.2.b.8."""
+
+    def __init__(self, system: System, mesh: Mesh, settings: StrummingSettings,
+                 rho: float) -> None:
+        from .coupled_statics import CoupledStatics
+
+        self.system, self.mesh, self.settings, self.rho = system, mesh, settings, rho
+        self.problem = CoupledStatics(system, mesh) if getattr(mesh, "body_names", ()) \
+            else None
+        self.modal = ModalSettings(n_modes=max(settings.n_modes, 1), mass=settings.mass,
+                                   added_mass=settings.added_mass)
+        # eq. 3.2.b.8 with rho D / m averaged over the elements, weighted per mode by its
+        # kinetic energy per element
+        self.m = _element_mass(mesh, rho)
+        self.a, self.b = mesh.elements[:, 0], mesh.elements[:, 1]
+        self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
+        self.P = None
+        self.keep = None
+        if settings.held_body_dofs:
+            unknown = {name: i for i, name in enumerate(BODY_DOFS)}
+            bad = [d for d in settings.held_body_dofs if d not in unknown]
+            if bad:
+                raise MoorlineError(f"strumming: held_body_dofs {bad} not among {BODY_DOFS}")
+            if self.problem is not None:
+                held = [int(d0) + unknown[d] for d0 in self.problem.body_dof if d0 >= 0
+                        for d in settings.held_body_dofs]
+                self.keep = np.setdiff1d(np.arange(self.problem.n_unknowns), held)
+
+    def at(self, x: FloatArray, pose: FloatArray, time: float) -> _Modes:
+        """Modes at node positions ``x`` and body poses ``pose`` (in-line time ``time``)."""
+        mesh, settings = self.mesh, self.settings
+        if self.problem is None:
+            K, M = modal_matrices(mesh, x, self.modal, settings.taut_axial)
+            self.P = None
+        else:
+            K, M, P, _ = body_modal_matrices(self.system, mesh, x, pose, self.modal,
+                                             self.problem, settings.taut_axial)
+            if self.keep is not None:
+                K, M, P = K[self.keep][:, self.keep], M[self.keep][:, self.keep], \
+                    P[:, self.keep]
+            self.P = P
+        n = K.shape[0]
+        k = n if settings.n_modes <= 0 else min(settings.n_modes, n)
+        lam, phi, _ = _eigen(K, M, dataclass_replace(self.modal, n_modes=k))
+        lam, phi = lam[:k], phi[:, :k]
+        if np.any(lam <= 0) and settings.nonpositive_modes == "error":
+            raise MoorlineError(
+                f"strumming: {int(np.sum(lam <= 0))} non-positive eigenvalue(s) at the "
+                f"in-line state of t = {time:g} (lowest w^2 = {lam.min():.4g}: a slack line, "
+                "a mechanism or an unstable state); set nonpositive_modes: keep to integrate "
+                "such modes as they are")
+        if self.problem is None:
+            shapes = np.zeros((phi.shape[1], mesh.n_nodes, 3))
+            free = mesh.dof_of_node >= 0
+            shapes[:, free] = phi[mesh.dof_of_node[free]].T
+        else:
+            shapes = body_mode_shapes(phi, P, self.problem, mesh)
+        w_abs = np.maximum(np.sqrt(np.abs(lam)), 1e-12)
+        a, b, m = self.a, self.b, self.m
+        energy = (mesh.length0 * m)[None] * ((shapes[:, a] ** 2).sum(-1)
+                                             + (shapes[:, b] ** 2).sum(-1))
+        energy /= np.maximum(energy.sum(axis=1, keepdims=True), np.finfo(float).tiny)
+        xi = wake.modal_damping_ratio(w_abs, energy @ (mesh.diameter / m), 1.0, self.rho,
+                                      settings.viscosity)
+        return _Modes(lam, np.sign(lam) * np.sqrt(np.abs(lam)), phi, shapes, M, xi,
+                      2.0 * xi * w_abs)
+
+    def drag_damping(self, x: FloatArray, v: FloatArray, fluid_mid: FloatArray,
+                     phi: FloatArray) -> FloatArray:
+        """Modal drag damping ``phi^T C phi`` (n_modes, n_modes), ``C = -dF_drag/dv`` at the
+        in-line state (Tuah (1982) eq. 3.2.a.6, exact), through the body transformation of
+        the last :meth:`at` when there are bodies."""
+        mesh = self.mesh
+        _, dF_dv, _ = hydro.drag_forces(x, v, fluid_mid, mesh.elements, mesh.length0,
+                                        mesh.diameter, mesh.Cd, mesh.Ct, self.rho)
+        if self.problem is None:
+            C = self.pattern.assemble(-dF_dv)
+        else:
+            C = self.P.T @ (self.problem.pattern.assemble(-dF_dv) @ self.P)
+        return phi.T @ (C @ phi)
 
 
 def solve_strumming(system: System, settings: StrummingSettings,
                     inline: StaticResult | DynamicResult, fluid=None,
-                    start_time: float | None = None) -> StrummingResult:
+                    start_time: float | None = None,
+                    end_time: float | None = None) -> StrummingResult:
     """Transverse strumming response by mode superposition with wake oscillators.
 
-    Tuah (1982) sec. 3.2.b, steps 1-11 (see the module docstring).
+    Tuah (1982) sec. 3.2.b, steps 1-11 (see the module docstring). Lines alone, or lines with
+    rigid bodies (the modes are then those of the coupled system, Tuah sec. 6.7).
 
     Parameters
     ----------
@@ -304,9 +422,10 @@ def solve_strumming(system: System, settings: StrummingSettings,
         output interval is the in-line step), or a steady state.
     fluid
         Fluid kinematics (``kinematics(points, t)``); default from the environment (with the
-        in-line run's current ramp).
-    start_time
-        Start of the strumming analysis (default: the first in-line time; 0 when steady).
+        in-line run's current and wave ramp).
+    start_time, end_time
+        Start and end of the strumming analysis (default: the in-line history's; 0 and the
+        settings' ``duration`` when steady).
 
     Returns
     -------
@@ -317,7 +436,8 @@ def solve_strumming(system: System, settings: StrummingSettings,
     Raises
     ------
     MoorlineError
-        Without fluid, with bodies, without an in-line history, or at a slack state.
+        Without fluid, without an in-line history, or at a slack state (unless
+        ``nonpositive_modes`` is ``keep``).
     """
     from ..waves import fluid_field_from_environment
 
@@ -325,27 +445,35 @@ def solve_strumming(system: System, settings: StrummingSettings,
     rho = float(mesh.water_density)
     if rho <= 0:
         raise MoorlineError("strumming needs a fluid (water_density > 0)")
-    if getattr(mesh, "body_names", ()):
-        raise MoorlineError("strumming of systems with bodies is not supported")
-    if settings.substeps < 1 or settings.n_modes < 1 or settings.viscosity <= 0:
-        raise MoorlineError("strumming: substeps and n_modes must be >= 1, viscosity > 0")
+    if settings.substeps < 1 or settings.n_modes < 0 or settings.viscosity <= 0:
+        raise MoorlineError("strumming: substeps must be >= 1, n_modes >= 0 (0: all), "
+                            "viscosity > 0")
     if settings.transverse_velocity not in ("signed", "magnitude"):
         raise MoorlineError("strumming: transverse_velocity must be 'signed' or 'magnitude', "
                             f"not {settings.transverse_velocity!r}")
+    if settings.nonpositive_modes not in ("error", "keep"):
+        raise MoorlineError("strumming: nonpositive_modes must be 'error' or 'keep', not "
+                            f"{settings.nonpositive_modes!r}")
     if fluid is None:
         ramp = inline.settings.get("ramp_time", 0.0) if isinstance(inline, DynamicResult) \
             else 0.0
         fluid = fluid_field_from_environment(system.environment, ramp_time=ramp)
     if start_time is None:
         start_time = float(inline.time[0]) if isinstance(inline, DynamicResult) else 0.0
-    times, X, Vel = _in_line_states(inline, settings, start_time)
+    times, X, Vel, poses = _in_line_states(inline, settings, start_time)
+    if end_time is not None:
+        n_t = max(int(np.searchsorted(times, end_time + 1e-9 * max(1.0, abs(end_time)),
+                                      side="right")), 2)
+        times, X, Vel, poses = times[:n_t], X[:n_t], Vel[:n_t], poses[:n_t]
     n_t, n_el = len(times), mesh.n_elements
     elements, L0, D = mesh.elements, mesh.length0, mesh.diameter
     a, b = elements[:, 0], elements[:, 1]
+    D_safe = np.where(D > 0, D, 1.0)
     m_el = _element_mass(mesh, rho)
     CL0 = settings.CL0
 
-    modes = _modes(mesh, X[0], settings, rho)
+    source = _ModeSource(system, mesh, settings, rho)
+    modes = source.at(X[0], poses[0], float(times[0]))
     n_modes = len(modes.omega)
     z, zd = np.zeros(n_modes), np.zeros(n_modes)
     cl = np.full(n_el, settings.initial_CL if settings.initial_CL is not None else CL0)
@@ -372,19 +500,19 @@ def solve_strumming(system: System, settings: StrummingSettings,
         v_nr, tangent = wake.relative_normal_velocity(X[k], Vel[k], u_fluid, elements)
         speed = np.linalg.norm(v_nr, axis=1)
         ws = wake.strouhal_frequency(speed, D, settings.strouhal)
-        active = ws > 0
+        active = (ws > 0) & (wake.reynolds_number(speed, D, settings.viscosity)
+                             >= settings.min_reynolds)
         w_safe = np.where(active, ws, 1.0)
-        params = wake.wake_parameters(w_safe, np.where(D > 0, D, 1.0), m_el, rho,
-                                      settings.viscosity, settings.strouhal)
+        params = wake.wake_parameters(w_safe, D_safe, m_el, rho, settings.viscosity,
+                                      settings.strouhal)
         e_lift = wake.lift_direction(tangent, v_nr)
         if first_params is None:
             first_params, first_dir = params, e_lift
-        out["ws"][k], out["speed"][k] = ws, speed
+        out["ws"][k], out["speed"][k] = np.where(active, ws, 0.0), speed
         # steps 3-4: modes refreshed every k in-line steps (state carried by projection)
         if settings.refresh_every and k > 0 and k % settings.refresh_every == 0:
-            u = modes.phi @ z
-            ud = modes.phi @ zd
-            modes = _modes(mesh, X[k], settings, rho)
+            u, ud = modes.phi @ z, modes.phi @ zd
+            modes = source.at(X[k], poses[k], float(times[k]))
             z = modes.phi.T @ (modes.M @ u)
             zd = modes.phi.T @ (modes.M @ ud)
             omega_history.append(modes.omega.copy())
@@ -392,9 +520,11 @@ def solve_strumming(system: System, settings: StrummingSettings,
         # coupling matrix: U_T'(element) = B z',  modal lift = B^T (c C_L)
         Bc = 0.5 * np.einsum("mec,ec->em", modes.shapes[:, a] + modes.shapes[:, b], e_lift)
         c = np.where(active, wake.lift_force_per_length(1.0, speed, D, rho) * L0, 0.0)
-        D_safe = np.where(D > 0, D, 1.0)
-        coefficients = _Coupling(Bc, c, 2.0 * modes.xi * modes.omega, modes.omega**2, w_safe,
-                                 params.G, params.H, params.F, CL0, D_safe, active,
+        damping = modes.two_xi_w
+        if settings.drag_damping:
+            damping = np.diag(damping) + source.drag_damping(X[k], Vel[k], u_fluid, modes.phi)
+        coefficients = _Coupling(Bc, c, damping, modes.lam, w_safe, params.G,
+                                 params.H, params.F, CL0, D_safe, active,
                                  settings.transverse_velocity == "magnitude")
         # steps 5-10: RK4 with delta t inside the in-line step
         h = (times[k + 1] - times[k]) / settings.substeps

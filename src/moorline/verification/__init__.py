@@ -22,5 +22,6 @@ register("tuah-ex7", "tuah_ex7:run")
 register("tuah-ex6", "tuah_ex6:run")
 register("modes-string", "modes_string:run")
 register("modes-irvine", "modes_irvine:run")
+register("tuah-ex7-lift", "tuah_ex7_lift:run")
 
 __all__ = ["CASES", "Row", "register", "run_cases"]
