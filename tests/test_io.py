@@ -229,6 +229,10 @@ BAD_CASES = [
     ("unattached_free_point", "points.buoy", "not attached to any line"),
     ("initial_position_fixed", "points.anchor.initial_position", "only prescribed points"),
     ("airy_without_period", "environment.waves.period", "needs period > 0"),
+    ("random_without_period", "environment.waves.period", "needs period > 0"),
+    ("random_unknown_spectrum", "environment.waves.spectrum", "bretschneider"),
+    ("random_gamma_below_one", "environment.waves.gamma", "must be >= 1"),
+    ("random_record_length_zero", "environment.waves.record_length", "must be > 0"),
     ("body_point_unknown_body", "points.fairlead.body", "unknown body 'hull'"),
 ]
 

@@ -205,10 +205,11 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
                  f"{len(env.current.speeds or [])}", "environment.current.speeds")
         if env.current.headings is not None and len(env.current.headings) != n:
             fail(f"headings must have {n} entries like z_levels", "environment.current.headings")
-    if env.waves.kind == "airy":
+    if env.waves.kind in ("airy", "random"):
+        what = "an airy wave" if env.waves.kind == "airy" else "a random sea (Hs, Tp)"
         for key in ("height", "period"):
             if getattr(env.waves, key) <= 0.0:
-                fail(f"an airy wave needs {key} > 0", f"environment.waves.{key}")
+                fail(f"{what} needs {key} > 0", f"environment.waves.{key}")
     for name, lt in spec.line_types.items():
         if lt.material == "viscoelastic" and lt.tau <= 0.0:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
@@ -390,6 +391,13 @@ def _build(spec: CaseSpec, source: str | None) -> System:
             heading_deg=env.waves.heading,
             phase_deg=env.waves.phase,
             stretching=env.waves.stretching,
+            spectrum=env.waves.spectrum,
+            gamma=env.waves.gamma,
+            amplitudes=env.waves.amplitudes,
+            seed=env.waves.seed,
+            record_length=env.waves.record_length,
+            n_frequencies=env.waves.n_frequencies,
+            omega_max=env.waves.omega_max,
         ),
     )
     line_types = {

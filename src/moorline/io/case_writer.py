@@ -32,6 +32,14 @@ def system_to_dict(system: System) -> dict[str, Any]:
                             {"kind": waves.kind, "height": waves.height,
                              "period": waves.period, "heading": waves.heading_deg,
                              "phase": waves.phase_deg, "stretching": waves.stretching})
+    if waves.kind == "random":
+        environment["waves"].update(
+            {"spectrum": waves.spectrum, "gamma": waves.gamma, "amplitudes": waves.amplitudes,
+             "seed": waves.seed, "record_length": waves.record_length})
+        environment["waves"].pop("phase")
+        for key in ("n_frequencies", "omega_max"):
+            if getattr(waves, key) is not None:
+                environment["waves"][key] = getattr(waves, key)
     out["environment"] = environment
     out["line_types"] = {n: _line_type(lt) for n, lt in system.line_types.items()}
     if system.bodies:

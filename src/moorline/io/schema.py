@@ -165,14 +165,24 @@ class CurrentSpec(_Spec):
 
 
 class WavesSpec(_Spec):
-    """``environment.waves``: ``kind: none`` or a regular ``airy`` wave."""
+    """``environment.waves``: ``kind: none``, a regular ``airy`` wave (``height``,
+    ``period``), or a ``random`` sea (``height`` = Hs, ``period`` = Tp, ``spectrum``,
+    ``gamma``, ``amplitudes``, ``seed``, ``record_length``, ``n_frequencies`` or
+    ``omega_max``)."""
 
-    kind: Literal["none", "airy"] = "none"
+    kind: Literal["none", "airy", "random"] = "none"
     height: quantity("length", ge=0.0) = 0.0
     period: quantity("time", ge=0.0) = 0.0
     heading: quantity("angle") = 0.0
     phase: quantity("angle") = 0.0
     stretching: Literal["none", "wheeler"] = "none"
+    spectrum: Literal["pierson-moskowitz", "jonswap"] = "jonswap"
+    gamma: quantity("dimensionless", ge=1.0) = 3.3
+    amplitudes: Literal["dsa", "nsa"] = "dsa"
+    seed: Annotated[int, Field(ge=0)] = 0
+    record_length: quantity("time", gt=0.0) = 1800.0
+    n_frequencies: PositiveInt | None = None
+    omega_max: quantity("1/time", gt=0.0) | None = None
 
 
 class EnvironmentSpec(_Spec):

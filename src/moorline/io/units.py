@@ -70,6 +70,7 @@ DIMENSIONS: dict[str, Dimension] = {
     "mass*length^2": Dimension("moment of inertia", "kg*m**2", "slug*ft**2"),
     "force*length": Dimension("moment", "N*m", "lbf*ft"),
     "time": Dimension("time", "s", "s"),
+    "1/time": Dimension("circular frequency (rad/s)", "1/s", "1/s"),
     "velocity": Dimension("velocity", "m/s", "ft/s"),
     "acceleration": Dimension("acceleration", "m/s**2", "ft/s**2"),
     "force": Dimension("force", "N", "lbf"),

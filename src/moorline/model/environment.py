@@ -48,15 +48,27 @@ class Current:
 
 @dataclass(frozen=True)
 class Waves:
-    """Regular wave description; ``kind='none'`` for still water. ``stretching='wheeler'``
+    """Waves: ``kind='none'`` for still water, ``airy`` for a regular wave of ``height`` and
+    ``period``, ``random`` for a random sea (:class:`moorline.waves.RandomSea`) of significant
+    height ``height`` (``Hs``) and peak period ``period`` (``Tp``) with the ``spectrum``
+    (``pierson-moskowitz`` or ``jonswap`` with ``gamma``), ``amplitudes`` ``dsa`` or ``nsa``,
+    ``seed``, ``record_length`` (the realization's period) and ``n_frequencies`` (or all up
+    to ``omega_max``, default six times the peak frequency). ``stretching='wheeler'``
     evaluates the kinematics at Wheeler-stretched heights."""
 
-    kind: Literal["none", "airy"] = "none"
+    kind: Literal["none", "airy", "random"] = "none"
     height: float = 0.0
     period: float = 0.0
     heading_deg: float = 0.0
     phase_deg: float = 0.0
     stretching: Literal["none", "wheeler"] = "none"
+    spectrum: Literal["pierson-moskowitz", "jonswap"] = "jonswap"
+    gamma: float = 3.3
+    amplitudes: Literal["dsa", "nsa"] = "dsa"
+    seed: int = 0
+    record_length: float = 1800.0
+    n_frequencies: int | None = None
+    omega_max: float | None = None
 
 
 @dataclass(frozen=True)

@@ -12,17 +12,25 @@ from .field import (
     FluidField,
     StillWater,
     fluid_field_from_environment,
+    random_sea,
 )
+from .random import RandomSea
+from .spectra import WaveSpectrum, jonswap, pierson_moskowitz
 
 __all__ = [
     "AiryWave",
     "CombinedField",
     "CurrentProfile",
     "FluidField",
+    "RandomSea",
     "StillWater",
     "WaveComponents",
+    "WaveSpectrum",
     "fluid_field_from_environment",
+    "jonswap",
     "omega_from_k",
+    "pierson_moskowitz",
+    "random_sea",
     "ramp_factor",
     "superpose",
     "wave_number",

@@ -9,11 +9,13 @@ from typing import TYPE_CHECKING, Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import NDArray
 
-from .airy import AiryWave
+from .airy import AiryWave, WaveComponents
 from .current import CurrentProfile
+from .random import RandomSea
+from .spectra import WaveSpectrum
 
 if TYPE_CHECKING:
-    from moorline.model import Environment
+    from moorline.model import Environment, Waves
 
 FloatArray = NDArray[np.float64]
 
@@ -72,6 +74,14 @@ class CombinedField:
         return vel + cur_v, acc + cur_a, eta
 
 
+def random_sea(waves: Waves) -> RandomSea:
+    """The :class:`~moorline.waves.random.RandomSea` of a ``kind: random`` wave description."""
+    return RandomSea(WaveSpectrum(waves.spectrum, waves.height, waves.period, waves.gamma),
+                     record_length=waves.record_length, n_frequencies=waves.n_frequencies,
+                     omega_max=waves.omega_max, amplitudes=waves.amplitudes, seed=waves.seed,
+                     heading_deg=waves.heading_deg)
+
+
 def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> FluidField:
     """Fluid field described by a :class:`moorline.model.Environment`.
 
@@ -94,7 +104,7 @@ def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> Fl
     FluidField
     """
     waves = env.waves
-    wave: AiryWave | None = None
+    wave: AiryWave | WaveComponents | None = None
     if waves.kind == "airy":
         if waves.height > 0.0:
             wave = AiryWave(
@@ -107,6 +117,10 @@ def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> Fl
                 ramp_time=ramp_time,
                 stretching=waves.stretching,
             )
+    elif waves.kind == "random":
+        if waves.height > 0.0:
+            wave = random_sea(waves).components(env.depth, env.gravity, ramp_time=ramp_time,
+                                                stretching=waves.stretching)
     elif waves.kind != "none":
         raise ValueError(f"unknown wave kind {waves.kind!r}")
     current = None
