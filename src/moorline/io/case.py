@@ -384,21 +384,8 @@ def _build(spec: CaseSpec, source: str | None) -> System:
             slip_velocity=default(env.seabed.slip_velocity, "slip_velocity"),
         ),
         current=_current(env.current),
-        waves=Waves(
-            kind=env.waves.kind,
-            height=env.waves.height,
-            period=env.waves.period,
-            heading_deg=env.waves.heading,
-            phase_deg=env.waves.phase,
-            stretching=env.waves.stretching,
-            spectrum=env.waves.spectrum,
-            gamma=env.waves.gamma,
-            amplitudes=env.waves.amplitudes,
-            seed=env.waves.seed,
-            record_length=env.waves.record_length,
-            n_frequencies=env.waves.n_frequencies,
-            omega_max=env.waves.omega_max,
-        ),
+        waves=Waves(heading_deg=env.waves.heading, phase_deg=env.waves.phase,
+                    **env.waves.model_dump(exclude={"heading", "phase"})),
     )
     line_types = {
         name: LineType(name=name, **lt.model_dump()) for name, lt in spec.line_types.items()
