@@ -422,12 +422,46 @@ def run_strumming(settings: Any, context: RunContext, label: str) -> Outcome:
     return Outcome("strumming", True, summary["message"], summary, [path], result)
 
 
+def run_stochastic(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Frequency-domain stochastic response to the case's random sea about the preceding
+    statics result (solved here when there is none): group ``label`` of the results file
+    and ``stochastic.png``."""
+    from .io.writers import write_group
+    from .plot import plot_stochastic
+    from .solvers.stochastic import solve_stochastic
+
+    system = context.system
+    statics = context.latest("statics")
+    initial = statics.result if statics is not None and statics.success else None
+    path = context.directory / f"{_prefix(label, 'stochastic')}stochastic.png"
+    with _status(f"stochastic response of {system.name} ...", context.quiet) as update:
+        try:
+            result = solve_stochastic(system, settings, initial)
+        except ConvergenceError as exc:
+            return Outcome("stochastic", False, str(exc), {"converged": False,
+                                                           "message": str(exc)})
+        update("writing results ...")
+        ds = result.to_xarray()
+        ds.attrs["case"] = system.name
+        write_group(ds, context.results, label)
+        update("plotting ...")
+        plot_stochastic(ds, path)
+    message = (f"{result.iterations} linearization iterations, {len(result.omega)} "
+               f"frequencies ({settings.method})")
+    summary = {"converged": True, "message": message, "iterations": result.iterations,
+               "max_displacement_std": float(result.displacement_std.max(initial=0.0)),
+               "max_tension_std": float(result.tension_std.max(initial=0.0)),
+               "tension_std": [float(v) for v in result.tension_std]}
+    return Outcome("stochastic", True, message, summary, [path], result)
+
+
 #: Runner of each analysis kind a case may list: (settings, context, label) -> Outcome.
 RUNNERS: dict[str, Callable[[Any, RunContext, str], Outcome]] = {
     "statics": run_statics,
     "dynamics": run_dynamics,
     "modal": run_modal,
     "strumming": run_strumming,
+    "stochastic": run_stochastic,
 }
 
 

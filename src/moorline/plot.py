@@ -541,3 +541,53 @@ def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
     axes[0].set_title(_history_title(dataset, "strumming: lift coefficient and modal "
                                               "amplitudes"))
     _save(fig, Path(path))
+
+
+def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -> None:
+    """Plot the wave spectrum with the response spectra of the most responsive node
+    displacements and element tensions, and their time series over one record.
+
+    Parameters
+    ----------
+    dataset
+        A stochastic dataset (:meth:`moorline.solvers.stochastic.StochasticResult.to_xarray`).
+    path
+        PNG file to write (parent directories are created).
+    max_items
+        Nodes and elements drawn: those with the largest standard deviation.
+    """
+    omega = np.asarray(dataset["omega"].values, dtype=float)
+    time = np.asarray(dataset["time"].values, dtype=float)
+    u_std = np.asarray(dataset["displacement_std"].values, dtype=float)
+    t_std = np.asarray(dataset["tension_std"].values, dtype=float)
+    u_spec = np.asarray(dataset["displacement_spectrum"].values, dtype=float)
+    t_spec = np.asarray(dataset["tension_spectrum"].values, dtype=float)
+    fig = Figure(figsize=(10.0, 8.0), layout="constrained")
+    axes = fig.subplots(3, 2)
+    axes[0, 0].plot(omega, dataset["wave_spectrum"].values, "k", linewidth=1.0)
+    axes[0, 0].set_ylabel("wave spectrum S(w)")
+    axes[0, 1].plot(time, dataset["elevation"].values, "k", linewidth=0.6)
+    axes[0, 1].set_ylabel("elevation at x = 0")
+    flat = np.argsort(-u_std, axis=None)[:max_items]
+    for node, c in zip(*np.unravel_index(flat, u_std.shape), strict=True):
+        label = f"node {int(node) + 1} {'xyz'[int(c)]} (std {u_std[node, c]:.3g})"
+        axes[1, 0].plot(omega, u_spec[:, node, c], linewidth=0.9, label=label)
+        axes[1, 1].plot(time, dataset["displacement"].values[:, node, c], linewidth=0.6,
+                        label=label)
+    axes[1, 0].set_ylabel("displacement spectrum")
+    axes[1, 1].set_ylabel("displacement")
+    for e in np.argsort(-t_std)[:max_items]:
+        label = f"element {int(e) + 1} (std {t_std[e]:.3g})"
+        axes[2, 0].plot(omega, t_spec[:, e], linewidth=0.9, label=label)
+        axes[2, 1].plot(time, dataset["tension"].values[:, e], linewidth=0.6, label=label)
+    axes[2, 0].set_ylabel("tension spectrum")
+    axes[2, 1].set_ylabel("tension")
+    axes[2, 0].set_xlabel("w [rad/s]")
+    axes[2, 1].set_xlabel("time [s]")
+    for ax in axes.flat:
+        ax.grid(True, linewidth=0.3)
+    for ax in axes[1:].flat:
+        ax.legend(fontsize=7, loc="upper right")
+    fig.suptitle(f"stochastic response ({dataset.attrs.get('method', '')}, "
+                 f"{dataset.attrs.get('iterations', '?')} linearization iterations)")
+    _save(fig, Path(path))

@@ -33,6 +33,7 @@ from moorline.model import (
     Point,
     Seabed,
     StaticsSettings,
+    StochasticSettings,
     StrummingAnalysis,
     System,
     WaveExcitation,
@@ -47,6 +48,7 @@ from .schema import (
     MotionSpec,
     PointSpec,
     StaticsSpec,
+    StochasticSpec,
     StrummingSpec,
     describe_errors,
 )
@@ -552,7 +554,11 @@ def _strumming(spec: StrummingSpec, units: str) -> StrummingAnalysis:
     return StrummingAnalysis(**values)
 
 
+def _stochastic(spec: StochasticSpec, units: str) -> StochasticSettings:
+    return StochasticSettings(**spec.model_dump())
+
+
 _ANALYSES: dict[type[BaseModel], Callable[[Any, str], Any]] = {
     StaticsSpec: _statics, DynamicsSpec: _dynamics, ModalSpec: _modal,
-    StrummingSpec: _strumming}
+    StrummingSpec: _strumming, StochasticSpec: _stochastic}
 """How each analysis spec becomes its settings object; extend with new analysis kinds."""

@@ -413,9 +413,23 @@ class StrummingSpec(_Spec):
     held_body_dofs: list[Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]] = []
 
 
+class StochasticSpec(_Spec):
+    """``analyses[i]`` with ``kind: stochastic`` (see :class:`moorline.model.StochasticSettings`);
+    needs ``environment.waves: {kind: random, ...}``."""
+
+    kind: Literal["stochastic"]
+    method: Literal["foss", "direct"] = "foss"
+    n_modes: Annotated[int, Field(ge=0)] = 0
+    max_iterations: PositiveInt = 30
+    tolerance: quantity("dimensionless", gt=0.0) = 0.01
+    mass: Literal["lumped", "consistent"] = "consistent"
+    added_mass: bool = True
+    n_points: PositiveInt | None = None
+
+
 # Add new analyses as further members of this union.
 AnalysisSpec = Annotated[Union[StaticsSpec, DynamicsSpec, ModalSpec,  # noqa: UP007
-                               StrummingSpec],
+                               StrummingSpec, StochasticSpec],
                          Field(discriminator="kind")]
 
 

@@ -9,6 +9,7 @@ from .analysis import (
     OutputSettings,
     StaticMethod,
     StaticsSettings,
+    StochasticSettings,
     StrummingAnalysis,
 )
 from .body import Body, Hydrostatics, WaveExcitation
@@ -35,6 +36,7 @@ __all__ = [
     "Seabed",
     "StaticMethod",
     "StaticsSettings",
+    "StochasticSettings",
     "StrummingAnalysis",
     "System",
     "UnitSystem",

@@ -170,3 +170,35 @@ class StrummingAnalysis:
     drag_damping: bool = False
     taut_axial: bool = False
     held_body_dofs: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class StochasticSettings:
+    """Frequency-domain stochastic analysis in the case's random sea (Tuah 1982 ch. 5): see
+    :mod:`moorline.solvers.stochastic`.
+
+    Attributes
+    ----------
+    method
+        ``foss`` (mode superposition with Foss's decoupling, the source's) or ``direct``
+        (the full linear system solved at every frequency).
+    n_modes
+        Modes superposed by ``foss``; 0: all.
+    max_iterations, tolerance
+        Of the statistical drag linearization: stop when no standard deviation of the
+        relative velocity changes by more than ``tolerance`` (relative; the source: 0.01).
+    mass, added_mass
+        Mass model (Tuah: consistent) and whether the added mass is included.
+    n_points
+        Points of the time series over one record (the source's ``2N``); default the
+        smallest power of two above four times the number of frequencies.
+    """
+
+    kind: Literal["stochastic"] = "stochastic"
+    method: Literal["foss", "direct"] = "foss"
+    n_modes: int = 0
+    max_iterations: int = 30
+    tolerance: float = 0.01
+    mass: Literal["lumped", "consistent"] = "consistent"
+    added_mass: bool = True
+    n_points: int | None = None

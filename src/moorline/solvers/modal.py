@@ -44,7 +44,7 @@ from ..physics import element, hydro
 from ..results import ModalResult, StaticResult
 from .assembly import scatter_free
 from .equilibrium import StaticModel
-from .statics import solve_statics
+from .statics import equilibrium_for
 
 FloatArray = NDArray[np.float64]
 logger = logging.getLogger(__name__)
@@ -97,11 +97,7 @@ def solve_modes(
     mechanism and ARPACK converges to the eigenvalues nearest the shift: the lowest ones.
     """
     settings = settings or _default_settings(system)
-    if statics is None:
-        statics = solve_statics(system)
-    if not statics.success:
-        raise ConvergenceError(f"modal analysis of {system.name}: no static equilibrium to "
-                               f"linearize about ({statics.message})")
+    statics = equilibrium_for(system, statics, "modal analysis")
     mesh = statics.mesh
     if getattr(mesh, "body_names", ()):
         return _body_modes(system, statics, settings)

@@ -43,6 +43,26 @@ class _Counters:
     history: list[float] = field(default_factory=list)
 
 
+def equilibrium_for(system: System, statics: StaticResult | None,
+                    analysis: str) -> StaticResult:
+    """The static equilibrium an ``analysis`` linearizes about: ``statics`` when given, else
+    solved with the system's settings.
+
+    Raises
+    ------
+    ConvergenceError
+        When it did not converge (naming the analysis).
+    """
+    from ..errors import ConvergenceError
+
+    if statics is None:
+        statics = solve_statics(system)
+    if not statics.success:
+        raise ConvergenceError(f"{analysis} of {system.name}: no static equilibrium to "
+                               f"linearize about ({statics.message})")
+    return statics
+
+
 def solve_statics(
     system: System,
     settings: StaticsSettings | None = None,

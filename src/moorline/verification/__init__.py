@@ -23,5 +23,6 @@ register("tuah-ex6", "tuah_ex6:run")
 register("modes-string", "modes_string:run")
 register("modes-irvine", "modes_irvine:run")
 register("tuah-ex7-lift", "tuah_ex7_lift:run")
+register("stochastic-riser", "stochastic_riser:run")
 
 __all__ = ["CASES", "Row", "register", "run_cases"]

@@ -1,0 +1,361 @@
+"""Stochastic response to random waves in the frequency domain (Tuah (1982) ch. 5).
+
+The system vibrates about its static equilibrium ``x0`` (all nonlinearity is in the statics),
+the waves are Gaussian, and the quadratic drag is replaced by a statistically equivalent
+linear damping (Borgman 1972), so that the response is a linear transform of the sea
+(eq. 5.1)::
+
+    M U'' + C U' + K U = B_D V + B_I a,
+
+``M`` structural plus added mass and ``K`` the tangent stiffness at ``x0``
+(:func:`moorline.solvers.modal.modal_matrices`), ``V`` and ``a`` the fluid velocity and
+acceleration at the element midpoints (:mod:`moorline.waves.transfer`, eq. 5.2.8-5.2.10).
+
+Loads per element, the lumping of the time-domain model (:mod:`moorline.physics.hydro`: half of
+the element to each node, per unstretched length ``L0``, chord tangent ``t`` at ``x0``):
+
+- drag (eq. 5.2.1-5.2.2): ``[B_DL (I - t t^T) + B_DT t t^T] (V - U')`` with
+  ``B_DL = (2/pi)^(1/2) C_D rho D sigma_n`` and ``B_DT = (2 pi)^(1/2) C_T rho D sigma_t``,
+  ``sigma_n``, ``sigma_t`` the standard deviations of the normal and tangential relative
+  velocity of the element (eq. 5.2.3-5.2.5; zero means). These are the quadratic laws
+  ``rho C_D D / 2 |u_n| u_n`` and ``rho C_T pi D / 2 |u_t| u_t`` linearized by
+  ``E[|u| u] = (8/pi)^(1/2) sigma u`` for a Gaussian ``u``;
+- fluid inertia (eq. 5.2.1): ``rho A [(1 + Ca)(I - t t^T) + (1 + Cat) t t^T] a`` (as
+  :func:`moorline.physics.hydro.fluid_inertia_forces`); the added mass is in ``M``.
+
+The standard deviations are iterated (steps 5-13): start with the structure at rest, solve,
+recompute ``sigma`` from the relative velocity spectra, until no ``sigma`` changes by more than
+``tolerance`` (relative). The variance of a response ``x`` with transfer function ``H_x`` per
+unit wave amplitude is ``sum_m |H_x(omega_m)|^2 S(omega_m) d_omega``.
+
+Frequency response (steps 7-11), two ways:
+
+- ``foss`` (the source's): modes ``Phi`` (mass-normalized, all or the lowest ``n_modes``),
+  modal damping ``C_u = Phi^T C Phi`` (full: drag couples the modes), decoupled by Foss's
+  (1958) complex modes of the first-order form (eq. 5.3.4-5.3.28)::
+
+      [[0, I], [I, C_u]] q' + [[-I, 0], [0, Lambda]] q = [0, Phi^T F],   q = [z', z],
+
+  eigenvalues ``Omega_j`` and vectors ``theta_j = [Omega_j chi_j, chi_j]``,
+  ``c_j = 2 Omega_j chi_j^T chi_j + chi_j^T C_u chi_j``, ``k_j = -Omega_j c_j + ...`` (eq.
+  5.3.18-19), ``r_j = chi_j^T Phi^T F / (k_j + i omega c_j)``, ``U = Phi sum_j chi_j r_j``. (The
+  OCR prints ``q = {Z', Z'}``; it is ``{z', z}``.)
+- ``direct``: ``(K - omega^2 M + i omega C) U = F`` at every frequency (sparse LU), the exact
+  solution of the same linear system; with all modes ``foss`` reproduces it to round-off
+  (a test).
+
+Time series (step 14): the inverse FFT of ``H_x A_m`` with the realization's complex
+amplitudes (DSA or NSA), ``x(n dt) = 2N irfft(H_x A)[n]`` (:mod:`moorline.waves.random`).
+
+Scope: lines and points (fixed, prescribed points held); point buoys' own hydrodynamics and
+rigid bodies are not included yet; the flow must have zero mean (no current), as the source
+assumes.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+import xarray as xr
+from numpy.typing import NDArray
+
+from ..errors import ConvergenceError, MoorlineError
+from ..mesh import Mesh
+from ..model import ModalSettings, StochasticSettings, System
+from ..physics import element
+from ..results import StaticResult
+from ..waves import random_sea
+from ..waves.transfer import kinematics_transfer
+from .assembly import BlockPattern
+from .modal import modal_matrices
+from .statics import equilibrium_for
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+
+
+@dataclass
+class StochasticResult:
+    """Spectra, standard deviations and time series of the stochastic response.
+
+    Attributes
+    ----------
+    omega, wave_spectrum, wave_amplitude
+        Frequencies (n_w,), ``S(omega)`` and the realization's complex amplitudes ``A_m``.
+    displacement_transfer
+        Node displacement per unit wave amplitude (n_w, n_nodes, 3), complex.
+    tension_transfer
+        Element tension per unit wave amplitude (n_w, n_elements), complex.
+    displacement_std, tension_std
+        Standard deviations (n_nodes, 3) and (n_elements,).
+    sigma_normal, sigma_tangential
+        Converged standard deviations of the relative velocity per element.
+    iterations, history
+        Linearization iterations and the largest relative change of ``sigma`` per iteration.
+    time, elevation, displacement, tension
+        Time series over one record: (n_t,), (n_t,) at the origin, (n_t, n_nodes, 3),
+        (n_t, n_elements).
+    """
+
+    omega: FloatArray
+    wave_spectrum: FloatArray
+    wave_amplitude: ComplexArray
+    displacement_transfer: ComplexArray
+    tension_transfer: ComplexArray
+    displacement_std: FloatArray
+    tension_std: FloatArray
+    sigma_normal: FloatArray
+    sigma_tangential: FloatArray
+    iterations: int
+    history: list[float]
+    time: FloatArray
+    elevation: FloatArray
+    displacement: FloatArray
+    tension: FloatArray
+    mesh: Mesh
+    settings: StochasticSettings
+    d_omega: float
+    counters: dict = field(default_factory=dict)
+
+    def response_spectrum(self, transfer: ComplexArray) -> FloatArray:
+        """``|H|^2 S(omega)`` of a transfer function (n_w, ...)."""
+        shape = (-1,) + (1,) * (np.ndim(transfer) - 1)
+        return np.abs(transfer) ** 2 * self.wave_spectrum.reshape(shape)
+
+    def to_xarray(self) -> xr.Dataset:
+        """Spectra (dim ``omega``), standard deviations and time series (dim ``time``)."""
+        n_nodes, n_el = self.mesh.n_nodes, self.mesh.n_elements
+        return xr.Dataset(
+            {"wave_spectrum": (("omega",), self.wave_spectrum),
+             "displacement_spectrum": (("omega", "node", "xyz"),
+                                       self.response_spectrum(self.displacement_transfer)),
+             "tension_spectrum": (("omega", "element"),
+                                  self.response_spectrum(self.tension_transfer)),
+             "displacement_std": (("node", "xyz"), self.displacement_std),
+             "tension_std": (("element",), self.tension_std),
+             "sigma_normal": (("element",), self.sigma_normal),
+             "sigma_tangential": (("element",), self.sigma_tangential),
+             "elevation": (("time",), self.elevation),
+             "displacement": (("time", "node", "xyz"), self.displacement),
+             "tension": (("time", "element"), self.tension)},
+            coords={"omega": self.omega, "time": self.time, "node": np.arange(n_nodes),
+                    "element": np.arange(n_el), "xyz": ["x", "y", "z"]},
+            attrs={"kind": "stochastic", "method": self.settings.method,
+                   "iterations": self.iterations, "d_omega": self.d_omega})
+
+
+def _inertia_blocks(t: FloatArray, mesh: Mesh, rho: float) -> FloatArray:
+    """Per-node share of the fluid-inertia operator ``rho A L0 / 2 [(1 + Ca) (I - t t^T)
+    + (1 + Cat) t t^T]`` (n_elements, 3, 3)."""
+    m = 0.5 * rho * 0.25 * math.pi * mesh.diameter**2 * mesh.length0
+    tt = t[:, :, None] * t[:, None, :]
+    return (m * (1.0 + mesh.Ca))[:, None, None] * (np.eye(3) - tt) \
+        + (m * (1.0 + mesh.Cat))[:, None, None] * tt
+
+
+def _drag_blocks(t: FloatArray, mesh: Mesh, rho: float, sigma_n: FloatArray,
+                 sigma_t: FloatArray) -> FloatArray:
+    """Linearized drag per unit length ``B_DL (I - t t^T) + B_DT t t^T`` (eq. 5.2.1-5.2.2),
+    (n_elements, 3, 3)."""
+    b_n = math.sqrt(2.0 / math.pi) * mesh.Cd * rho * mesh.diameter * sigma_n
+    b_t = math.sqrt(2.0 * math.pi) * mesh.Ct * rho * mesh.diameter * sigma_t
+    tt = t[:, :, None] * t[:, None, :]
+    return b_n[:, None, None] * (np.eye(3) - tt) + b_t[:, None, None] * tt
+
+
+def _node_pairs(block: FloatArray) -> FloatArray:
+    """(n_el, 6, 6) with ``block`` on all four node-node positions."""
+    return np.tile(block, (1, 2, 2))
+
+
+class _Response:
+    """Frequency response of ``M U'' + C U' + K U = F`` over the free dofs."""
+
+    def __init__(self, K: sp.csr_matrix, M: sp.csr_matrix, settings: StochasticSettings) -> None:
+        self.K, self.M, self.settings = K, M, settings
+        if settings.method == "foss":
+            lam, phi = sla.eigh(K.toarray(), M.toarray())
+            if settings.n_modes > 0:
+                lam, phi = lam[: settings.n_modes], phi[:, : settings.n_modes]
+            self.lam, self.phi = lam, phi
+
+    def solve(self, C: sp.csr_matrix, F: ComplexArray, omega: FloatArray) -> ComplexArray:
+        """``U`` (n_w, n_dofs) for the forces ``F`` (n_w, n_dofs)."""
+        if self.settings.method == "direct":
+            out = np.empty_like(F)
+            for j, w in enumerate(omega):
+                A = (self.K - w * w * self.M + 1j * w * C).tocsc()
+                out[j] = spla.splu(A).solve(F[j])
+            return out
+        return self._foss(C, F, omega)
+
+    def _foss(self, C: sp.csr_matrix, F: ComplexArray, omega: FloatArray) -> ComplexArray:
+        """Tuah (1982) eq. 5.3.4-5.3.29: Foss's decoupling of the modal equations."""
+        phi, lam = self.phi, self.lam
+        n = len(lam)
+        Cu = phi.T @ (C @ phi)
+        eye, zero = np.eye(n), np.zeros((n, n))
+        Cq = np.block([[zero, eye], [eye, Cu]])
+        Kq = np.block([[-eye, zero], [zero, np.diag(lam)]])
+        Omega, theta = sla.eig(Kq, -Cq)  # Omega Cq theta + Kq theta = 0
+        chi = theta[n:]
+        c_q = np.einsum("ij,ik,kj->j", theta, Cq, theta)
+        k_q = np.einsum("ij,ik,kj->j", theta, Kq, theta)
+        modal_force = F @ phi  # (n_w, n): Phi^T F per frequency
+        r = (modal_force @ chi) / (k_q[None, :] + 1j * omega[:, None] * c_q[None, :])
+        return (r @ chi.T) @ phi.T
+
+
+def solve_stochastic(system: System, settings: StochasticSettings | None = None,
+                     statics: StaticResult | None = None) -> StochasticResult:
+    """Stochastic response of a line system to the random sea of its environment.
+
+    Tuah (1982) sec. 5.2-5.3, steps 1-14 (see the module docstring).
+
+    Parameters
+    ----------
+    system
+        The problem; ``environment.waves`` must be ``kind: random`` and there must be no
+        current.
+    settings
+        Method, modes, linearization tolerance, mass model, time-series length.
+    statics
+        The equilibrium to linearize about (solved when not given).
+
+    Returns
+    -------
+    StochasticResult
+
+    Raises
+    ------
+    MoorlineError
+        Without a random sea, with a current, with bodies.
+    ConvergenceError
+        When the statics fails or the linearization does not converge.
+    """
+    settings = settings or StochasticSettings()
+    env = system.environment
+    if env.waves.kind != "random" or env.waves.height <= 0:
+        raise MoorlineError(f"stochastic analysis of {system.name} needs a random sea "
+                            "(environment.waves: {kind: random, height: Hs, period: Tp})")
+    if env.current.speed != 0 or env.current.z_levels:
+        raise MoorlineError(f"stochastic analysis of {system.name}: the flow must have zero "
+                            "mean (Tuah sec. 5.2); remove the current")
+    if settings.method not in ("foss", "direct"):
+        raise MoorlineError(f"stochastic method must be 'foss' or 'direct', not "
+                            f"{settings.method!r}")
+    statics = equilibrium_for(system, statics, "stochastic analysis")
+    mesh = statics.mesh
+    if getattr(mesh, "body_names", ()):
+        raise MoorlineError(f"stochastic analysis of {system.name}: systems with bodies are "
+                            "not supported yet (lines and points only)")
+    if mesh.n_dofs == 0:
+        raise MoorlineError(f"stochastic analysis of {system.name}: no free node")
+    rho = float(mesh.water_density)
+    sea = random_sea(env.waves)
+    omega, amplitude = sea.complex_amplitudes()
+    spectrum = sea.spectrum.density(omega)
+    power = spectrum * sea.d_omega  # variance per component
+
+    x0 = statics.positions
+    K, M = modal_matrices(mesh, x0, ModalSettings(mass=settings.mass,
+                                                  added_mass=settings.added_mass))
+    length, t = element.element_geometry(x0, mesh.elements)
+    a, b = mesh.elements[:, 0], mesh.elements[:, 1]
+    mid = 0.5 * (x0[a] + x0[b])
+    H_v, H_a = kinematics_transfer(mid, omega, env.waves.heading_deg, env.depth, env.gravity)
+    inertia = np.einsum("eij,wej->wei", _inertia_blocks(t, mesh, rho), H_a)
+    pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
+    response = _Response(K, M, settings)
+
+    def node_forces(drag: FloatArray) -> ComplexArray:
+        per_node = inertia + np.einsum("eij,wej->wei", drag * (0.5 * mesh.length0)[:, None,
+                                                                                     None], H_v)
+        nodal = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
+        np.add.at(nodal, (slice(None), a), per_node)
+        np.add.at(nodal, (slice(None), b), per_node)
+        free = mesh.dof_of_node >= 0
+        out = np.zeros((len(omega), mesh.n_dofs), dtype=complex)
+        out[:, mesh.dof_of_node[free]] = nodal[:, free]
+        return out
+
+    def relative_sigmas(U: ComplexArray) -> tuple[FloatArray, FloatArray]:
+        R = H_v - 1j * omega[:, None, None] * 0.5 * (U[:, a] + U[:, b])
+        s = np.einsum("wei,ei->we", R, t)
+        normal = R - s[..., None] * t[None]
+        var_n = np.einsum("w,we->e", power, np.sum(np.abs(normal) ** 2, axis=-1))
+        var_t = np.einsum("w,we->e", power, np.abs(s) ** 2)
+        return np.sqrt(var_n), np.sqrt(var_t)
+
+    def nodal(U_free: ComplexArray) -> ComplexArray:
+        out = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
+        free = mesh.dof_of_node >= 0
+        out[:, free] = U_free[:, mesh.dof_of_node[free]]
+        return out
+
+    U = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
+    sigma_n, sigma_t = relative_sigmas(U)  # step 5: the structure at rest
+    history: list[float] = []
+    converged = False
+    for _ in range(settings.max_iterations):
+        drag = _drag_blocks(t, mesh, rho, sigma_n, sigma_t)
+        C = pattern.assemble(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]))
+        U = nodal(response.solve(C, node_forces(drag), omega))
+        new_n, new_t = relative_sigmas(U)
+        change = max(_relative_change(new_n, sigma_n), _relative_change(new_t, sigma_t))
+        history.append(change)
+        sigma_n, sigma_t = new_n, new_t
+        if change <= settings.tolerance:
+            converged = True
+            break
+    if not converged:
+        raise ConvergenceError(f"stochastic analysis of {system.name}: the drag linearization "
+                               f"did not converge in {settings.max_iterations} iterations "
+                               f"(last change {history[-1]:.3g})")
+    _, dT = element.axial_tension(length, mesh.length0, mesh.EA, mesh.slack_ratio,
+                                  mesh.slack_smoothing)
+    H_T = dT[None] * np.einsum("wei,ei->we", U[:, b] - U[:, a], t)
+    u_std = np.sqrt(np.einsum("w,wnc->nc", power, np.abs(U) ** 2))
+    T_std = np.sqrt(np.einsum("w,we->e", power, np.abs(H_T) ** 2))
+
+    n_points = settings.n_points or 1 << int(math.ceil(math.log2(4 * len(omega) + 1)))
+    if n_points <= 2 * len(omega):
+        raise MoorlineError(f"stochastic analysis: n_points = {n_points} must exceed twice the "
+                            f"{len(omega)} frequencies")
+
+    def series(H: ComplexArray) -> FloatArray:
+        c = np.zeros((n_points // 2 + 1,) + H.shape[1:], dtype=complex)
+        c[1:len(omega) + 1] = H * amplitude.reshape((-1,) + (1,) * (H.ndim - 1))
+        return np.fft.irfft(c, n=n_points, axis=0) * n_points
+
+    time = sea.record_length * np.arange(n_points) / n_points
+    return StochasticResult(
+        omega=omega, wave_spectrum=spectrum, wave_amplitude=amplitude,
+        displacement_transfer=U, tension_transfer=H_T, displacement_std=u_std,
+        tension_std=T_std, sigma_normal=sigma_n, sigma_tangential=sigma_t,
+        iterations=len(history), history=history, time=time,
+        elevation=series(np.ones(len(omega), dtype=complex)),
+        displacement=series(U), tension=x0_tension(statics)[None] + series(H_T),
+        mesh=mesh, settings=settings, d_omega=sea.d_omega,
+        counters={"frequencies": len(omega), "dofs": mesh.n_dofs,
+                  "modes": len(response.lam) if settings.method == "foss" else 0})
+
+
+def x0_tension(statics: StaticResult) -> FloatArray:
+    """Static element tensions (n_elements,)."""
+    return np.asarray(statics.tension, dtype=float)
+
+
+def _relative_change(new: FloatArray, old: FloatArray) -> float:
+    """Largest ``|new - old| / new`` (entries below 1e-9 of the largest are compared with
+    that floor)."""
+    floor = 1e-9 * float(np.max(new, initial=0.0)) or 1e-300
+    return float(np.max(np.abs(new - old) / np.maximum(new, floor), initial=0.0))
+
+
+__all__ = ["StochasticResult", "StochasticSettings", "solve_stochastic"]

@@ -1,0 +1,105 @@
+"""Frequency-domain stochastic analysis (Tuah 1982 ch. 5): statistical drag linearization,
+Foss decoupling, response spectra and time series."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+import xarray as xr
+from click.testing import CliRunner
+
+from moorline.cli import cli
+from moorline.errors import MoorlineError
+from moorline.io import load_case
+from moorline.io.case_writer import write_case
+from moorline.model import Current, StaticsSettings, StochasticSettings, Waves
+from moorline.solvers.statics import solve_statics
+from moorline.solvers.stochastic import solve_stochastic
+from moorline.verification.stochastic_riser import MID_NODE, riser_system
+
+
+@pytest.fixture(scope="module")
+def riser():
+    system = riser_system()
+    return system, solve_statics(system)
+
+
+def test_series_variance_is_the_spectral_variance(riser):
+    """DSA: over one record each component contributes exactly |H|^2 S d_omega."""
+    system, static = riser
+    r = solve_stochastic(system, StochasticSettings(), static)
+    assert r.displacement.shape == (len(r.time), static.mesh.n_nodes, 3)
+    assert np.allclose(r.displacement.std(axis=0), r.displacement_std, rtol=1e-9, atol=1e-15)
+    assert np.allclose(r.tension.std(axis=0), r.tension_std, rtol=1e-9)
+    assert np.allclose(r.tension.mean(axis=0), static.tension)
+    assert len(r.time) == 1024 and r.time[1] == pytest.approx(0.25)  # Tuah's 2N for 200
+
+
+def test_linearization_is_a_fixed_point(riser):
+    """At convergence the relative-velocity sigmas recomputed from the response are those
+    the drag was linearized with (within the tolerance)."""
+    system, static = riser
+    tight = solve_stochastic(system, StochasticSettings(tolerance=1e-10), static)
+    assert tight.history[-1] <= 1e-10 and tight.iterations < 30
+    loose = solve_stochastic(system, StochasticSettings(tolerance=0.01), static)
+    assert np.allclose(loose.sigma_normal, tight.sigma_normal, rtol=0.02)
+    # the structure moves with the water: the relative velocity is below the fluid's alone
+    first = solve_stochastic(system, StochasticSettings(max_iterations=1, tolerance=1e9),
+                             static)
+    assert np.all(tight.sigma_normal <= first.sigma_normal * 1.0001)
+
+
+def test_truncated_modes_approximate_all(riser):
+    system, static = riser
+    full = solve_stochastic(system, StochasticSettings(), static)
+    few = solve_stochastic(system, StochasticSettings(n_modes=12), static)
+    assert few.counters["modes"] == 12
+    assert few.displacement_std[MID_NODE, 0] == pytest.approx(
+        full.displacement_std[MID_NODE, 0], rel=0.02)
+
+
+def test_nsa_changes_the_series_not_the_statistics(riser):
+    system, static = riser
+    nsa = replace(system, environment=replace(
+        system.environment, waves=replace(system.environment.waves, amplitudes="nsa")))
+    dsa_r = solve_stochastic(system, StochasticSettings(), static)
+    nsa_r = solve_stochastic(nsa, StochasticSettings(), static)
+    assert np.allclose(nsa_r.displacement_std, dsa_r.displacement_std)
+    assert not np.allclose(nsa_r.displacement, dsa_r.displacement)
+
+
+def test_needs_a_random_sea_without_current_and_without_bodies(riser):
+    system, static = riser
+    calm = replace(system, environment=replace(system.environment, waves=Waves()))
+    with pytest.raises(MoorlineError, match="random sea"):
+        solve_stochastic(calm, StochasticSettings(), static)
+    current = replace(system, environment=replace(system.environment,
+                                                  current=Current(speed=0.5)))
+    with pytest.raises(MoorlineError, match="zero mean"):
+        solve_stochastic(current, StochasticSettings(), static)
+    from moorline.verification import tuah_ex5
+
+    disc, disc_static = tuah_ex5.static_state()
+    disc = replace(disc, environment=replace(disc.environment, waves=Waves(
+        kind="random", height=21.0, period=12.6, spectrum="pierson-moskowitz",
+        record_length=256.0, n_frequencies=200)))
+    with pytest.raises(MoorlineError, match="bodies"):
+        solve_stochastic(disc, StochasticSettings(), disc_static)
+
+
+def test_stochastic_analysis_from_a_case_file(tmp_path):
+    system = replace(riser_system(), analyses=(StaticsSettings(),
+                                               StochasticSettings(method="direct")))
+    path = write_case(system, tmp_path / "riser.yaml")
+    assert load_case(path).analyses[1] == StochasticSettings(method="direct")
+    result = CliRunner().invoke(cli, ["run", str(path), "--out", str(tmp_path / "out"),
+                                      "--quiet", "--json"])
+    assert result.exit_code == 0, result.output
+    folder = tmp_path / "out" / system.name
+    assert (folder / "stochastic.png").stat().st_size > 0
+    with xr.open_dataset(folder / "results.nc", group="stochastic") as ds:
+        assert ds["displacement_spectrum"].dims == ("omega", "node", "xyz")
+        assert ds.attrs["method"] == "direct"
+        assert float(ds["tension_std"].max()) > 0
