@@ -70,7 +70,7 @@ def test_nsa_changes_the_series_not_the_statistics(riser):
     assert not np.allclose(nsa_r.displacement, dsa_r.displacement)
 
 
-def test_needs_a_random_sea_without_current_and_without_bodies(riser):
+def test_needs_a_random_sea_without_current(riser):
     system, static = riser
     calm = replace(system, environment=replace(system.environment, waves=Waves()))
     with pytest.raises(MoorlineError, match="random sea"):
@@ -79,14 +79,33 @@ def test_needs_a_random_sea_without_current_and_without_bodies(riser):
                                                   current=Current(speed=0.5)))
     with pytest.raises(MoorlineError, match="zero mean"):
         solve_stochastic(current, StochasticSettings(), static)
-    from moorline.verification import tuah_ex5
 
-    disc, disc_static = tuah_ex5.static_state()
-    disc = replace(disc, environment=replace(disc.environment, waves=Waves(
-        kind="random", height=21.0, period=12.6, spectrum="pierson-moskowitz",
-        record_length=256.0, n_frequencies=200)))
-    with pytest.raises(MoorlineError, match="bodies"):
-        solve_stochastic(disc, StochasticSettings(), disc_static)
+
+def test_body_system_the_disc_follows_long_waves():
+    """Tuah's Example 5 disc in the Hurricane Carla sea: body motions over the unknowns of
+    the master-slave transformation; in the long-wave limit the disc heaves with the
+    surface; Foss (all modes) equals the direct solve with bodies too; the keel node moves
+    with the disc."""
+    from moorline.verification import tuah_ex5, tuah_ex5_random
+
+    system, static = tuah_ex5_random.random_system()
+    foss = solve_stochastic(system, StochasticSettings(), static)
+    direct = solve_stochastic(system, StochasticSettings(method="direct"), static)
+    assert foss.body_names == (tuah_ex5.BODY,)
+    assert np.allclose(foss.body_transfer, direct.body_transfer, rtol=1e-7,
+                       atol=1e-9 * np.abs(direct.body_transfer).max())
+    heave = np.abs(foss.body_transfer[0, 0, 2])  # 0.0245 rad/s: a very long wave
+    assert heave == pytest.approx(1.0, abs=0.05)
+    assert np.allclose(foss.body_motion.std(axis=0), foss.body_std, rtol=1e-9)
+    # the fairlead (keel) node's heave is the disc's heave plus pitch times its arm
+    keel = static.mesh.slave_node[0]
+    arm = static.positions[keel] - static.body_pose[0, :3]  # world axes, at the static pose
+    H = foss.body_transfer[:, 0]
+    expected = H[:, 2] + np.cross(H[:, 3:], arm)[:, 2]
+    assert np.allclose(foss.displacement_transfer[:, keel, 2], expected, rtol=1e-6,
+                       atol=1e-9)
+    ds = foss.to_xarray()
+    assert ds["body_std"].dims == ("body", "dof") and list(ds["dof"].values)[4] == "pitch"
 
 
 def test_stochastic_analysis_from_a_case_file(tmp_path):

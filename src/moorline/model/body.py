@@ -98,8 +98,9 @@ class Body:
         environment's regular wave), used instead of the long-wave model.
     wave_loads
         Long-wave (small-body) excitation from the fluid field at the body origin: the
-        Froude-Krylov and added-mass force ``(rho V + A) a_fluid`` and, with a box or cylinder
-        waterplane, the heave excitation ``rho g A_wp eta``. Diffraction coefficients (Tuah
+        Froude-Krylov and added-mass force ``(rho V + A) a_fluid`` and the waterplane heave
+        excitation ``rho g A_wp eta`` (box or cylinder: its waterplane; matrix hydrostatics:
+        ``A_wp = K33 / (rho g)``). Diffraction coefficients (Tuah
         sec. 3.2.c) are not computed here; a BEM code can supply ``added_mass``/``damping``.
     """
 

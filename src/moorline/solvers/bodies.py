@@ -102,6 +102,24 @@ def transformation(mesh: Mesh, ext_dofs: int, n_free: int, body_dof: NDArray[np.
                          shape=(ext_dofs, n_u))
 
 
+def long_wave_geometry(body: Body, z: float, rho: float = 0.0,
+                       gravity: float = 0.0) -> tuple[float, float]:
+    """Waterplane area and submerged volume of the long-wave (small-body) load model at the
+    body origin's height ``z``: a box or cylinder hull gives both from its draft; a matrix
+    hydrostatics gives its ``volume`` and the waterplane of its heave stiffness,
+    ``A_wp = K33 / (rho g)`` (with ``rho`` and ``gravity`` given; else none)."""
+    hs = body.hydrostatics
+    area_wp = (hs.length * hs.width if hs.kind == "box" else
+               np.pi * hs.diameter**2 / 4 if hs.kind == "cylinder" else 0.0)
+    if hs.kind == "matrix" and rho > 0 and gravity > 0 and hs.stiffness is not None:
+        k = np.asarray(hs.stiffness, dtype=float)
+        k33 = float(k[2, 2] if k.ndim == 2 else k[2])
+        return max(k33, 0.0) / (rho * gravity), hs.volume
+    draft = float(np.clip(hs.height / 2 - z, 0.0, hs.height)) \
+        if hs.kind in ("box", "cylinder") else 0.0
+    return area_wp, (area_wp * draft if area_wp else hs.volume)
+
+
 def body_loads(body: Body, r: FloatArray, R: FloatArray, gravity: float,
                rho: float) -> tuple[FloatArray, FloatArray]:
     """Gravity, hydrostatics and constant loads on a body: generalized force (6,) about its

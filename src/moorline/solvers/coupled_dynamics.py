@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 from ..mesh import rotation_matrix
 from ..model import System
 from .assembly import gather_free, scatter_free
-from .bodies import BodyDofs, body_loads, skew, transformation
+from .bodies import BodyDofs, body_loads, long_wave_geometry, skew, transformation
 from .dynamic_model import DynamicModel
 from .excitation import motion_value
 
@@ -166,12 +166,7 @@ class CoupledStepper:
             force += 0.5 * rho * body.Cd * area * np.abs(rel) * rel
             dF_dv -= np.diag(rho * body.Cd * area * np.abs(rel))
         if body.wave_loads:
-            hs = body.hydrostatics
-            area_wp = (hs.length * hs.width if hs.kind == "box" else
-                       np.pi * hs.diameter**2 / 4 if hs.kind == "cylinder" else 0.0)
-            draft = float(np.clip(hs.height / 2 - bs.r[b, 2], 0.0, hs.height)) \
-                if hs.kind in ("box", "cylinder") else 0.0
-            volume = area_wp * draft if area_wp else hs.volume
+            area_wp, volume = long_wave_geometry(body, float(bs.r[b, 2]), rho, g)
             force += rho * volume * a[0] + self.added[b][:3, :3] @ a[0]
             force[2] += rho * g * area_wp * float(eta[0])
         return force, dF_dv

@@ -47,9 +47,15 @@ Frequency response (steps 7-11), two ways:
 Time series (step 14): the inverse FFT of ``H_x A_m`` with the realization's complex
 amplitudes (DSA or NSA), ``x(n dt) = 2N irfft(H_x A)[n]`` (:mod:`moorline.waves.random`).
 
-Scope: lines and points (fixed, prescribed points held); point buoys' own hydrodynamics and
-rigid bodies are not included yet; the flow must have zero mean (no current), as the source
-assumes.
+Rigid bodies (Tuah sec. 5.2, "force spectra on large bodies ... by the procedure of sec.
+3.3"): the unknowns are the free node dofs and six per free body, lines attached through the
+master-slave transformation (:func:`moorline.solvers.modal.body_modal_matrices`); constant
+added mass and radiation damping; the wave loads on a body from its exciting-force table
+(amplitude and phase over frequency, zero above the table) or the long-wave model of the time
+domain (``wave_loads``), and its quadratic drag linearized the same way per direction.
+
+Scope: point buoys' own hydrodynamics are not included; the flow must have zero mean (no
+current), as the source assumes.
 """
 
 from __future__ import annotations
@@ -69,10 +75,11 @@ from ..mesh import Mesh
 from ..model import ModalSettings, StochasticSettings, System
 from ..physics import element
 from ..results import StaticResult
-from ..waves import random_sea
+from ..waves import random_sea, wave_number
 from ..waves.transfer import kinematics_transfer
 from .assembly import BlockPattern
-from .modal import modal_matrices
+from .bodies import long_wave_geometry
+from .modal import body_modal_matrices, modal_matrices
 from .statics import equilibrium_for
 
 FloatArray = NDArray[np.float64]
@@ -100,6 +107,10 @@ class StochasticResult:
     time, elevation, displacement, tension
         Time series over one record: (n_t,), (n_t,) at the origin, (n_t, n_nodes, 3),
         (n_t, n_elements).
+    body_names, body_transfer, body_std, body_motion
+        Free bodies: motion (surge, sway, heave, roll, pitch, yaw about the body origin) per
+        unit wave amplitude (n_w, n_bodies, 6), standard deviations (n_bodies, 6) and time
+        series (n_t, n_bodies, 6).
     """
 
     omega: FloatArray
@@ -120,6 +131,10 @@ class StochasticResult:
     mesh: Mesh
     settings: StochasticSettings
     d_omega: float
+    body_names: tuple[str, ...] = ()
+    body_transfer: ComplexArray = field(default_factory=lambda: np.zeros((0, 0, 6), complex))
+    body_std: FloatArray = field(default_factory=lambda: np.zeros((0, 6)))
+    body_motion: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
     counters: dict = field(default_factory=dict)
 
     def response_spectrum(self, transfer: ComplexArray) -> FloatArray:
@@ -130,7 +145,13 @@ class StochasticResult:
     def to_xarray(self) -> xr.Dataset:
         """Spectra (dim ``omega``), standard deviations and time series (dim ``time``)."""
         n_nodes, n_el = self.mesh.n_nodes, self.mesh.n_elements
-        return xr.Dataset(
+        bodies = {}
+        if self.body_names:
+            bodies = {"body_spectrum": (("omega", "body", "dof"),
+                                        self.response_spectrum(self.body_transfer)),
+                      "body_std": (("body", "dof"), self.body_std),
+                      "body_motion": (("time", "body", "dof"), self.body_motion)}
+        ds = xr.Dataset(
             {"wave_spectrum": (("omega",), self.wave_spectrum),
              "displacement_spectrum": (("omega", "node", "xyz"),
                                        self.response_spectrum(self.displacement_transfer)),
@@ -147,6 +168,11 @@ class StochasticResult:
                     "element": np.arange(n_el), "xyz": ["x", "y", "z"]},
             attrs={"kind": "stochastic", "method": self.settings.method,
                    "iterations": self.iterations, "d_omega": self.d_omega})
+        if bodies:
+            ds = ds.assign(bodies).assign_coords(
+                body=list(self.body_names),
+                dof=["surge", "sway", "heave", "roll", "pitch", "yaw"])
+        return ds
 
 
 def _inertia_blocks(t: FloatArray, mesh: Mesh, rho: float) -> FloatArray:
@@ -171,6 +197,152 @@ def _drag_blocks(t: FloatArray, mesh: Mesh, rho: float, sigma_n: FloatArray,
 def _node_pairs(block: FloatArray) -> FloatArray:
     """(n_el, 6, 6) with ``block`` on all four node-node positions."""
     return np.tile(block, (1, 2, 2))
+
+
+def _matrix6(value) -> FloatArray:
+    """A body's 6x6 coefficient (``None``: zeros; six numbers: a diagonal)."""
+    if value is None:
+        return np.zeros((6, 6))
+    m = np.asarray(value, dtype=float)
+    return np.diag(m) if m.ndim == 1 else m
+
+
+class _LinearModel:
+    """``K``, ``M`` and the assembly of damping and forces over the unknowns: the free node
+    dofs of the lines, then six per free body (the master-slave transformation ``P`` of
+    Tuah (1982) eq. 3.3.6-3.3.10 maps them to the extended node dofs, which include the
+    nodes attached to bodies)."""
+
+    def __init__(self, system: System, statics: StaticResult,
+                 settings: StochasticSettings) -> None:
+        mesh = statics.mesh
+        self.mesh, self.rho = mesh, float(mesh.water_density)
+        modal = ModalSettings(mass=settings.mass, added_mass=settings.added_mass)
+        if getattr(mesh, "body_names", ()):
+            K, M, P, problem = body_modal_matrices(system, mesh, statics.positions,
+                                                   statics.body_pose, modal)
+            self.P, self.n_free = P, problem.n_free
+            self.pattern = problem.pattern
+            self.ext_map = mesh.dof_of_node.copy()
+            for k, node in enumerate(mesh.slave_node):
+                self.ext_map[node] = problem.n_free + 3 * k + np.arange(3)
+            self.bodies = [b for b, d in zip(problem.bodies, problem.body_dof, strict=True)
+                           if d >= 0]
+            self.body_dof = np.array([d for d in problem.body_dof if d >= 0], dtype=int)
+            self.origins = np.array([statics.body_pose[i, :3] for i, d
+                                     in enumerate(problem.body_dof) if d >= 0]).reshape(-1, 3)
+        else:
+            K, M = modal_matrices(mesh, statics.positions, modal)
+            self.P, self.n_free = None, mesh.n_dofs
+            self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
+            self.ext_map = mesh.dof_of_node
+            self.bodies, self.body_dof = [], np.zeros(0, dtype=int)
+            self.origins = np.zeros((0, 3))
+        self.K, self.M = K, M
+        self.environment = system.environment
+
+    def body_kinematics(self, omega: FloatArray) -> _BodyWaves:
+        """The wave loads on the free bodies."""
+        return _BodyWaves(self, omega)
+
+    def damping(self, element_blocks: FloatArray, sigma_b: FloatArray) -> sp.csr_matrix:
+        """Linearized line drag, bodies' radiation damping and linearized body drag."""
+        C = self.pattern.assemble(element_blocks)
+        if self.P is None:
+            return C
+        C = (self.P.T @ C @ self.P).tolil()
+        for i, (body, d) in enumerate(zip(self.bodies, self.body_dof, strict=True)):
+            block = _matrix6(body.damping)
+            block[:3, :3] += np.diag(_body_drag(body, self.rho, sigma_b[i]))
+            C[d:d + 6, d:d + 6] = C[d:d + 6, d:d + 6].toarray() + block
+        return C.tocsr()
+
+    def forces(self, nodal: ComplexArray, body_forces: ComplexArray) -> ComplexArray:
+        """Generalized forces over the unknowns (n_w, n_u) from node forces (n_w, n_nodes, 3)
+        and body forces (n_w, n_bodies, 6)."""
+        mask = self.ext_map >= 0
+        n_ext = self.P.shape[0] if self.P is not None else self.K.shape[0]
+        ext = np.zeros((nodal.shape[0], n_ext), dtype=complex)
+        ext[:, self.ext_map[mask]] = nodal[:, mask]
+        if self.P is None:
+            return ext
+        out = np.asarray((self.P.T @ ext.T).T)
+        for i, d in enumerate(self.body_dof):
+            out[:, d:d + 6] += body_forces[:, i]
+        return out
+
+    def split(self, solution: ComplexArray) -> tuple[ComplexArray, ComplexArray]:
+        """Node displacements (n_w, n_nodes, 3) and body motions (n_w, n_bodies, 6)."""
+        mesh = self.mesh
+        ext = solution if self.P is None else np.asarray((self.P @ solution.T).T)
+        mask = self.ext_map >= 0
+        nodes = np.zeros((solution.shape[0], mesh.n_nodes, 3), dtype=complex)
+        nodes[:, mask] = ext[:, self.ext_map[mask]]
+        bodies = np.stack([solution[:, d:d + 6] for d in self.body_dof], axis=1) \
+            if len(self.body_dof) else np.zeros((solution.shape[0], 0, 6), dtype=complex)
+        return nodes, bodies
+
+
+def _body_drag(body, rho: float, sigma: FloatArray) -> FloatArray:
+    """Linearized drag coefficients per world direction of a body,
+    ``1/2 rho Cd A_i (8/pi)^(1/2) sigma_i`` (3,)."""
+    area = np.asarray(body.drag_area, dtype=float)
+    return 0.5 * rho * body.Cd * area * math.sqrt(8.0 / math.pi) * sigma
+
+
+class _BodyWaves:
+    """Wave loads on the free bodies per unit wave amplitude: the body's exciting-force
+    table (amplitude and phase over frequency, :class:`moorline.model.body.WaveExcitation`,
+    interpolated; zero above its last frequency), else with ``wave_loads`` the long-wave
+    model of the time domain (Froude-Krylov and added-mass force on the fluid acceleration
+    at the origin, waterplane heave force), plus the linearized drag on the fluid velocity;
+    and the standard deviations of the relative velocity at the origin."""
+
+    def __init__(self, model: _LinearModel, omega: FloatArray) -> None:
+        mesh, env = model.mesh, model.environment
+        self.model, self.omega = model, omega
+        self.fixed = np.zeros((len(omega), len(model.bodies), 6), dtype=complex)
+        self.H_v = np.zeros((len(omega), len(model.bodies), 3), dtype=complex)
+        if not model.bodies:
+            return
+        H_v, H_a = kinematics_transfer(model.origins, omega, env.waves.heading_deg, env.depth,
+                                       env.gravity)
+        self.H_v = H_v
+        k = np.atleast_1d(wave_number(omega, env.depth, env.gravity))
+        beta = math.radians(env.waves.heading_deg)
+        for i, body in enumerate(model.bodies):
+            along = model.origins[i, 0] * math.cos(beta) + model.origins[i, 1] * math.sin(beta)
+            shift = np.exp(-1j * k * along)
+            table = body.excitation
+            if table is not None:
+                w_tab = np.asarray(table.omegas, dtype=float)
+                amp = np.column_stack([np.interp(omega, w_tab, np.asarray(table.amplitude)[:, j],
+                                                 right=0.0) for j in range(6)])
+                phase = np.radians(np.column_stack([
+                    np.interp(omega, w_tab, np.asarray(table.phase_deg)[:, j])
+                    for j in range(6)]))
+                self.fixed[:, i] = amp * np.exp(1j * phase) * shift[:, None]
+            elif body.wave_loads:
+                area_wp, volume = long_wave_geometry(body, float(model.origins[i, 2]),
+                                                     model.rho, mesh.gravity)
+                added = _matrix6(body.added_mass)[:3, :3]
+                self.fixed[:, i, :3] = H_a[:, i] @ (model.rho * volume * np.eye(3) + added).T
+                self.fixed[:, i, 2] += model.rho * mesh.gravity * area_wp * shift
+
+    def excitation(self, sigma_b: FloatArray) -> ComplexArray:
+        """Body forces (n_w, n_bodies, 6) with the drag linearized at ``sigma_b``."""
+        out = self.fixed.copy()
+        for i, body in enumerate(self.model.bodies):
+            out[:, i, :3] += self.H_v[:, i] * _body_drag(body, self.model.rho, sigma_b[i])
+        return out
+
+    def sigmas(self, X: ComplexArray, power: FloatArray) -> FloatArray:
+        """Standard deviation of the relative velocity at each body origin per direction
+        (n_bodies, 3)."""
+        if not self.model.bodies:
+            return np.zeros((0, 3))
+        rel = self.H_v - 1j * self.omega[:, None, None] * X[..., :3]
+        return np.sqrt(np.einsum("w,wbc->bc", power, np.abs(rel) ** 2))
 
 
 class _Response:
@@ -213,7 +385,7 @@ class _Response:
 
 def solve_stochastic(system: System, settings: StochasticSettings | None = None,
                      statics: StaticResult | None = None) -> StochasticResult:
-    """Stochastic response of a line system to the random sea of its environment.
+    """Stochastic response of lines (and bodies) to the random sea of its environment.
 
     Tuah (1982) sec. 5.2-5.3, steps 1-14 (see the module docstring).
 
@@ -234,7 +406,7 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     Raises
     ------
     MoorlineError
-        Without a random sea, with a current, with bodies.
+        Without a random sea or with a current.
     ConvergenceError
         When the statics fails or the linearization does not converge.
     """
@@ -251,10 +423,7 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
                             f"{settings.method!r}")
     statics = equilibrium_for(system, statics, "stochastic analysis")
     mesh = statics.mesh
-    if getattr(mesh, "body_names", ()):
-        raise MoorlineError(f"stochastic analysis of {system.name}: systems with bodies are "
-                            "not supported yet (lines and points only)")
-    if mesh.n_dofs == 0:
+    if mesh.n_dofs == 0 and not getattr(mesh, "body_names", ()):
         raise MoorlineError(f"stochastic analysis of {system.name}: no free node")
     rho = float(mesh.water_density)
     sea = random_sea(env.waves)
@@ -263,26 +432,22 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     power = spectrum * sea.d_omega  # variance per component
 
     x0 = statics.positions
-    K, M = modal_matrices(mesh, x0, ModalSettings(mass=settings.mass,
-                                                  added_mass=settings.added_mass))
+    model = _LinearModel(system, statics, settings)
     length, t = element.element_geometry(x0, mesh.elements)
     a, b = mesh.elements[:, 0], mesh.elements[:, 1]
     mid = 0.5 * (x0[a] + x0[b])
     H_v, H_a = kinematics_transfer(mid, omega, env.waves.heading_deg, env.depth, env.gravity)
     inertia = np.einsum("eij,wej->wei", _inertia_blocks(t, mesh, rho), H_a)
-    pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
-    response = _Response(K, M, settings)
+    bodies = model.body_kinematics(omega)
+    response = _Response(model.K, model.M, settings)
 
-    def node_forces(drag: FloatArray) -> ComplexArray:
+    def line_forces(drag: FloatArray) -> ComplexArray:
         per_node = inertia + np.einsum("eij,wej->wei", drag * (0.5 * mesh.length0)[:, None,
                                                                                      None], H_v)
         nodal = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
         np.add.at(nodal, (slice(None), a), per_node)
         np.add.at(nodal, (slice(None), b), per_node)
-        free = mesh.dof_of_node >= 0
-        out = np.zeros((len(omega), mesh.n_dofs), dtype=complex)
-        out[:, mesh.dof_of_node[free]] = nodal[:, free]
-        return out
+        return nodal
 
     def relative_sigmas(U: ComplexArray) -> tuple[FloatArray, FloatArray]:
         R = H_v - 1j * omega[:, None, None] * 0.5 * (U[:, a] + U[:, b])
@@ -292,24 +457,23 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         var_t = np.einsum("w,we->e", power, np.abs(s) ** 2)
         return np.sqrt(var_n), np.sqrt(var_t)
 
-    def nodal(U_free: ComplexArray) -> ComplexArray:
-        out = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
-        free = mesh.dof_of_node >= 0
-        out[:, free] = U_free[:, mesh.dof_of_node[free]]
-        return out
-
     U = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
+    X = np.zeros((len(omega), len(model.body_dof), 6), dtype=complex)
     sigma_n, sigma_t = relative_sigmas(U)  # step 5: the structure at rest
+    sigma_b = bodies.sigmas(X, power)
     history: list[float] = []
     converged = False
     for _ in range(settings.max_iterations):
         drag = _drag_blocks(t, mesh, rho, sigma_n, sigma_t)
-        C = pattern.assemble(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]))
-        U = nodal(response.solve(C, node_forces(drag), omega))
+        C = model.damping(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]), sigma_b)
+        F = model.forces(line_forces(drag), bodies.excitation(sigma_b))
+        U, X = model.split(response.solve(C, F, omega))
         new_n, new_t = relative_sigmas(U)
-        change = max(_relative_change(new_n, sigma_n), _relative_change(new_t, sigma_t))
+        new_b = bodies.sigmas(X, power)
+        change = max(_relative_change(new_n, sigma_n), _relative_change(new_t, sigma_t),
+                     _relative_change(new_b, sigma_b))
         history.append(change)
-        sigma_n, sigma_t = new_n, new_t
+        sigma_n, sigma_t, sigma_b = new_n, new_t, new_b
         if change <= settings.tolerance:
             converged = True
             break
@@ -342,7 +506,10 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         elevation=series(np.ones(len(omega), dtype=complex)),
         displacement=series(U), tension=x0_tension(statics)[None] + series(H_T),
         mesh=mesh, settings=settings, d_omega=sea.d_omega,
-        counters={"frequencies": len(omega), "dofs": mesh.n_dofs,
+        body_names=tuple(b.name for b in model.bodies), body_transfer=X,
+        body_std=np.sqrt(np.einsum("w,wbc->bc", power, np.abs(X) ** 2)),
+        body_motion=series(X),
+        counters={"frequencies": len(omega), "dofs": model.K.shape[0],
                   "modes": len(response.lam) if settings.method == "foss" else 0})
 
 

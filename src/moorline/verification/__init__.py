@@ -24,5 +24,6 @@ register("modes-string", "modes_string:run")
 register("modes-irvine", "modes_irvine:run")
 register("tuah-ex7-lift", "tuah_ex7_lift:run")
 register("stochastic-riser", "stochastic_riser:run")
+register("tuah-ex5-random", "tuah_ex5_random:run")
 
 __all__ = ["CASES", "Row", "register", "run_cases"]
