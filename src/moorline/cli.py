@@ -422,37 +422,69 @@ def run_strumming(settings: Any, context: RunContext, label: str) -> Outcome:
     return Outcome("strumming", True, summary["message"], summary, [path], result)
 
 
-def run_stochastic(settings: Any, context: RunContext, label: str) -> Outcome:
-    """Frequency-domain stochastic response to the case's random sea about the preceding
-    statics result (solved here when there is none): group ``label`` of the results file
-    and ``stochastic.png``."""
+def _about_statics(kind: str, what: str, solve: Callable, plot: Callable,
+                   describe: Callable, settings: Any, context: RunContext,
+                   label: str) -> Outcome:
+    """Run an analysis that linearizes about (or starts from) the preceding statics result
+    of the run (solved by ``solve`` when there is none): its dataset in group ``label`` of
+    the results file, its plot ``<kind>.png``, its summary from ``describe(result)`` (a
+    message and a dict)."""
     from .io.writers import write_group
-    from .plot import plot_stochastic
-    from .solvers.stochastic import solve_stochastic
 
     system = context.system
     statics = context.latest("statics")
     initial = statics.result if statics is not None and statics.success else None
-    path = context.directory / f"{_prefix(label, 'stochastic')}stochastic.png"
-    with _status(f"stochastic response of {system.name} ...", context.quiet) as update:
+    path = context.directory / f"{_prefix(label, kind)}{kind}.png"
+    with _status(f"{what} of {system.name} ...", context.quiet) as update:
         try:
-            result = solve_stochastic(system, settings, initial)
+            result = solve(system, settings, initial)
         except ConvergenceError as exc:
-            return Outcome("stochastic", False, str(exc), {"converged": False,
-                                                           "message": str(exc)})
+            return Outcome(kind, False, str(exc), {"converged": False, "message": str(exc)})
         update("writing results ...")
         ds = result.to_xarray()
         ds.attrs["case"] = system.name
         write_group(ds, context.results, label)
         update("plotting ...")
-        plot_stochastic(ds, path)
-    message = (f"{result.iterations} linearization iterations, {len(result.omega)} "
-               f"frequencies ({settings.method})")
-    summary = {"converged": True, "message": message, "iterations": result.iterations,
-               "max_displacement_std": float(result.displacement_std.max(initial=0.0)),
-               "max_tension_std": float(result.tension_std.max(initial=0.0)),
-               "tension_std": [float(v) for v in result.tension_std]}
-    return Outcome("stochastic", True, message, summary, [path], result)
+        plot(ds, path)
+    message, details = describe(result)
+    return Outcome(kind, True, message, {"converged": True, "message": message, **details},
+                   [path], result)
+
+
+def run_stochastic(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Frequency-domain stochastic response to the case's random sea about the preceding
+    statics result: group ``label`` of the results file and ``stochastic.png``."""
+    from .plot import plot_stochastic
+    from .solvers.stochastic import solve_stochastic
+
+    def describe(result) -> tuple[str, dict]:
+        return (f"{result.iterations} linearization iterations, {len(result.omega)} "
+                f"frequencies ({settings.method})",
+                {"iterations": result.iterations,
+                 "max_displacement_std": float(result.displacement_std.max(initial=0.0)),
+                 "max_tension_std": float(result.tension_std.max(initial=0.0)),
+                 "tension_std": [float(v) for v in result.tension_std]})
+
+    return _about_statics("stochastic", "stochastic response", solve_stochastic,
+                          plot_stochastic, describe, settings, context, label)
+
+
+def run_harmonic(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Periodic response by harmonic balance from the preceding statics result: group
+    ``label`` of the results file and ``harmonic.png``."""
+    from .plot import plot_harmonic
+    from .solvers.harmonic import solve_harmonic
+
+    def describe(result) -> tuple[str, dict]:
+        return (f"converged in {result.iterations} Newton iterations "
+                f"({settings.harmonics} harmonics)",
+                {"iterations": result.iterations,
+                 "max_first_harmonic_amplitude": float(result.amplitude(1).max(initial=0.0)),
+                 "tension_min": [float(v) for v in result.tension.min(axis=0)],
+                 "tension_max": [float(v) for v in result.tension.max(axis=0)]})
+
+    return _about_statics("harmonic", "harmonic balance", solve_harmonic, plot_harmonic,
+                          describe, settings, context, label)
 
 
 #: Runner of each analysis kind a case may list: (settings, context, label) -> Outcome.
@@ -462,6 +494,7 @@ RUNNERS: dict[str, Callable[[Any, RunContext, str], Outcome]] = {
     "modal": run_modal,
     "strumming": run_strumming,
     "stochastic": run_stochastic,
+    "harmonic": run_harmonic,
 }
 
 

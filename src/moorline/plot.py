@@ -591,3 +591,50 @@ def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -
     fig.suptitle(f"stochastic response ({dataset.attrs.get('method', '')}, "
                  f"{dataset.attrs.get('iterations', '?')} linearization iterations)")
     _save(fig, Path(path))
+
+
+def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> None:
+    """Plot the periodic response: snapshots of the lines over one period (x-z, the dynamic
+    part magnified to be seen) and the tension range along the elements.
+
+    Parameters
+    ----------
+    dataset
+        A harmonic dataset (:meth:`moorline.solvers.harmonic.HarmonicResult.to_xarray`).
+    path
+        PNG file to write (parent directories are created).
+    snapshots
+        Instants drawn, equally spaced over the period.
+    """
+    pos = np.asarray(dataset["position"].values, dtype=float)
+    static = np.asarray(dataset["static_position"].values, dtype=float)
+    tension = np.asarray(dataset["tension"].values, dtype=float)
+    dyn = pos - pos.mean(axis=0)[None]
+    span = float(np.ptp(static[:, [0, 2]], axis=0).max()) or 1.0
+    amp = float(np.abs(dyn).max()) or 1.0
+    scale = max(1.0, 0.05 * span / amp)
+    fig = Figure(figsize=(10.0, 5.0), layout="constrained")
+    ax, ax_t = fig.subplots(1, 2)
+    order = np.argsort(static[:, 0] + 1e-9 * static[:, 2])
+    mean = pos.mean(axis=0)
+    for j in np.linspace(0, len(pos), snapshots, endpoint=False).astype(int):
+        shape = mean + scale * dyn[j]
+        ax.plot(shape[order, 0], shape[order, 2], linewidth=0.8,
+                label=f"t/T = {j / len(pos):.2f}")
+    ax.plot(static[order, 0], static[order, 2], "k--", linewidth=0.8, label="static")
+    ax.set_xlabel("x")
+    ax.set_ylabel("z")
+    ax.set_title(f"one period (dynamic part x {scale:.3g})")
+    ax.legend(fontsize=7)
+    elements = np.arange(tension.shape[1]) + 1
+    ax_t.fill_between(elements, tension.min(axis=0), tension.max(axis=0), alpha=0.3,
+                      label="range over the period")
+    ax_t.plot(elements, tension.mean(axis=0), "k", linewidth=0.8, label="mean")
+    ax_t.set_xlabel("element")
+    ax_t.set_ylabel("tension")
+    ax_t.legend(fontsize=7)
+    for a in (ax, ax_t):
+        a.grid(True, linewidth=0.3)
+    fig.suptitle(f"harmonic balance: period {float(dataset.attrs.get('period', 0)):.4g}, "
+                 f"{dataset.attrs.get('harmonics', '?')} harmonics")
+    _save(fig, Path(path))

@@ -24,6 +24,7 @@ from moorline.model import (
     Current,
     DynamicsSettings,
     Environment,
+    HarmonicSettings,
     Hydrostatics,
     Line,
     LineType,
@@ -43,6 +44,7 @@ from moorline.model import (
 from .schema import (
     CaseSpec,
     DynamicsSpec,
+    HarmonicSpec,
     LineSpec,
     ModalSpec,
     MotionSpec,
@@ -558,7 +560,11 @@ def _stochastic(spec: StochasticSpec, units: str) -> StochasticSettings:
     return StochasticSettings(**spec.model_dump())
 
 
+def _harmonic(spec: HarmonicSpec, units: str) -> HarmonicSettings:
+    return HarmonicSettings(**spec.model_dump())
+
+
 _ANALYSES: dict[type[BaseModel], Callable[[Any, str], Any]] = {
     StaticsSpec: _statics, DynamicsSpec: _dynamics, ModalSpec: _modal,
-    StrummingSpec: _strumming, StochasticSpec: _stochastic}
+    StrummingSpec: _strumming, StochasticSpec: _stochastic, HarmonicSpec: _harmonic}
 """How each analysis spec becomes its settings object; extend with new analysis kinds."""

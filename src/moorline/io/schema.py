@@ -427,9 +427,22 @@ class StochasticSpec(_Spec):
     n_points: PositiveInt | None = None
 
 
+class HarmonicSpec(_Spec):
+    """``analyses[i]`` with ``kind: harmonic`` (see :class:`moorline.model.HarmonicSettings`):
+    the periodic response by harmonic balance."""
+
+    kind: Literal["harmonic"]
+    period: quantity("time", gt=0.0)
+    harmonics: PositiveInt = 5
+    samples: PositiveInt | None = None
+    tolerance: quantity("dimensionless", gt=0.0) = 1e-8
+    max_iterations: PositiveInt = 50
+    output_points: PositiveInt = 64
+
+
 # Add new analyses as further members of this union.
 AnalysisSpec = Annotated[Union[StaticsSpec, DynamicsSpec, ModalSpec,  # noqa: UP007
-                               StrummingSpec, StochasticSpec],
+                               StrummingSpec, StochasticSpec, HarmonicSpec],
                          Field(discriminator="kind")]
 
 

@@ -202,3 +202,34 @@ class StochasticSettings:
     mass: Literal["lumped", "consistent"] = "consistent"
     added_mass: bool = True
     n_points: int | None = None
+
+
+@dataclass(frozen=True)
+class HarmonicSettings:
+    """Harmonic-balance settings: the periodic response (Tcheou 1997; see
+    :mod:`moorline.solvers.harmonic`).
+
+    Attributes
+    ----------
+    period
+        Period of the excitation and the response [time].
+    harmonics
+        Number of harmonics ``n`` kept (the mean and ``n`` cosine-sine pairs).
+    samples
+        Instants per period of the residual evaluation (default ``8 (n + 1)``).
+    tolerance
+        Newton stops when the largest harmonic residual is below ``tolerance`` times the
+        load scale.
+    max_iterations
+        Newton iteration limit.
+    output_points
+        Instants per period of the reconstructed histories.
+    """
+
+    kind: Literal["harmonic"] = "harmonic"
+    period: float = 10.0
+    harmonics: int = 5
+    samples: int | None = None
+    tolerance: float = 1e-8
+    max_iterations: int = 50
+    output_points: int = 64

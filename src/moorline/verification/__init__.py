@@ -25,5 +25,6 @@ register("modes-irvine", "modes_irvine:run")
 register("tuah-ex7-lift", "tuah_ex7_lift:run")
 register("stochastic-riser", "stochastic_riser:run")
 register("tuah-ex5-random", "tuah_ex5_random:run")
+register("tcheou-t2", "tcheou_t2:run")
 
 __all__ = ["CASES", "Row", "register", "run_cases"]
