@@ -288,3 +288,41 @@ def test_load_study_resolves_the_case_relative_to_the_file(tmp_path):
     study.write_text(yaml.safe_dump({"name": "s", "base": {"case": "line.yaml"},
                                      "outputs": {"quantities": {"t": "static tension"}}}))
     assert load_study(study).case == tmp_path / "sub" / "line.yaml"
+
+
+# ----------------------------------------------------------------------------- on Dask
+def test_study_on_a_local_dask_cluster_equals_the_serial_run(tmp_path):
+    """The OC3 length study on two Dask worker processes gives the serial table (the same
+    cases, the same numbers, the same order)."""
+    pytest.importorskip("distributed")
+    from moorline.sweep import dask_mapper
+
+    study = _oc3_study(tmp_path)
+    serial = run_study(study)
+    done = []
+    mapper, close = dask_mapper(workers=2, progress=lambda k, n: done.append((k, n)))
+    try:
+        parallel = run_study(study, mapper=mapper)
+    finally:
+        close()
+    assert done[-1] == (2, 2)
+    for name in ("fairlead_tension", "max_tension", "anchor_x"):
+        assert np.array_equal(parallel[name].values, serial[name].values)
+    assert list(parallel["status"].values) == ["ok", "ok"]
+
+
+def test_cli_sweep_with_workers_and_unreachable_scheduler(tmp_path, monkeypatch):
+    pytest.importorskip("distributed")
+    import moorline.sweep
+
+    monkeypatch.setattr(moorline.sweep, "SCHEDULER_TIMEOUT", "2s")
+    study = tmp_path / "study.yaml"
+    study.write_text(yaml.safe_dump(_oc3_study(tmp_path)))
+    result = CliRunner().invoke(cli, ["sweep", str(study), "--out", str(tmp_path / "out"),
+                                      "--workers", "2", "--quiet", "--json"])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "out" / "oc3-length" / "table.csv").is_file()
+    bad = CliRunner().invoke(cli, ["sweep", str(study), "--out", str(tmp_path / "o2"),
+                                   "--scheduler", "tcp://127.0.0.1:9", "--quiet"])
+    assert bad.exit_code == 2
+    assert "Dask scheduler" in bad.output and "Traceback" not in bad.output

@@ -844,17 +844,24 @@ def _plot_group(ds: Any, kind: str, label: str, directory: Path) -> list[Path]:
 @click.option("--out", "out", type=click.Path(file_okay=False, path_type=Path),
               default=Path("out"), show_default=True,
               help="Output directory; results go to DIR/<study name>/.")
+@click.option("--workers", "workers", type=click.IntRange(min=1), default=None,
+              help="Run the cases on a local Dask cluster of N worker processes.")
+@click.option("--scheduler", "scheduler", metavar="ADDRESS", default=None,
+              help="Run the cases on the Dask cluster of this scheduler "
+                   "(tcp://host:8786; its workers need moorline).")
 @_json_option
 @_common_options
-def sweep(study: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> None:
+def sweep(study: Path, out: Path, workers: int | None, scheduler: str | None, as_json: bool,
+          quiet: bool, verbose: bool) -> None:
     """Run the parameter study STUDY (see moorline.sweep) and gather its outputs.
 
     Writes DIR/<study>/table.csv, table.nc (one row per case: parameters, steady-state
-    outputs, status) and trends.png (each output against the varied parameter). Exit code 1
-    when a case failed.
+    outputs, status) and trends.png (each output against the varied parameter). The cases
+    run one after the other, or in parallel on Dask with --workers or --scheduler (the
+    optional [dask] extra). Exit code 1 when a case failed.
     """
     _configure_logging(verbose)
-    from .sweep import load_study, run_study, study_cases, write_study
+    from .sweep import dask_mapper, load_study, run_study, study_cases, write_study
 
     spec = load_study(study)
     n_cases = len(study_cases(spec))
@@ -865,7 +872,19 @@ def sweep(study: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> 
                 update(f"study {spec.name}: run {k + 1} of {len(cases)} ({params}) ...")
                 yield function(params)
 
-        table = run_study(spec, mapper=counted)
+        close = None
+        mapper: Callable[..., Any] = counted
+        if workers is not None or scheduler is not None:
+            try:
+                mapper, close = dask_mapper(scheduler, workers, progress=lambda done, n: update(
+                    f"study {spec.name}: {done} of {n} cases done (Dask) ..."))
+            except MoorlineError as exc:
+                _fail(f"{study}: {exc}", EXIT_BAD_INPUT)
+        try:
+            table = run_study(spec, mapper=mapper)
+        finally:
+            if close is not None:
+                close()
         files = write_study(table, out / _safe_name(spec.name, study.stem))
     rows = table.to_dataframe().reset_index()
     failed = [str(s) for s in table["status"].values if str(s) != "ok"]

@@ -42,8 +42,10 @@ Quantities
 
 The case loop is separable: :func:`study_cases` lists the parameter sets,
 :func:`run_one` runs one (a pure function of the study and the parameters, returning a
-dict) and :func:`run_study` maps it over the distinct sets with any ``map``-like callable,
-e.g. ``lambda f, xs: client.gather(client.map(f, xs))`` for Dask.
+dict) and :func:`run_study` maps it over the distinct sets with any ``map``-like callable.
+:func:`dask_mapper` gives one that runs the cases on a Dask cluster (an existing scheduler,
+or local worker processes): ``moorline sweep STUDY --workers 4`` or ``--scheduler
+tcp://host:8786`` (the optional ``[dask]`` extra).
 """
 
 from __future__ import annotations
@@ -73,6 +75,8 @@ Statistic = Literal["amplitude", "mean", "max", "min", "static"]
 STATISTICS: tuple[str, ...] = ("amplitude", "mean", "max", "min", "static")
 BODY_DOFS = ("x", "y", "z", "rx", "ry", "rz")
 TABLE_CSV, TABLE_NC, TRENDS_PNG = "table.csv", "table.nc", "trends.png"
+#: How long to wait for a Dask scheduler to answer.
+SCHEDULER_TIMEOUT = "20s"
 
 
 @dataclass(frozen=True)
@@ -524,6 +528,69 @@ def run_study(study: Study | Mapping[str, Any] | str | Path,
     outputs = dict(zip(distinct, mapper(partial(run_one, study), list(distinct.values())),
                        strict=True))
     return _table(study, cases, outputs)
+
+
+def dask_mapper(scheduler: str | None = None, workers: int | None = None,
+                progress: Callable[[int, int], None] | None = None):
+    """A ``map``-like callable that runs the cases on Dask, and a function that closes the
+    client (and the local cluster).
+
+    Parameters
+    ----------
+    scheduler
+        Address of a running Dask scheduler (``tcp://host:8786``): the cases run on its
+        workers, which need moorline installed. ``None``: a local cluster of ``workers``
+        processes (one thread each: the solvers are single-threaded numpy).
+    workers
+        Local worker processes (default: the machine's cores).
+    progress
+        Called with (cases done, cases) as results arrive.
+
+    Returns
+    -------
+    mapper, close
+        ``mapper(function, items)`` returns the results in the order of ``items``; call
+        ``close()`` when done.
+
+    Raises
+    ------
+    MoorlineError
+        When Dask's distributed scheduler is not installed or the scheduler cannot be
+        reached.
+    """
+    try:
+        from dask.distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise MoorlineError("running a study on Dask needs dask.distributed: install "
+                            "moorline[dask]") from None
+    cluster = None
+    try:
+        if scheduler:
+            client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
+        else:
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            client = Client(cluster)
+    except (OSError, TimeoutError) as exc:
+        raise MoorlineError(f"cannot reach the Dask scheduler {scheduler!r}: {exc}") from None
+
+    def mapper(function: Callable, items: Iterable) -> list:
+        items = list(items)
+        futures = client.map(function, items, pure=False)
+        index = {f.key: k for k, f in enumerate(futures)}
+        out: list = [None] * len(items)
+        for done, future in enumerate(as_completed(futures), start=1):
+            out[index[future.key]] = future.result()
+            if progress is not None:
+                progress(done, len(items))
+        return out
+
+    def close() -> None:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+    return mapper, close
 
 
 def _table(study: Study, cases: list[tuple[str, dict[str, Any]]],
