@@ -20,6 +20,7 @@ Rayleigh damping ``a0 M + a1 K0`` (``K0`` the tangent at the start) is an option
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,6 +35,7 @@ from .bodies import BodyDofs, body_loads, long_wave_geometry, skew, transformati
 from .dynamic_model import DynamicModel
 from .excitation import motion_value
 
+logger = logging.getLogger(__name__)
 FloatArray = NDArray[np.float64]
 
 
@@ -79,6 +81,7 @@ class CoupledStepper:
                                    dtype=float) for b in self.bodies]
         self.rayleigh = rayleigh
         self._origin0 = [np.asarray(b.position, dtype=float) for b in self.bodies]
+        self._exciting: dict[int, tuple | None] = {}
         self.variant = variant  # "iterative"; otherwise one solve per step (residual feedback)
         self.C_rayleigh: sp.csr_matrix | None = None
         self.lu = None
@@ -172,25 +175,22 @@ class CoupledStepper:
         return force, dF_dv
 
     def _excitation(self, body, b: int, t: float) -> FloatArray:
-        """Wave exciting force of the body's table at the environment's regular wave (ramped
-        like the wave field), about the body origin."""
-        table = body.excitation
-        wave = getattr(self.model.fluid, "wave", self.model.fluid)
-        omega = getattr(wave, "omega", None)
-        if table is None or omega is None:
+        """Wave exciting force of the body's table (about its origin, world axes), summed over
+        the components of the wave field (a regular wave or a random sea) and ramped like the
+        field: ``F_j = sum_m a_m |X_j(w_m)| cos(w_m t - k_m x_0 - phi_m + arg X_j(w_m))`` for
+        ``eta = sum_m a_m cos(k_m x - w_m t + phi_m)``, ``x_0`` the body origin's position at
+        the start of the run (the static pose) along each component's heading."""
+        if body.excitation is None:
             return np.zeros(6)
-        omegas = np.asarray(table.omegas, dtype=float)
-        amp = np.array([np.interp(omega, omegas, np.asarray(table.amplitude)[:, j])
-                        for j in range(6)])
-        phase = np.radians([np.interp(omega, omegas, np.asarray(table.phase_deg)[:, j])
-                            for j in range(6)])
-        k = float(wave.wave_number)
-        heading = np.radians(getattr(wave, "heading_deg", 0.0))
-        x0 = self._origin0[b]
-        along = x0[0] * np.cos(heading) + x0[1] * np.sin(heading)
-        ramp = _ramp(t, getattr(wave, "ramp_time", 0.0))
-        wave_phase = float(getattr(wave, "phase", 0.0))  # eta = a cos(k x - w t + phase)
-        return ramp * wave.amplitude * amp * np.cos(omega * t - k * along - wave_phase + phase)
+        if b not in self._exciting:
+            self._exciting[b] = _exciting_terms(body.excitation, self.model.fluid,
+                                                self._origin0[b])
+        terms = self._exciting[b]
+        if terms is None:
+            return np.zeros(6)
+        a, w, shift, amp, phase, ramp_time = terms
+        ramp = _ramp(t, ramp_time)
+        return ramp * (a[:, None] * amp * np.cos((w * t - shift)[:, None] + phase)).sum(axis=0)
 
     @staticmethod
     def _history(body, t: float) -> FloatArray:
@@ -286,6 +286,8 @@ class CoupledStepper:
 
         if self.C_rayleigh is None and self.rayleigh is not None:
             self.setup_rayleigh(s0)
+        if not self._exciting and s0.t == 0.0:  # wave phases refer to the starting position
+            self._origin0 = [np.asarray(r, dtype=float).copy() for r in s0.bodies.r]
         t1 = s0.t + h
         self._t = t1
         x1 = s0.x + h * s0.v + 0.5 * h * h * s0.a
@@ -338,6 +340,35 @@ def rigid_mass(body, R: FloatArray) -> FloatArray:
     M[3:, :3] = body.mass * S
     M[3:, 3:] = I_G - body.mass * S @ S
     return M
+
+
+def _exciting_terms(table, fluid, origin: FloatArray) -> tuple | None:
+    """Per wave component: amplitude, frequency, phase shift ``k x_0 + phi``, and the
+    table's force amplitude and phase interpolated at its frequency (zero above the table's
+    last frequency); ``None`` without waves."""
+    wave = getattr(fluid, "wave", fluid)
+    if hasattr(wave, "omegas"):
+        a, w, phi = wave.amplitudes, wave.omegas, wave.phases
+        k, heading = wave.wave_numbers, np.radians(wave.headings_deg)
+    elif getattr(wave, "omega", None) is not None:
+        a, w, phi = (np.array([wave.amplitude]), np.array([wave.omega]),
+                     np.array([float(getattr(wave, "phase", 0.0))]))
+        k = np.array([float(wave.wave_number)])
+        heading = np.radians(np.array([float(getattr(wave, "heading_deg", 0.0))]))
+    else:
+        return None
+    omegas = np.asarray(table.omegas, dtype=float)
+    beyond = (w > omegas[-1]) & (a > 1e-3 * a.max(initial=0.0))
+    if np.any(beyond):
+        logger.warning("wave components above the exciting-force table's last frequency "
+                       "(%.4g rad/s) get no exciting force", omegas[-1])
+    amp = np.column_stack([np.interp(w, omegas, np.asarray(table.amplitude)[:, j], right=0.0)
+                           for j in range(6)])
+    phase = np.radians(np.column_stack([np.interp(w, omegas, np.asarray(table.phase_deg)[:, j])
+                                        for j in range(6)]))
+    along = origin[0] * np.cos(heading) + origin[1] * np.sin(heading)
+    return (np.asarray(a, float), np.asarray(w, float), k * along + phi, amp, phase,
+            float(getattr(wave, "ramp_time", 0.0)))
 
 
 def _ramp(t: float, ramp_time: float) -> float:
