@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -169,3 +170,33 @@ def test_dynamics_in_a_random_sea_from_the_example_case():
     calm = simulate(still, settings, initial=static, output_every=0.5)
     assert sea.success and np.all(np.isfinite(sea.tension))
     assert np.abs(sea.tension[-1] - calm.tension[-1]).max() > 1.0  # N
+
+
+def test_dynamic_results_carry_the_wave_elevation(tmp_path):
+    """The wave elevation at the origin is recorded with the histories (in memory and in the
+    streamed NetCDF group) and equals the sea's."""
+    from dataclasses import replace
+
+    import xarray as xr
+    from click.testing import CliRunner
+
+    from moorline.cli import cli
+    from moorline.model import DynamicsSettings
+
+    path = Path(__file__).resolve().parents[1] / "cases" / "oc3_random_sea.yaml"
+    if not path.is_file():
+        pytest.skip("cases/oc3_random_sea.yaml not present")
+    system = load_case(path)
+    system = replace(system, analyses=(system.analyses[0],
+                                       DynamicsSettings(duration=2.0, dt=0.05)))
+    case = write_case(system, tmp_path / "sea.yaml")
+    result = CliRunner().invoke(cli, ["run", str(case), "--out", str(tmp_path / "out"),
+                                      "--quiet"])
+    assert result.exit_code == 0, result.output
+    with xr.open_dataset(tmp_path / "out" / system.name / "results.nc",
+                         group="dynamics") as ds:
+        eta = ds["wave_elevation"].values
+        t = ds["time"].values
+    sea = fluid_field_from_environment(system.environment)
+    expected = [sea.kinematics(np.zeros((1, 3)), float(s))[2][0] for s in t]
+    assert np.allclose(eta, expected) and np.abs(eta).max() > 0.1

@@ -212,6 +212,7 @@ class DynamicResult:
     body_pose: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
     body_velocity: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
     body_mooring_force: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
+    wave_elevation: FloatArray = field(default_factory=lambda: np.zeros(0))
 
     def body_history(self, body: str) -> FloatArray:
         """Pose history of a body (n_t, 6): position and rotation vector."""
@@ -244,6 +245,8 @@ class DynamicResult:
                 "end_force": (("time", "line", "end", "xyz"), self.end_force),
                 "end_tension": (("time", "line", "end"), end_tension),
                 "fairlead_tension": (("time", "line"), end_tension[:, :, 1]),
+                "wave_elevation": (("time",), self.wave_elevation if len(self.wave_elevation)
+                                   == len(self.time) else np.zeros(len(self.time))),
                 "element_nodes": (("element", "pair"), m.elements),
                 "point_node": (("point",), np.asarray(m.point_node, dtype=np.int64)),
             },

@@ -32,6 +32,7 @@ RECORD_VARIABLES: dict[str, tuple[tuple[str, ...], str]] = {
     "velocity": (("node", "xyz"), "velocity"),
     "tension": (("element",), "force"),
     "end_force": (("line", "end", "xyz"), "force"),
+    "wave_elevation": ((), "length"),
 }
 
 

@@ -86,7 +86,7 @@ def simulate(
     tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
     stepper = _stepper(model, fluid, settings, tolerance, system)
     every = max(output_every or system.output.every, settings.dt)
-    recorder = _Recorder(mesh, writer)
+    recorder = _Recorder(mesh, writer, fluid)
     recorder.add(state)
     n_steps = int(round(settings.duration / settings.dt))
     next_output, cuts = every, 0
@@ -259,13 +259,14 @@ def _worst(stepper, state: StepState, h: float, constrained, forces) -> str:
 class _Recorder:
     """Collects output records (and streams them when a writer is given)."""
 
-    def __init__(self, mesh: Mesh, writer) -> None:
+    def __init__(self, mesh: Mesh, writer, fluid=None) -> None:
         self.mesh = mesh
         self.writer = writer
+        self.fluid = fluid
         self.records: dict[str, list] = {k: [] for k in
                                          ("time", "position", "velocity", "tension",
                                           "end_force", "body_pose", "body_velocity",
-                                          "body_mooring_force")}
+                                          "body_mooring_force", "wave_elevation")}
 
     def add(self, state: StepState) -> None:
         record = {"position": state.x.copy(), "velocity": state.v.copy(),
@@ -275,12 +276,19 @@ class _Recorder:
                                 else np.zeros((0, 6))),
                   "body_velocity": (state.bodies.vel.copy() if state.bodies is not None
                                     else np.zeros((0, 6))),
-                  "body_mooring_force": _mooring_forces(self.mesh, state)}
+                  "body_mooring_force": _mooring_forces(self.mesh, state),
+                  "wave_elevation": self._elevation(state.t)}
         self.records["time"].append(state.t)
         for key, value in record.items():
             self.records[key].append(value)
         if self.writer is not None:
             self.writer.append(state.t, record)
+
+    def _elevation(self, t: float) -> float:
+        """Free-surface elevation at the origin (x = y = 0) [length]."""
+        if self.fluid is None:
+            return 0.0
+        return float(self.fluid.kinematics(np.zeros((1, 3)), t)[2][0])
 
     def result(self, ok: bool, message: str, counters: dict, system: System,
                settings: dict) -> DynamicResult:
@@ -290,7 +298,8 @@ class _Recorder:
                              counters, self.mesh, system.name, system.units, settings,
                              body_pose=arrays["body_pose"],
                              body_velocity=arrays["body_velocity"],
-                             body_mooring_force=arrays["body_mooring_force"])
+                             body_mooring_force=arrays["body_mooring_force"],
+                             wave_elevation=arrays["wave_elevation"])
 
 
 def _mooring_forces(mesh: Mesh, state: StepState) -> FloatArray:
