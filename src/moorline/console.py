@@ -1,0 +1,33 @@
+"""Console output of the command line: spinners, status lines, tables on stdout."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+
+import click
+from rich.console import Console
+
+
+@contextmanager
+def _status(message: str, quiet: bool) -> Iterator[Callable[[str], None]]:
+    """A rich spinner on stderr (nothing when quiet); yields a function that updates it."""
+    if quiet:
+        yield lambda _msg: None
+        return
+    console = Console(stderr=True)
+    with console.status(message) as status:
+        yield lambda msg: status.update(msg)
+
+
+def _note(message: str, quiet: bool) -> None:
+    """A status line on stderr, unless quiet."""
+    if not quiet:
+        click.echo(message, err=True)
+
+
+def _stdout() -> Console:
+    """Console for tables on stdout: the terminal's width, or 160 columns into a pipe/file."""
+    console = Console(file=sys.stdout)
+    return console if console.is_terminal else Console(file=sys.stdout, width=160)
