@@ -216,7 +216,7 @@ class HarmonicSettings:
     harmonics
         Number of harmonics ``n`` kept (the mean and ``n`` cosine-sine pairs).
     samples
-        Instants per period of the residual evaluation (default ``8 (n + 1)``).
+        Instants per period of the residual evaluation (default ``4 (n + 1)``).
     tolerance
         Newton stops when the largest harmonic residual is below ``tolerance`` times the
         load scale.

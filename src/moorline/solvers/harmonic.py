@@ -19,9 +19,10 @@ velocity, added mass, fluid inertia, seabed, point loads, prescribed motions) is
 orthogonal to every harmonic: ``sum_j E(t_j)^T R(t_j) = 0`` over ``N_t`` equally spaced
 instants of the period (the alternating frequency-time scheme: Tcheou's identification of
 exponential terms done numerically, which handles the non-polynomial ``|v| v`` drag and slack
-elements; ``N_t`` well above ``2n + 1`` keeps aliasing small). The Jacobian is exact,
-``sum_j E_j^T (K_j E_j + C_j E'_j + M_j E''_j)`` with the tangent blocks of the time-domain
-model at every instant, and Newton (with backtracking) starts from the static state.
+elements; ``N_t = 4 (n + 1)`` by default, well above ``2n + 1``, keeps aliasing small). The
+Jacobian is exact, ``sum_j E_j^T (K_j E_j + C_j E'_j + M_j E''_j)`` with the tangent blocks
+of the time-domain model at every instant, and Newton (with backtracking) starts from the
+static state.
 
 The excitation must be periodic with the analysis period after any ramp (harmonic forces on
 free points or harmonic motions of prescribed points with a period that divides it, regular
@@ -34,7 +35,8 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 import xarray as xr
 from numpy.typing import NDArray
 
@@ -153,7 +155,7 @@ def solve_harmonic(system: System, settings: HarmonicSettings,
         raise MoorlineError(f"harmonic balance of {system.name}: elastic lines only (a "
                             "viscoelastic line carries history)")
     n = settings.harmonics
-    n_t = settings.samples or 8 * (n + 1)
+    n_t = settings.samples or 4 * (n + 1)
     if n_t < 2 * n + 1:
         raise MoorlineError(f"harmonic balance: samples ({n_t}) must be >= 2 n + 1 = {2 * n + 1}")
     period, omega = settings.period, 2.0 * math.pi / settings.period
@@ -191,9 +193,13 @@ def solve_harmonic(system: System, settings: HarmonicSettings,
             out.append((x, v, a))
         return out
 
+    # the Jacobian's time weights: J = sum_j E_j^T (K_j E_j + C_j E'_j + M_j E''_j), with
+    # the products of basis functions per sample precomputed ((2n+1)^2 per instant)
+    weights = [np.einsum("jk,jl->jkl", E, B).reshape(n_t, -1) for B in (E, dE, ddE)]
+
     def residual(X: FloatArray, tangent: bool):
         R = np.zeros((2 * n + 1, n_dof))
-        J = np.zeros((2 * n + 1, n_dof, 2 * n + 1, n_dof)) if tangent else None
+        mats = np.zeros((3, n_t, n_dof, n_dof)) if tangent else None
         tension = np.zeros((n_t, mesh.n_elements))
         for j, (x, v, a) in enumerate(states(X)):
             ev = model.evaluate(x, v, a, float(shift + times[j]), material, period / n_t,
@@ -202,14 +208,16 @@ def solve_harmonic(system: System, settings: HarmonicSettings,
             R += np.outer(E[j], r)
             tension[j] = ev.tension
             if tangent:
-                K = pattern.assemble(ev.K, ev.node_K).toarray()
-                C = pattern.assemble(ev.C, ev.node_C).toarray()
                 Ma = ev.Ma if ev.Ma is not None else np.zeros_like(ev.K)
                 nodes_m = node_mass + (ev.node_M if ev.node_M is not None else 0.0)
-                M = pattern.assemble(Ma, nodes_m).toarray()
-                G = (np.einsum("l,im->iml", E[j], K) + np.einsum("l,im->iml", dE[j], C)
-                     + np.einsum("l,im->iml", ddE[j], M))  # (n_dof, n_dof, 2n+1)
-                J += np.einsum("k,iml->kilm", E[j], G)
+                mats[0, j] = pattern.assemble(ev.K, ev.node_K).toarray()
+                mats[1, j] = pattern.assemble(ev.C, ev.node_C).toarray()
+                mats[2, j] = pattern.assemble(Ma, nodes_m).toarray()
+        J = None
+        if tangent:
+            size = 2 * n + 1
+            flat = sum(w.T @ m.reshape(n_t, -1) for w, m in zip(weights, mats, strict=True))
+            J = flat.reshape(size, size, n_dof, n_dof).transpose(0, 2, 1, 3)
         return R, J, tension
 
     X = np.zeros((2 * n + 1, n_dof))
@@ -222,8 +230,10 @@ def solve_harmonic(system: System, settings: HarmonicSettings,
             break
         size = (2 * n + 1) * n_dof
         try:
-            step = sla.solve(J.reshape(size, size), -R.reshape(size)).reshape(X.shape)
-        except (sla.LinAlgError, ValueError) as exc:
+            # the Jacobian couples neighbouring nodes only (through all harmonics): sparse LU
+            step = spla.splu(sp.csc_matrix(J.reshape(size, size))).solve(
+                -R.reshape(size)).reshape(X.shape)
+        except (RuntimeError, ValueError) as exc:
             raise ConvergenceError(f"harmonic balance of {system.name}: singular Jacobian "
                                    f"({exc})") from None
         alpha = 1.0
