@@ -54,8 +54,9 @@ added mass and radiation damping; the wave loads on a body from its exciting-for
 (amplitude and phase over frequency, zero above the table) or the long-wave model of the time
 domain (``wave_loads``), and its quadratic drag linearized the same way per direction.
 
-Scope: point buoys' own hydrodynamics are not included; the flow must have zero mean (no
-current), as the source assumes.
+Free points with their own hydrodynamics (buoys, clump weights: volume, added mass, drag
+area) get the fluid inertia and the linearized drag of the time domain. Scope: the flow must
+have zero mean (no current), as the source assumes.
 """
 
 from __future__ import annotations
@@ -245,9 +246,11 @@ class _LinearModel:
         """The wave loads on the free bodies."""
         return _BodyWaves(self, omega)
 
-    def damping(self, element_blocks: FloatArray, sigma_b: FloatArray) -> sp.csr_matrix:
-        """Linearized line drag, bodies' radiation damping and linearized body drag."""
-        C = self.pattern.assemble(element_blocks)
+    def damping(self, element_blocks: FloatArray, sigma_b: FloatArray,
+                node_blocks: FloatArray | None = None) -> sp.csr_matrix:
+        """Linearized line (and point) drag, bodies' radiation damping and linearized body
+        drag."""
+        C = self.pattern.assemble(element_blocks, node_blocks)
         if self.P is None:
             return C
         C = (self.P.T @ C @ self.P).tolil()
@@ -345,6 +348,49 @@ class _BodyWaves:
         return np.sqrt(np.einsum("w,wbc->bc", power, np.abs(rel) ** 2))
 
 
+class _PointWaves:
+    """Wave loads on free points with their own hydrodynamics (buoys, clump weights), as in
+    the time domain (:meth:`moorline.solvers.dynamic_model.DynamicModel`): fluid inertia
+    ``rho V (1 + Ca) a`` (the added mass ``rho Ca V`` is in ``M``) and the isotropic drag
+    ``1/2 rho Cd A |u| u`` on the relative velocity, linearized like the lines' normal drag,
+    ``1/2 rho Cd A (8/pi)^(1/2) sigma u`` with ``sigma`` the standard deviation of the
+    relative velocity vector."""
+
+    def __init__(self, mesh: Mesh, x0: FloatArray, omega: FloatArray, env, rho: float) -> None:
+        self.omega = omega
+        self.drag = 0.5 * rho * mesh.node_Cd * mesh.node_drag_area
+        self.mass = rho * mesh.node_volume * (1.0 + mesh.node_Ca)
+        self.nodes = np.flatnonzero(((self.drag > 0) | (self.mass > 0)) & mesh.free_nodes)
+        self.n_nodes = mesh.n_nodes
+        if self.nodes.size:
+            self.H_v, H_a = kinematics_transfer(x0[self.nodes], omega, env.waves.heading_deg,
+                                                env.depth, env.gravity)
+            self.inertia = self.mass[self.nodes][None, :, None] * H_a
+            self.coefficient = self.drag[self.nodes] * math.sqrt(8.0 / math.pi)
+
+    def sigmas(self, U: ComplexArray, power: FloatArray) -> FloatArray:
+        """Standard deviation of each point's relative velocity (vector magnitude)."""
+        if not self.nodes.size:
+            return np.zeros(0)
+        rel = self.H_v - 1j * self.omega[:, None, None] * U[:, self.nodes]
+        return np.sqrt(np.einsum("w,wpc->p", power, np.abs(rel) ** 2))
+
+    def add_forces(self, nodal: ComplexArray, sigma: FloatArray) -> ComplexArray:
+        """Node forces plus the points' fluid inertia and linearized drag excitation."""
+        if self.nodes.size:
+            nodal[:, self.nodes] += self.inertia + (self.coefficient * sigma)[None, :, None] \
+                * self.H_v
+        return nodal
+
+    def damping_blocks(self, sigma: FloatArray) -> FloatArray | None:
+        """Node damping blocks (n_nodes, 3, 3) of the linearized point drag."""
+        if not self.nodes.size:
+            return None
+        blocks = np.zeros((self.n_nodes, 3, 3))
+        blocks[self.nodes] = (self.coefficient * sigma)[:, None, None] * np.eye(3)
+        return blocks
+
+
 class _Response:
     """Frequency response of ``M U'' + C U' + K U = F`` over the free dofs."""
 
@@ -439,15 +485,16 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     H_v, H_a = kinematics_transfer(mid, omega, env.waves.heading_deg, env.depth, env.gravity)
     inertia = np.einsum("eij,wej->wei", _inertia_blocks(t, mesh, rho), H_a)
     bodies = model.body_kinematics(omega)
+    points = _PointWaves(mesh, x0, omega, env, rho)
     response = _Response(model.K, model.M, settings)
 
-    def line_forces(drag: FloatArray) -> ComplexArray:
+    def line_forces(drag: FloatArray, sigma_p: FloatArray) -> ComplexArray:
         per_node = inertia + np.einsum("eij,wej->wei", drag * (0.5 * mesh.length0)[:, None,
                                                                                      None], H_v)
         nodal = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
         np.add.at(nodal, (slice(None), a), per_node)
         np.add.at(nodal, (slice(None), b), per_node)
-        return nodal
+        return points.add_forces(nodal, sigma_p)
 
     def relative_sigmas(U: ComplexArray) -> tuple[FloatArray, FloatArray]:
         R = H_v - 1j * omega[:, None, None] * 0.5 * (U[:, a] + U[:, b])
@@ -461,19 +508,21 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     X = np.zeros((len(omega), len(model.body_dof), 6), dtype=complex)
     sigma_n, sigma_t = relative_sigmas(U)  # step 5: the structure at rest
     sigma_b = bodies.sigmas(X, power)
+    sigma_p = points.sigmas(U, power)
     history: list[float] = []
     converged = False
     for _ in range(settings.max_iterations):
         drag = _drag_blocks(t, mesh, rho, sigma_n, sigma_t)
-        C = model.damping(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]), sigma_b)
-        F = model.forces(line_forces(drag), bodies.excitation(sigma_b))
+        C = model.damping(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]), sigma_b,
+                          points.damping_blocks(sigma_p))
+        F = model.forces(line_forces(drag, sigma_p), bodies.excitation(sigma_b))
         U, X = model.split(response.solve(C, F, omega))
         new_n, new_t = relative_sigmas(U)
-        new_b = bodies.sigmas(X, power)
+        new_b, new_p = bodies.sigmas(X, power), points.sigmas(U, power)
         change = max(_relative_change(new_n, sigma_n), _relative_change(new_t, sigma_t),
-                     _relative_change(new_b, sigma_b))
+                     _relative_change(new_b, sigma_b), _relative_change(new_p, sigma_p))
         history.append(change)
-        sigma_n, sigma_t, sigma_b = new_n, new_t, new_b
+        sigma_n, sigma_t, sigma_b, sigma_p = new_n, new_t, new_b, new_p
         if change <= settings.tolerance:
             converged = True
             break
