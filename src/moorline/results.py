@@ -61,6 +61,7 @@ class StaticResult:
     units: str = "SI"
     extras: dict = field(default_factory=dict)
     body_pose: FloatArray = field(default_factory=lambda: np.zeros((0, 6)))
+    current_drag: bool = False
 
     def body_position(self, body: str) -> FloatArray:
         """Position of a body's origin (3,)."""

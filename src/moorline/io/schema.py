@@ -352,6 +352,7 @@ class StaticsSpec(_Spec):
     pseudo_dt: quantity("time", gt=0.0) | None = None
     start: Literal["catenary", "straight"] = "catenary"
     max_step: quantity("dimensionless", gt=0.0) = 0.5
+    current_drag: bool = False
 
 
 class DynamicsSpec(_Spec):

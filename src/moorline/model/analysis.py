@@ -36,6 +36,11 @@ class StaticsSettings:
     max_step
         Newton: largest node displacement per iteration, as a fraction of the longest line's
         unstretched length (longer steps are scaled down; a guard against slack starts).
+    current_drag
+        Include the drag of the environment's steady current on the lines and on points with
+        a drag area (the lines at rest in the current, as MoorPy's statics with a current).
+        A dynamics started from such a state keeps the current on from the start (its
+        ``ramp_time`` then ramps the waves only). Not with bodies yet.
     """
 
     kind: Literal["statics"] = "statics"
@@ -49,6 +54,7 @@ class StaticsSettings:
     pseudo_dt: float = 1.0
     start: Literal["catenary", "straight"] = "catenary"
     max_step: float = 0.5
+    current_drag: bool = False
 
 
 @dataclass(frozen=True)

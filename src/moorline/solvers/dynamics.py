@@ -73,7 +73,8 @@ def simulate(
             raise ConvergenceError(f"static equilibrium before dynamics failed: "
                                    f"{initial.message}", time=0.0)
     x0 = initial.positions if isinstance(initial, StaticResult) else np.asarray(initial, float)
-    fluid = fluid if fluid is not None else _fluid(system, settings)
+    fluid = fluid if fluid is not None else _fluid(
+        system, settings, ramp_current=not getattr(initial, "current_drag", False))
     model = DynamicModel(mesh, fluid, settings.viscoelastic_update,
                          system.environment.seabed)
     excitation = Excitation(system, mesh, x0)
@@ -162,10 +163,11 @@ def _statics_settings(system: System) -> StaticsSettings:
     return StaticsSettings()
 
 
-def _fluid(system: System, settings: DynamicsSettings):
+def _fluid(system: System, settings: DynamicsSettings, ramp_current: bool = True):
     from ..waves import fluid_field_from_environment
 
-    return fluid_field_from_environment(system.environment, ramp_time=settings.ramp_time)
+    return fluid_field_from_environment(system.environment, ramp_time=settings.ramp_time,
+                                        ramp_current=ramp_current)
 
 
 def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,

@@ -3,6 +3,14 @@
 Residual ``R(x, lam) = lam F_ext + F_cable(x) + F_seabed(x)`` at the free dofs (Tuah eq. 4.1.2:
 external minus internal resisting force); tangent ``K = -dR/dx`` (Tuah eq. 3.1.8a, exact form
 derived in :mod:`moorline.physics.element`).
+
+With a steady current (``current``: a fluid field), the Morison drag of the current on the
+elements at rest (:func:`moorline.physics.hydro.drag_forces`, normal and tangential, lumped
+half to each node) and on points with a drag area (:func:`moorline.physics.hydro.point_drag`)
+joins the loads, scaled by ``lam`` like them; its position derivative through the element
+direction is in the tangent (the current's variation with depth is not). Drag is not
+conservative: the Newton line search holds it at its value at the start of the search and adds
+its work to the potential energy (:meth:`StaticModel.potential_energy`).
 """
 
 from __future__ import annotations
@@ -14,7 +22,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..physics import element, seabed
+from ..physics import element, hydro, seabed
 from .assembly import BlockPattern, gather_free
 
 FloatArray = NDArray[np.float64]
@@ -33,9 +41,10 @@ class ForceState:
 class StaticModel:
     """Residual and tangent of a mesh's static balance, with a cached sparse pattern."""
 
-    def __init__(self, mesh: Mesh) -> None:
+    def __init__(self, mesh: Mesh, current=None) -> None:
         self.mesh = mesh
         self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
+        self.current = current if current is not None and mesh.water_density > 0 else None
         g, rho = mesh.gravity, mesh.water_density
         ext = element.lumped_weight(mesh.elements, mesh.length0, mesh.weight_per_length,
                                     mesh.n_nodes)
@@ -56,7 +65,27 @@ class StaticModel:
         nodal = nodal + _sum_to_nodes(el_forces, m.elements, m.n_nodes)
         if np.isfinite(m.seabed_z):
             nodal[:, 2] += self._seabed(x)[0]
+        if self.current is not None:
+            nodal = nodal + lam * self._current_drag(x)[0]
         return ForceState(tension, el_forces, nodal, length)
+
+    def _current_drag(self, x: FloatArray) -> tuple[FloatArray, FloatArray | None]:
+        """Node forces of the current's drag on the structure at rest (n_nodes, 3) and the
+        element blocks of their position derivative (n_elements, 6, 6)."""
+        m = self.mesh
+        el = m.elements
+        mid = 0.5 * (x[el[:, 0]] + x[el[:, 1]])
+        u_mid = self.current.kinematics(mid, 0.0)[0]
+        zero = np.zeros_like(x)
+        f, _, dF_dx = hydro.drag_forces(x, zero, u_mid, el, m.length0, m.diameter, m.Cd,
+                                        m.Ct, m.water_density)
+        nodal = _sum_to_nodes(f, el, m.n_nodes)
+        area = m.node_drag_area * m.node_Cd
+        if np.any(area > 0):
+            u_nodes = self.current.kinematics(x, 0.0)[0]
+            nodal = nodal + hydro.point_drag(u_nodes, area, np.ones(m.n_nodes),
+                                             m.water_density)[0]
+        return nodal, dF_dx
 
     def residual(self, x: FloatArray, lam: float = 1.0) -> tuple[FloatArray, ForceState]:
         """Out-of-balance force at the free dofs, and the force state."""
@@ -78,6 +107,8 @@ class StaticModel:
         if taut_axial:
             tension, dT = np.maximum(tension, 0.0), m.EA / m.length0
         blocks = element.tangent_blocks(length, unit, tension, dT)
+        if self.current is not None:
+            blocks = blocks - self._current_drag(x)[1]
         node_blocks = None
         if np.isfinite(m.seabed_z):
             node_blocks = np.zeros((m.n_nodes, 3, 3))
@@ -89,11 +120,13 @@ class StaticModel:
         return seabed.contact_force(x[:, 2] - self.mesh.seabed_z, zero,
                                     self.node_seabed_stiffness, zero, self.seabed_ramp)
 
-    def potential_energy(self, x: FloatArray, lam: float = 1.0) -> float:
+    def potential_energy(self, x: FloatArray, lam: float = 1.0,
+                         frozen: FloatArray | None = None) -> float:
         """Total potential energy: strain and seabed energy minus the work of the loads.
 
-        All static forces here are conservative, so ``R = -dPi/dx``; the Newton line search
-        uses ``Pi`` as its merit function.
+        All static forces here are conservative but a current's drag, so ``R = -dPi/dx``; the
+        Newton line search uses ``Pi`` as its merit function. ``frozen``: node forces held
+        constant (a current's drag at the start of a line search), whose work is added.
         """
         m = self.mesh
         length, _ = element.element_geometry(x, m.elements)
@@ -102,7 +135,17 @@ class StaticModel:
         if np.isfinite(m.seabed_z):
             energy += seabed.contact_energy(x[:, 2] - m.seabed_z, self.node_seabed_stiffness,
                                             self.seabed_ramp)
-        return energy - lam * float(np.sum(self.external * x))
+        energy -= lam * float(np.sum(self.external * x))
+        if frozen is not None:
+            energy -= float(np.sum(frozen * x))
+        return energy
+
+    def drag_loads(self, x: FloatArray, lam: float = 1.0) -> FloatArray | None:
+        """The current's drag on the nodes at ``x`` with its load factor (``None`` without a
+        current)."""
+        if self.current is None:
+            return None
+        return lam * self._current_drag(x)[0]
 
     def load_scale(self) -> float:
         """Force scale for relative tolerances: the largest nodal load (or a tension scale)."""

@@ -91,7 +91,13 @@ def solve_statics(
     """
     settings = settings or _default_settings(system)
     mesh = mesh or discretize(system)
-    model = StaticModel(mesh)
+    current = _current_field(system) if settings.current_drag else None
+    if current is not None and mesh.body_names:
+        from ..errors import MoorlineError
+
+        raise MoorlineError(f"statics of {system.name}: current_drag with bodies is not "
+                            "supported yet")
+    model = StaticModel(mesh, current)
     x = (initial_positions(system, mesh, settings.start) if initial is None
          else np.array(initial, dtype=float))
     start = x[~mesh.free_nodes].copy()
@@ -120,7 +126,21 @@ def solve_statics(
         n_residual=counters.residuals, n_tangent=counters.tangents,
         n_factorizations=counters.factorizations, positions=x, tension=state.tension,
         element_forces=state.element_forces, mesh=mesh, case=system.name, units=system.units,
-        body_pose=pose)
+        body_pose=pose, current_drag=current is not None)
+
+
+def _current_field(system: System):
+    """The environment's steady current as a fluid field (``None`` without one)."""
+    from ..waves.current import CurrentProfile
+
+    c = system.environment.current
+    if c.z_levels:
+        return CurrentProfile(tuple(c.z_levels), tuple(c.speeds), tuple(c.headings_deg))
+    if c.speed != 0.0 and np.isfinite(c.speed):
+        speed, heading = (c.speed, c.heading_deg) if c.speed > 0 else (-c.speed,
+                                                                         c.heading_deg + 180)
+        return CurrentProfile.uniform(speed, heading)
+    return None
 
 
 def _default_settings(system: System) -> StaticsSettings:
@@ -154,17 +174,21 @@ def _factorize(model: StaticModel, x: FloatArray, counters: _Counters,
 def _line_search(model: StaticModel, x: FloatArray, dx: FloatArray, lam: float,
                  R0: FloatArray, counters: _Counters, max_halvings: int = 12) -> FloatArray:
     """Backtracking line search on the potential energy (Armijo), accepting at once any step
-    that lowers the residual norm. All static loads are conservative (``R = -dPi/dx``)."""
+    that lowers the residual norm. The static loads are conservative (``R = -dPi/dx``)
+    except a current's drag, which is held at its value at ``x`` (its work added to the
+    energy) for the search."""
     r0 = float(np.linalg.norm(R0))
     slope = -float(np.sum(gather_free(dx, model.mesh.dof_of_node) * R0))
-    energy0 = model.potential_energy(x, lam)
+    frozen = model.drag_loads(x, lam)
+    energy0 = model.potential_energy(x, lam, frozen)
     alpha = 1.0
     for _ in range(max_halvings):
         trial = x + alpha * dx
         R, _ = _residual(model, trial, lam, counters)
         if np.linalg.norm(R) < r0:
             return alpha * dx
-        if slope < 0 and model.potential_energy(trial, lam) <= energy0 + 1e-4 * alpha * slope:
+        if slope < 0 and (model.potential_energy(trial, lam, frozen)
+                          <= energy0 + 1e-4 * alpha * slope):
             return alpha * dx
         alpha *= 0.5
     return alpha * dx

@@ -36,8 +36,8 @@ the output of :func:`moorline.solvers.dynamics.simulate` (each output interval i
 step, its positions and velocities give ``V_NR``), or a steady state (a
 :class:`~moorline.results.StaticResult`: positions held, velocity zero) for a taut line in
 steady flow. The strumming does not feed back into the in-line motion (Tuah neither includes
-the drag amplification by strumming, sec. 7). ``moorline``'s statics has no current drag:
-for the drag equilibrium, run the in-line dynamics until it is steady and pass that output.
+the drag amplification by strumming, sec. 7). For a line in a steady current, the drag
+equilibrium is the statics with ``current_drag`` (or the steady end of an in-line dynamics).
 """
 
 from __future__ import annotations

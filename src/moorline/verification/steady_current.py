@@ -33,9 +33,11 @@ from ..model import (
     Line,
     LineType,
     Point,
+    StaticsSettings,
     System,
 )
 from ..solvers.dynamics import simulate
+from ..solvers.statics import solve_statics
 from .core import Row
 
 CASE = "steady-current"
@@ -112,4 +114,22 @@ def run() -> list[Row]:
         Row(CASE, "tension at B", T_b, float(np.linalg.norm(end[1])), 5e-3, unit="N"),
         Row(CASE, "steady: largest node motion over the last 10 s", 0.0, motion, 1e-4,
             relative=False, unit="m"),
+        *static_rows(system, s, xz, T_a, result),
+    ]
+
+
+def static_rows(system, s, xz, T_a, dynamic) -> list[Row]:
+    """The same equilibrium by the statics with the current's drag (``current_drag``)."""
+    static = solve_statics(system, StaticsSettings(current_drag=True, tolerance=1e-10))
+    nodes = static.positions[static.mesh.line_nodes[0]]
+    error = float(np.max(np.hypot(nodes[:, 0] - xz[:, 0], nodes[:, 2] - xz[:, 1])))
+    to_dynamic = float(np.abs(static.positions - dynamic.positions[-1]).max())
+    end = static.end_force("rope", "a")
+    return [
+        Row(CASE, "statics with current drag: largest node distance from the shooting "
+            "solution", 0.0, error, 1e-3 * LENGTH, relative=False, unit="m",
+            note=f"{static.iterations} Newton iterations; from the steady dynamic state: "
+                 f"{to_dynamic:.1e} m"),
+        Row(CASE, "statics with current drag: tension at A", T_a,
+            float(np.linalg.norm(end)), 5e-3, unit="N"),
     ]

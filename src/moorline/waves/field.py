@@ -82,7 +82,8 @@ def random_sea(waves: Waves) -> RandomSea:
                      heading_deg=waves.heading_deg)
 
 
-def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> FluidField:
+def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0,
+                                 ramp_current: bool = True) -> FluidField:
     """Fluid field described by a :class:`moorline.model.Environment`.
 
     ``waves.kind == 'airy'`` with a positive height gives an :class:`~moorline.waves.AiryWave`
@@ -98,6 +99,9 @@ def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> Fl
         The environment.
     ramp_time
         Start-up ramp of the waves and the current [time]; 0 for none.
+    ramp_current
+        Ramp the current too (``False``: it flows from the start, e.g. after a statics that
+        included its drag).
 
     Returns
     -------
@@ -124,15 +128,16 @@ def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0) -> Fl
     elif waves.kind != "none":
         raise ValueError(f"unknown wave kind {waves.kind!r}")
     current = None
+    current_ramp = ramp_time if ramp_current else 0.0
     if env.current.z_levels:
         c = env.current
         current = CurrentProfile(tuple(c.z_levels), tuple(c.speeds), tuple(c.headings_deg),
-                                 ramp_time=ramp_time)
+                                 ramp_time=current_ramp)
     elif env.current.speed != 0.0 and math.isfinite(env.current.speed):
         speed, heading = env.current.speed, env.current.heading_deg
         if speed < 0.0:  # a negative speed flows the other way
             speed, heading = -speed, heading + 180.0
-        current = CurrentProfile.uniform(speed, heading, ramp_time=ramp_time)
+        current = CurrentProfile.uniform(speed, heading, ramp_time=current_ramp)
     if wave is not None and current is not None:
         return CombinedField(wave, current)
     if wave is not None:
