@@ -27,6 +27,11 @@ def test_strumming_analysis_runs_from_a_case_file(tmp_path):
     assert result.exit_code == 0, result.output
     folder = tmp_path / "out" / system.name
     assert (folder / "strumming.png").is_file()
+    # moorline plot draws the strumming group again
+    again = CliRunner().invoke(cli, ["plot", str(folder / "results.nc"), "--out",
+                                     str(tmp_path / "again"), "--quiet"])
+    assert again.exit_code == 0, again.output
+    assert (tmp_path / "again" / "strumming.png").stat().st_size > 0
     with xr.open_dataset(folder / "results.nc", group="strumming") as ds:
         cl = ds["lift_coefficient"].values
         assert cl.shape[1] == 4 and np.isfinite(cl).all()

@@ -127,3 +127,7 @@ def test_example_case_runs_from_the_cli(tmp_path):
         top = int(np.argmax(ds["static_position"].values[:, 2]))
         amp = np.hypot(ds["coefficients"].values[1, top, 0], ds["coefficients"].values[2, top, 0])
         assert amp == pytest.approx(1.5794, rel=1e-3)  # tcheou-t2: 20 elements, steel
+    again = CliRunner().invoke(cli, ["plot", str(folder / "results.nc"), "--out",
+                                     str(tmp_path / "again"), "--quiet"])
+    assert again.exit_code == 0, again.output
+    assert (tmp_path / "again" / "harmonic.png").stat().st_size > 0

@@ -122,6 +122,10 @@ def test_stochastic_analysis_from_a_case_file(tmp_path):
         assert ds["displacement_spectrum"].dims == ("omega", "node", "xyz")
         assert ds.attrs["method"] == "direct"
         assert float(ds["tension_std"].max()) > 0
+    again = CliRunner().invoke(cli, ["plot", str(folder / "results.nc"), "--out",
+                                     str(tmp_path / "again"), "--quiet"])
+    assert again.exit_code == 0, again.output
+    assert (tmp_path / "again" / "stochastic.png").stat().st_size > 0
 
 
 def test_exciting_force_tables_in_a_random_sea_time_and_frequency_domain_agree():

@@ -390,7 +390,9 @@ def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: b
 
     Statics groups give configuration_xz.png and configuration_3d.png, dynamics groups
     tension_history.png and motion_history.png (and body_motion.png with bodies; with
-    --animate, animation.gif), prefixed with the group name when a kind repeats.
+    --animate, animation.gif); modal, strumming, stochastic and harmonic groups their own plot
+    (mode_shapes.png, strumming.png, stochastic.png, harmonic.png); prefixed with the group
+    name when a kind repeats.
     """
     _configure_logging(verbose)
     from .io.writers import read_group, result_groups
@@ -400,7 +402,7 @@ def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: b
     try:
         groups = result_groups(results)
         datasets = {name: read_group(results, name) for name, kind in groups.items()
-                    if kind in ("statics", "dynamics")}
+                    if kind in ("statics", "dynamics", *OTHER_PLOTS)}
     except (OSError, ValueError) as exc:
         reason = getattr(exc, "strerror", None) or str(exc)
         raise CaseError(f"cannot read as a NetCDF results file ({reason})", str(results)) from exc
@@ -421,11 +423,24 @@ def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: b
     _note(f"wrote {', '.join(str(f) for f in files)}", quiet)
 
 
+#: Analysis kinds with one plot each: kind -> (plot function name in moorline.plot, file).
+OTHER_PLOTS = {"modal": ("plot_mode_shapes", "mode_shapes.png"),
+               "strumming": ("plot_strumming", "strumming.png"),
+               "stochastic": ("plot_stochastic", "stochastic.png"),
+               "harmonic": ("plot_harmonic", "harmonic.png")}
+
+
 def _plot_group(ds: Any, kind: str, label: str, directory: Path) -> list[Path]:
     """The plots of one analysis group; returns the files written."""
+    from . import plot as plots
     from .plot import plot_configuration, plot_motion_history, plot_tension_history
 
     prefix = _prefix(label, kind)
+    if kind in OTHER_PLOTS:
+        function, name = OTHER_PLOTS[kind]
+        path = directory / f"{prefix}{name}"
+        getattr(plots, function)(ds, path)
+        return [path]
     if kind == "statics":
         missing = [v for v in ("position", "element_nodes", "tension") if v not in ds.variables]
         if missing:

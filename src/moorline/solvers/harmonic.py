@@ -99,8 +99,8 @@ class HarmonicResult:
              "static_position": (("node", "xyz"), self.static_positions)},
             coords={"term": terms, "time": self.time, "node": np.arange(self.mesh.n_nodes),
                     "element": np.arange(self.mesh.n_elements), "xyz": ["x", "y", "z"]},
-            attrs={"kind": "harmonic", "period": self.period, "harmonics": n,
-                   "iterations": self.iterations})
+            attrs={"analysis": "harmonic", "kind": "harmonic", "period": self.period,
+                   "harmonics": n, "iterations": self.iterations})
 
 
 def _basis(times: FloatArray, omega: float, n: int) -> tuple[FloatArray, ...]:

@@ -167,7 +167,7 @@ class StochasticResult:
              "tension": (("time", "element"), self.tension)},
             coords={"omega": self.omega, "time": self.time, "node": np.arange(n_nodes),
                     "element": np.arange(n_el), "xyz": ["x", "y", "z"]},
-            attrs={"kind": "stochastic", "method": self.settings.method,
+            attrs={"analysis": "stochastic", "kind": "stochastic", "method": self.settings.method,
                    "iterations": self.iterations, "d_omega": self.d_omega})
         if bodies:
             ds = ds.assign(bodies).assign_coords(

@@ -230,7 +230,7 @@ class StrummingResult:
             coords={"time": self.time, "element": np.arange(self.mesh.n_elements),
                     "node": np.arange(self.mesh.n_nodes),
                     "mode": np.arange(len(self.omega)), "xyz": ["x", "y", "z"]},
-            attrs={"kind": "strumming", "CL0": self.settings.CL0,
+            attrs={"analysis": "strumming", "kind": "strumming", "CL0": self.settings.CL0,
                    "strouhal": self.settings.strouhal})
 
 
