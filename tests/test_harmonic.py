@@ -131,3 +131,26 @@ def test_example_case_runs_from_the_cli(tmp_path):
                                      str(tmp_path / "again"), "--quiet"])
     assert again.exit_code == 0, again.output
     assert (tmp_path / "again" / "harmonic.png").stat().st_size > 0
+
+
+def test_regular_waves_on_a_riser_equal_the_time_domain_steady_state():
+    """A riser in a regular Airy wave (drag on the relative velocity, fluid inertia): the
+    harmonic-balance series against the last periods of a long time-domain run."""
+    from moorline.model import DynamicsSettings, Waves
+    from moorline.solvers.dynamics import simulate
+    from moorline.solvers.harmonic import _basis
+    from moorline.verification import stochastic_riser
+
+    system = stochastic_riser.riser_system()
+    system = replace(system, environment=replace(system.environment,
+                                                 waves=Waves("airy", height=3.0, period=8.0)))
+    static = solve_statics(system)
+    result = solve_harmonic(system, HarmonicSettings(period=8.0, harmonics=7), static)
+    td = simulate(system, DynamicsSettings(duration=30 * 8.0, dt=0.04, tolerance=1e-10),
+                  initial=static, output_every=0.08)
+    last = (td.time >= 29 * 8.0 - 1e-9) & (td.time < 30 * 8.0 - 1e-9)
+    E = _basis(td.time[last] - 29 * 8.0, result.omega, 7)[0]
+    series = np.einsum("tk,knc->tnc", E, result.coefficients)
+    amplitude = np.abs(result.positions - result.coefficients[0][None]).max()
+    assert amplitude > 0.05  # m: the wave moves the riser
+    assert np.abs(td.positions[last] - series).max() < 0.01 * amplitude
