@@ -451,12 +451,9 @@ def _case_hydrostatics(body: Any, draft: float, rho: float, g: float
         z_b = float(hs.center_of_buoyancy[2])
         roll, pitch = (S[i, i] + rho * g * volume * z_b - body.mass * g * z_g for i in (3, 4))
         return float(S[2, 2]), volume, roll, pitch
-    if hs.kind == "box":
-        area = hs.length * hs.width
-        inertia = (hs.length * hs.width**3 / 12.0, hs.width * hs.length**3 / 12.0)
-    else:
-        area = math.pi * hs.diameter**2 / 4.0
-        inertia = (math.pi * hs.diameter**4 / 64.0,) * 2
+    from .solvers.bodies import waterplane
+
+    area, inertia = waterplane(hs)
     wet = min(max(draft, 0.0), hs.height)
     volume = area * wet
     z_b = -hs.height / 2.0 + wet / 2.0

@@ -227,50 +227,34 @@ def _progress(description: str, total: float, quiet: bool) -> Iterator[Callable[
 def run_modal(settings: Any, context: RunContext, label: str) -> Outcome:
     """Natural modes about the preceding statics result of the run (solved here when there
     is none): group ``label`` of the results file and a plot of the mode shapes."""
-    from .io.writers import write_group
     from .plot import plot_mode_shapes
     from .solvers.modal import solve_modes
 
-    system = context.system
-    statics = context.latest("statics")
-    initial = statics.result if statics is not None and statics.success else None
-    path = context.directory / f"{_prefix(label, 'modal')}mode_shapes.png"
-    with _status(f"solving the modes of {system.name} ...", context.quiet) as update:
-        try:
-            result = solve_modes(system, settings, initial)
-        except ConvergenceError as exc:
-            return Outcome("modal", False, str(exc), {"converged": False,
-                                                      "message": str(exc), "modes": []})
-        update("writing results ...")
-        ds = result.to_xarray()
-        write_group(ds, context.results, label)
-        update("plotting ...")
-        plot_mode_shapes(ds, path)
-    summary = {"converged": bool(result.success), "message": result.message,
-               **modal_summary(result)}
-    return Outcome("modal", bool(result.success), result.message, summary, [path], result)
+    def describe(result) -> tuple[str, dict]:
+        return result.message, modal_summary(result)
+
+    return _about_statics("modal", "solving the modes", solve_modes, plot_mode_shapes,
+                          describe, settings, context, label, filename="mode_shapes.png",
+                          failed={"modes": []})
 
 
 def run_strumming(settings: Any, context: RunContext, label: str) -> Outcome:
     """Strumming by wake oscillators and mode superposition on the run's preceding dynamics
     (or static) state: group ``label`` of the results file and ``strumming.png``."""
-    from dataclasses import asdict
-
     from .io.writers import write_group
     from .plot import plot_strumming
     from .solvers.statics import solve_statics
-    from .solvers.strumming import StrummingSettings, solve_strumming
+    from .solvers.strumming import solve_strumming
 
     system = context.system
     previous = context.latest("dynamics") or context.latest("statics")
     inline = previous.result if previous is not None and previous.success else None
     if inline is None:
         inline = solve_statics(system)
-    values = {k: v for k, v in asdict(settings).items() if k != "kind"}
     path = context.directory / f"{_prefix(label, 'strumming')}strumming.png"
     with _status(f"strumming of {system.name} ...", context.quiet) as update:
         try:
-            result = solve_strumming(system, StrummingSettings(**values), inline)
+            result = solve_strumming(system, settings, inline)
         except MoorlineError as exc:
             return Outcome("strumming", False, str(exc), {"converged": False,
                                                           "message": str(exc)})
@@ -286,23 +270,25 @@ def run_strumming(settings: Any, context: RunContext, label: str) -> Outcome:
 
 
 def _about_statics(kind: str, what: str, solve: Callable, plot: Callable,
-                   describe: Callable, settings: Any, context: RunContext,
-                   label: str) -> Outcome:
+                   describe: Callable, settings: Any, context: RunContext, label: str,
+                   filename: str | None = None, failed: dict | None = None) -> Outcome:
     """Run an analysis that linearizes about (or starts from) the preceding statics result
     of the run (solved by ``solve`` when there is none): its dataset in group ``label`` of
-    the results file, its plot ``<kind>.png``, its summary from ``describe(result)`` (a
-    message and a dict)."""
+    the results file, its plot (``filename``, default ``<kind>.png``), its summary from
+    ``describe(result)`` (a message and a dict; ``failed`` adds to the summary of a run that
+    did not converge)."""
     from .io.writers import write_group
 
     system = context.system
     statics = context.latest("statics")
     initial = statics.result if statics is not None and statics.success else None
-    path = context.directory / f"{_prefix(label, kind)}{kind}.png"
+    path = context.directory / f"{_prefix(label, kind)}{filename or kind + '.png'}"
     with _status(f"{what} of {system.name} ...", context.quiet) as update:
         try:
             result = solve(system, settings, initial)
         except ConvergenceError as exc:
-            return Outcome(kind, False, str(exc), {"converged": False, "message": str(exc)})
+            return Outcome(kind, False, str(exc), {"converged": False, "message": str(exc),
+                                                   **(failed or {})})
         update("writing results ...")
         ds = result.to_xarray()
         ds.attrs["case"] = system.name

@@ -395,7 +395,7 @@ class ModalSpec(_Spec):
 
 
 class StrummingSpec(_Spec):
-    """``analyses[i]`` with ``kind: strumming`` (see :class:`moorline.model.StrummingAnalysis`)."""
+    """``analyses[i]`` with ``kind: strumming`` (see :class:`moorline.model.StrummingSettings`)."""
 
     kind: Literal["strumming"]
     viscosity: quantity("area/time", gt=0.0) | None = None
@@ -412,6 +412,9 @@ class StrummingSpec(_Spec):
     drag_damping: bool = False
     taut_axial: bool = False
     held_body_dofs: list[Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]] = []
+    mass: Literal["lumped", "consistent"] = "consistent"
+    added_mass: bool = True
+    initial_CL: quantity("dimensionless") | None = None
 
 
 class StochasticSpec(_Spec):

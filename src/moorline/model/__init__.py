@@ -12,6 +12,7 @@ from .analysis import (
     StaticsSettings,
     StochasticSettings,
     StrummingAnalysis,
+    StrummingSettings,
 )
 from .body import Body, Hydrostatics, WaveExcitation
 from .components import Line, LineType, Motion, Point, PointKind
@@ -40,6 +41,7 @@ __all__ = [
     "HarmonicSettings",
     "StochasticSettings",
     "StrummingAnalysis",
+    "StrummingSettings",
     "System",
     "UnitSystem",
     "WaveExcitation",

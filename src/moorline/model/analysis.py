@@ -155,19 +155,89 @@ class ModalSettings:
 
 
 @dataclass(frozen=True)
-class StrummingAnalysis:
-    """Strumming (vortex-induced vibration) settings of a case (Tuah 1982 sec. 3.2.b): see
-    :class:`moorline.solvers.strumming.StrummingSettings` for the meaning of each field. The
-    in-line state is the run's preceding dynamics result when there is one, else its static
-    state held for ``duration`` (a steady current)."""
+class StrummingSettings:
+    """Settings of the strumming analysis (Tuah (1982) sec. 3.2.b; see
+    :mod:`moorline.solvers.strumming`), ``kind: strumming`` in a case file. The in-line state
+    is the run's preceding dynamics result when there is one, else its static state held for
+    ``duration`` (a steady current).
+
+    Attributes
+    ----------
+    viscosity
+        Kinematic viscosity of the fluid ``nu`` [length^2/time] (eq. 3.2.b.6, 3.2.b.8).
+    strouhal
+        Strouhal number ``S_T`` (eq. 3.2.b.4).
+    CL0
+        Lift-coefficient amplitude of the stationary cylinder.
+    n_modes
+        Number of (lowest) modes superposed; 0: all of them (a complete basis: the state is
+        carried over exactly when the modes are refreshed).
+    mass, added_mass
+        Mass model of the modal analysis (Tuah uses the consistent mass, eq. 3.1.12) and
+        whether the added mass is included.
+    substeps
+        Runge-Kutta steps per in-line step (``delta t = Delta t / substeps``).
+    refresh_every
+        In-line steps between recomputations of the modes; 0: modes computed once.
+    initial_CL
+        Lift coefficient at the start, with ``C_L' = 0`` (default ``CL0``: the shedding of
+        the still cable is established, the wake on its stationary limit cycle).
+    duration, dt
+        Duration and in-line step when the in-line state is steady (a static result).
+    min_reynolds
+        Elements whose Reynolds number ``|V_NR| D / nu`` is below this shed no vortices:
+        their wake oscillator is held (``C_L`` frozen) and they carry no lift. Needed in
+        waves, where the flow at every element reverses twice per period and ``w_s -> 0``
+        makes the empirical ``k_s`` (eq. 3.2.b.6) diverge; a cylinder sheds no vortices below
+        ``Re ~ 40``. Default 0: every element with ``|V_NR| > 0`` sheds.
+    nonpositive_modes
+        What to do with modes of non-positive ``w^2`` at an in-line state (a slack line, a
+        mechanism such as a single-point-moored body's yaw, a linearization about a
+        non-equilibrium state that is momentarily unstable): ``error`` (default) stops;
+        ``keep`` integrates their modal equations with ``w_n^2`` as it is (``<= 0``) and the
+        damping of eq. 3.2.b.8 at ``|w_n|``.
+    drag_damping
+        Add to the modal damping of eq. 3.2.b.8 the Morison drag linearized about the
+        in-line relative velocity (the exact Jacobian ``-dF_drag/dv`` of
+        :func:`moorline.physics.hydro.drag_forces` at each in-line step, projected on the
+        modes: a full modal damping matrix). Not in the source, whose modal equations carry
+        only the viscous damping of eq. 3.2.b.8; without it a slack part of a line (no
+        stiffness) has neither restoring nor damping against the lift. Default ``False``.
+    taut_axial
+        Modes with the taut axial stiffness ``EA / L0`` in every element, slack ones
+        included (and the geometric stiffness of ``max(T, 0)``). The strumming perturbation
+        is transverse ("the transverse motion is assumed to fluctuate about the inline
+        motion", sec. 3.2.b): it does not decide which elements are slack, the in-line
+        motion does. Without it a slack element has no axial stiffness, the lift drifts the
+        slack legs along their length and every snap of the in-line motion pumps that drift
+        into the tangent's ``EA / L0``: the linearized perturbation grows without bound
+        (Tuah's Example 7 with modes refreshed). Default ``False`` (the exact tangent).
+    held_body_dofs
+        Rigid-body degrees of freedom (``surge``, ``sway``, ``heave``, ``roll``, ``pitch``,
+        ``yaw``) held fixed in the strumming modes of every body. A mechanism whose
+        linearized stiffness turns negative at the in-line states (the yaw of a disc moored
+        at one keel point: none at rest, negative when the disc is tilted and the keel swings
+        off its axis) makes the linear perturbation grow exponentially: an instability of the
+        in-line motion, not strumming; holding it keeps the analysis to the lines'
+        transverse vibration.
+    transverse_velocity
+        ``signed`` (default): the wake oscillator is driven by the strumming velocity along
+        the lift direction, ``U_T' = e_L . u'`` (Griffin et al. 1975; this is what
+        synchronizes wake and structure). ``magnitude``: by ``|U_T'|``, the literal reading of
+        Tuah's "the transverse cable velocity magnitude" (eq. 3.2.b.3), which rectifies the
+        forcing and only raises ``C_L`` a little above ``C_L0``.
+    """
 
     kind: Literal["strumming"] = "strumming"
     viscosity: float = 1.0e-6
     strouhal: float = 0.2
     CL0: float = 0.2
     n_modes: int = 6
+    mass: ModalMass = "consistent"
+    added_mass: bool = True
     substeps: int = 1
     refresh_every: int = 0
+    initial_CL: float | None = None
     duration: float = 10.0
     dt: float = 0.001
     transverse_velocity: Literal["signed", "magnitude"] = "signed"
@@ -176,6 +246,10 @@ class StrummingAnalysis:
     drag_damping: bool = False
     taut_axial: bool = False
     held_body_dofs: tuple[str, ...] = ()
+
+
+#: The name case files and older code use for :class:`StrummingSettings`.
+StrummingAnalysis = StrummingSettings
 
 
 @dataclass(frozen=True)

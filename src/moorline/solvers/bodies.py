@@ -102,6 +102,17 @@ def transformation(mesh: Mesh, ext_dofs: int, n_free: int, body_dof: NDArray[np.
                          shape=(ext_dofs, n_u))
 
 
+def waterplane(hs) -> tuple[float, tuple[float, float]]:
+    """Waterplane area and its second moments about x and y (roll, pitch) of a box or
+    vertical cylinder hull; zeros for other hydrostatics."""
+    if hs.kind == "box":
+        return hs.length * hs.width, (hs.length * hs.width**3 / 12.0,
+                                      hs.width * hs.length**3 / 12.0)
+    if hs.kind == "cylinder":
+        return np.pi * hs.diameter**2 / 4.0, (np.pi * hs.diameter**4 / 64.0,) * 2
+    return 0.0, (0.0, 0.0)
+
+
 def long_wave_geometry(body: Body, z: float, rho: float = 0.0,
                        gravity: float = 0.0) -> tuple[float, float]:
     """Waterplane area and submerged volume of the long-wave (small-body) load model at the
@@ -109,8 +120,7 @@ def long_wave_geometry(body: Body, z: float, rho: float = 0.0,
     hydrostatics gives its ``volume`` and the waterplane of its heave stiffness,
     ``A_wp = K33 / (rho g)`` (with ``rho`` and ``gravity`` given; else none)."""
     hs = body.hydrostatics
-    area_wp = (hs.length * hs.width if hs.kind == "box" else
-               np.pi * hs.diameter**2 / 4 if hs.kind == "cylinder" else 0.0)
+    area_wp = waterplane(hs)[0]
     if hs.kind == "matrix" and rho > 0 and gravity > 0 and hs.stiffness is not None:
         k = np.asarray(hs.stiffness, dtype=float)
         k33 = float(k[2, 2] if k.ndim == 2 else k[2])
@@ -156,12 +166,7 @@ def _shape_hydrostatics(hs, r, R, gravity, rho, force, K) -> None:
     """Buoyancy of a box or vertical cylinder at its draft (origin at the shape's centre),
     acting at the centre of buoyancy, and the waterplane restoring ``rho g I_wp`` in roll and
     pitch (small-angle, Tuah eq. 3.2.c.20's restoring coefficients)."""
-    if hs.kind == "box":
-        area = hs.length * hs.width
-        inertia = (hs.length * hs.width**3 / 12.0, hs.width * hs.length**3 / 12.0)
-    else:
-        area = np.pi * hs.diameter**2 / 4.0
-        inertia = (np.pi * hs.diameter**4 / 64.0,) * 2
+    area, inertia = waterplane(hs)
     draft = float(np.clip(hs.height / 2.0 - r[2], 0.0, hs.height))
     wet = 0.0 < hs.height / 2.0 - r[2] < hs.height
     buoyancy = np.array([0.0, 0.0, rho * gravity * area * draft])
@@ -201,6 +206,7 @@ class BodyDofs:
     n_unknowns: int
     ext_dofs: int
     pattern: object
+    ext_map: NDArray[np.int64]  # (n_nodes, 3) extended dof of every node (-1: held)
 
     @classmethod
     def of(cls, mesh: Mesh, bodies: list[Body]) -> BodyDofs:
@@ -214,4 +220,4 @@ class BodyDofs:
         for k, node in enumerate(mesh.slave_node):
             ext[node] = n_free + 3 * k + np.arange(3)
         return cls(n_free, body_dof, n_free + 6 * int(free.sum()),
-                   n_free + 3 * len(mesh.slave_node), BlockPattern(mesh.elements, ext))
+                   n_free + 3 * len(mesh.slave_node), BlockPattern(mesh.elements, ext), ext)

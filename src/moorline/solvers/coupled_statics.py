@@ -28,7 +28,7 @@ class CoupledStatics:
         layout = BodyDofs.of(mesh, self.bodies)
         self.n_free, self.body_dof, self.n_unknowns = (layout.n_free, layout.body_dof,
                                                        layout.n_unknowns)
-        self.ext_dofs, self.pattern = layout.ext_dofs, layout.pattern
+        self.ext_dofs, self.pattern, self.ext_map = layout.ext_dofs, layout.pattern, layout.ext_map
 
     def residual(self, x: FloatArray, poses: Poses) -> tuple[FloatArray, ForceState]:
         """Out-of-balance forces at the free node dofs, then force and moment on every free

@@ -223,10 +223,7 @@ class _LinearModel:
             K, M, P, problem = body_modal_matrices(system, mesh, statics.positions,
                                                    statics.body_pose, modal)
             self.P, self.n_free = P, problem.n_free
-            self.pattern = problem.pattern
-            self.ext_map = mesh.dof_of_node.copy()
-            for k, node in enumerate(mesh.slave_node):
-                self.ext_map[node] = problem.n_free + 3 * k + np.arange(3)
+            self.pattern, self.ext_map = problem.pattern, problem.ext_map
             self.bodies = [b for b, d in zip(problem.bodies, problem.body_dof, strict=True)
                            if d >= 0]
             self.body_dof = np.array([d for d in problem.body_dof if d >= 0], dtype=int)
@@ -553,18 +550,13 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         tension_std=T_std, sigma_normal=sigma_n, sigma_tangential=sigma_t,
         iterations=len(history), history=history, time=time,
         elevation=series(np.ones(len(omega), dtype=complex)),
-        displacement=series(U), tension=x0_tension(statics)[None] + series(H_T),
+        displacement=series(U), tension=np.asarray(statics.tension, float)[None] + series(H_T),
         mesh=mesh, settings=settings, d_omega=sea.d_omega,
         body_names=tuple(b.name for b in model.bodies), body_transfer=X,
         body_std=np.sqrt(np.einsum("w,wbc->bc", power, np.abs(X) ** 2)),
         body_motion=series(X),
         counters={"frequencies": len(omega), "dofs": model.K.shape[0],
                   "modes": len(response.lam) if settings.method == "foss" else 0})
-
-
-def x0_tension(statics: StaticResult) -> FloatArray:
-    """Static element tensions (n_elements,)."""
-    return np.asarray(statics.tension, dtype=float)
 
 
 def _relative_change(new: FloatArray, old: FloatArray) -> float:
