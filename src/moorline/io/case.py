@@ -209,6 +209,14 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
                  f"{len(env.current.speeds or [])}", "environment.current.speeds")
         if env.current.headings is not None and len(env.current.headings) != n:
             fail(f"headings must have {n} entries like z_levels", "environment.current.headings")
+    for k, analysis in enumerate(spec.analyses or ()):
+        if isinstance(analysis, StochasticSpec):
+            if env.waves.kind != "random":
+                fail("a stochastic analysis needs a random sea (environment.waves kind: "
+                     f"random), not {env.waves.kind!r}", f"analyses[{k}].kind")
+            if env.current.speed or env.current.z_levels:
+                fail("a stochastic analysis needs zero-mean flow: no current",
+                     f"analyses[{k}].kind")
     if env.waves.kind in ("airy", "random"):
         what = "an airy wave" if env.waves.kind == "airy" else "a random sea (Hs, Tp)"
         for key in ("height", "period"):
