@@ -1,6 +1,8 @@
 """The compiled step (moorline.solvers.fast_newmark) against the general stepper: same
 algorithm, same results, on a case with every load the fast path supports."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -77,3 +79,41 @@ def test_band_ordering_and_lu_solve_like_dense():
     x = b.copy()
     _band_solve(ab, bw, x)
     assert np.allclose(B @ x, b, rtol=1e-10, atol=1e-10)
+
+
+CASES = sorted((Path(__file__).parents[1] / "cases").glob("*.yaml"))
+
+
+@pytest.mark.parametrize("path", CASES, ids=[p.stem for p in CASES])
+def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_accept(path):
+    """Every case file the compiled backend accepts: the same states after every step as the
+    general stepper (2 s of its dynamics, or of a default dynamics analysis)."""
+    from dataclasses import replace
+
+    from moorline.io.case import load_case
+    from moorline.solvers.dynamic_model import DynamicModel
+    from moorline.solvers.dynamics import _fluid, _rayleigh
+    from moorline.solvers.fast_newmark import fast_path_reason
+
+    system = load_case(path)
+    settings = next((a for a in system.analyses if isinstance(a, DynamicsSettings)),
+                    DynamicsSettings())
+    settings = replace(settings, duration=min(settings.duration, 40 * settings.dt))
+    start = solve_statics(system)
+    assert start.success, start.message
+    fluid = _fluid(system, settings)
+    model = DynamicModel(start.mesh, fluid, settings.viscoelastic_update,
+                         system.environment.seabed)
+    reason = fast_path_reason(model, fluid, settings.scheme, settings.variant,
+                              bool(start.mesh.body_names), _rayleigh(settings) is not None)
+    if reason is not None:
+        pytest.skip(f"the compiled backend does not take this case: {reason}")
+    runs = [simulate(system, replace(settings, fast_path=fast), initial=start,
+                     output_every=settings.dt) for fast in (False, True)]
+    slow, fast = runs
+    assert slow.success and fast.success
+    scale = float(np.abs(slow.positions).max())
+    assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
+    assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
+    assert fast.counters["iterations"] == slow.counters["iterations"]
+    assert fast.counters["factorizations"] == slow.counters["factorizations"]

@@ -132,7 +132,7 @@ def test_exciting_force_tables_in_a_random_sea_time_and_frequency_domain_agree()
     """A body's exciting-force table in a random sea: the time-domain sum over the wave
     components (coupled dynamics) equals the frequency-domain loads' series at any time."""
     from moorline.model.body import WaveExcitation
-    from moorline.solvers.coupled_dynamics import _exciting_terms
+    from moorline.solvers.body_model import _exciting_terms
     from moorline.solvers.stochastic import _LinearModel
     from moorline.verification import tuah_ex5, tuah_ex5_random
     from moorline.waves import fluid_field_from_environment

@@ -139,7 +139,7 @@ class SparseFactor:
         else:
             p = self.pattern
             K = sp.csr_matrix((data, p.indices, p.indptr), shape=(p.n, p.n))
-            self._lu = spla.splu(K.tocsc())
+            self._lu = MatrixFactor(K)
         return self
 
     def solve(self, rhs: FloatArray) -> FloatArray:
@@ -149,6 +149,33 @@ class SparseFactor:
         lu, piv = self._lu
         y, info = dgbtrs(lu, self.kl, self.ku, rhs[self.perm], piv)
         return y[self.inverse]
+
+
+class MatrixFactor:
+    """LU factorization of a general sparse matrix (SuperLU), for systems whose pattern is
+    not a :class:`BlockPattern` (bodies coupled through the master-slave transformation,
+    harmonic balance, condensation)."""
+
+    def __init__(self, matrix: sp.spmatrix) -> None:
+        self.shape = matrix.shape
+        try:
+            self._lu = spla.splu(sp.csc_matrix(matrix))
+        except RuntimeError as exc:  # SuperLU: "Factor is exactly singular"
+            raise np.linalg.LinAlgError(f"singular matrix ({exc})") from None
+
+    def solve(self, rhs: FloatArray) -> FloatArray:
+        """Solve ``A x = rhs`` (``rhs`` a vector or a matrix of columns; real or complex)."""
+        return self._lu.solve(np.asarray(rhs))
+
+
+def factorize(matrix: sp.spmatrix) -> MatrixFactor:
+    """Factorize a sparse matrix once, to solve with it many times."""
+    return MatrixFactor(matrix)
+
+
+def solve_sparse(matrix: sp.spmatrix, rhs: FloatArray) -> FloatArray:
+    """Solve one sparse system."""
+    return factorize(matrix).solve(rhs)
 
 
 def gather_free(values: FloatArray, dof_of_node: IntArray) -> FloatArray:

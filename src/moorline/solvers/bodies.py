@@ -39,34 +39,57 @@ def rotation_vector(R: FloatArray) -> FloatArray:
     return angle / (2.0 * np.sin(angle)) * w
 
 
-@dataclass
-class Poses:
-    """Positions ``r`` (n_bodies, 3) and rotation matrices ``R`` (n_bodies, 3, 3)."""
+@dataclass(frozen=True)
+class BodyState:
+    """Poses and motions of all bodies, world axes: origins ``r`` (nb, 3), rotation matrices
+    ``R`` (nb, 3, 3), velocities ``vel`` = (v, omega) and accelerations ``acc`` = (a, alpha),
+    each (nb, 6) (zero when not given: a static pose)."""
 
     r: FloatArray
     R: FloatArray
+    vel: FloatArray | None = None
+    acc: FloatArray | None = None
+
+    def __post_init__(self) -> None:
+        zeros = np.zeros((len(self.r), 6))
+        if self.vel is None:
+            object.__setattr__(self, "vel", zeros)
+        if self.acc is None:
+            object.__setattr__(self, "acc", zeros.copy())
 
     @classmethod
-    def initial(cls, system: System, mesh: Mesh) -> Poses:
-        """The poses the case gives."""
+    def initial(cls, system: System, mesh: Mesh) -> BodyState:
+        """The poses the case gives, at rest."""
         bodies = [system.bodies[n] for n in mesh.body_names]
         r = np.array([b.position for b in bodies], dtype=float).reshape(-1, 3)
         R = np.array([rotation_matrix(np.asarray(b.rotation, float)) for b in bodies])
         return cls(r, R.reshape(-1, 3, 3))
 
-    def copy(self) -> Poses:
-        """An independent copy."""
-        return Poses(self.r.copy(), self.R.copy())
+    @classmethod
+    def from_pose(cls, pose: FloatArray) -> BodyState:
+        """At rest at poses (nb, 6): position and rotation vector."""
+        pose = np.asarray(pose, dtype=float).reshape(-1, 6)
+        R = np.array([rotation_matrix(p[3:]) for p in pose]).reshape(-1, 3, 3)
+        return cls(pose[:, :3].copy(), R)
 
-    def moved(self, dr: FloatArray, dtheta: FloatArray) -> Poses:
-        """The poses after small motions ``dr``, ``dtheta`` (n_bodies, 3) each."""
+    def copy(self) -> BodyState:
+        """An independent copy."""
+        return BodyState(self.r.copy(), self.R.copy(), self.vel.copy(), self.acc.copy())
+
+    def moved(self, dr: FloatArray, dtheta: FloatArray) -> BodyState:
+        """The poses after small motions ``dr``, ``dtheta`` (n_bodies, 3) each (motions kept)."""
         R = np.array([rotation_matrix(d) @ R0 for d, R0 in zip(dtheta, self.R, strict=True)])
-        return Poses(self.r + dr, R.reshape(-1, 3, 3))
+        return BodyState(self.r + dr, R.reshape(-1, 3, 3), self.vel, self.acc)
 
     def as_array(self) -> FloatArray:
         """(n_bodies, 6): position and rotation vector."""
         rv = np.array([rotation_vector(R) for R in self.R]).reshape(-1, 3)
         return np.hstack((self.r, rv))
+
+    pose = as_array
+
+
+Poses = BodyState  # the static poses are body states at rest
 
 
 def place_slaves(mesh: Mesh, poses: Poses, x: FloatArray) -> FloatArray:

@@ -4,16 +4,20 @@ body, through the master-slave transformation of :mod:`moorline.solvers.bodies`.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+import scipy.linalg
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
 from ..model import StaticsSettings, System
-from .assembly import gather_free, scatter_free
+from .assembly import factorize, gather_free, scatter_free
 from .bodies import BodyDofs, Poses, body_loads, place_slaves, skew, transformation, world_arms
 from .equilibrium import ForceState, StaticModel
+from .newton import Counters, NewtonPolicy, TangentCache
+from .newton import solve as newton_solve
 
 FloatArray = NDArray[np.float64]
 
@@ -89,6 +93,62 @@ class CoupledStatics:
         return place_slaves(self.mesh, poses, x), poses
 
 
+@dataclass
+class _CoupledTrial:
+    r: FloatArray            # the bodies' out-of-balance forces (the lines are in balance)
+    full: FloatArray         # the whole coupled residual
+    x: FloatArray
+    state: ForceState
+    u: tuple  # the unknowns with the lines equilibrated
+
+
+class _BodyNewton:
+    """The bodies' balance as a problem of the Newton core: every residual evaluation first
+    equilibrates the lines with the bodies held (``hold``), the tangent is the coupled tangent
+    with the line dofs condensed out (Schur complement)."""
+
+    def __init__(self, problem: CoupledStatics, hold, counters, settings) -> None:
+        self.problem, self.hold, self.counters, self.settings = problem, hold, counters, settings
+        self.n = problem.n_free
+
+    def residual(self, u, tangent: bool) -> _CoupledTrial:
+        x, poses = u
+        x, R, state = _equilibrate(self.problem, x, poses, self.hold, self.counters)
+        self.counters.residuals -= 1  # counted by the Newton core
+        return _CoupledTrial(R[self.n:], R, x, state, (x, poses))
+
+    def factorize(self, u, trial: _CoupledTrial) -> _SchurStep:
+        return _SchurStep(self.problem.tangent(trial.x, u[1], trial.state), trial.full, self.n)
+
+    def update(self, u, du: FloatArray):
+        x, poses = u
+        return self.problem.update(x, poses, np.concatenate((np.zeros(self.n), du)))
+
+    def limit(self, u, du: FloatArray) -> FloatArray:
+        return _limit(np.concatenate((np.zeros(self.n), du)), self.problem,
+                      self.settings)[self.n:]
+
+
+class _SchurStep:
+    """Body step ``S^-1 (R_b - K_bl K_ll^-1 R_l)`` from the coupled tangent ``K`` with the
+    line dofs condensed out (``S = K_bb - K_bl K_ll^-1 K_lb``); the line residual ``R_l`` is
+    the one at the factorization point."""
+
+    def __init__(self, K, R: FloatArray, n: int) -> None:
+        K = K.tocsc()
+        schur = K[n:, n:].toarray()
+        self.correction = np.zeros(K.shape[0] - n)
+        if n:
+            K_bl, K_lb = K[n:, :n].toarray(), K[:n, n:].toarray()
+            lines = factorize(K[:n, :n])
+            schur = schur - K_bl @ lines.solve(K_lb)
+            self.correction = K_bl @ lines.solve(R[:n])
+        self.lu = scipy.linalg.lu_factor(schur)
+
+    def solve(self, r_bodies: FloatArray) -> FloatArray:
+        return scipy.linalg.lu_solve(self.lu, r_bodies - self.correction)
+
+
 def solve_coupled(system: System, mesh: Mesh, x: FloatArray, settings: StaticsSettings,
                   counters, hold=None) -> tuple[bool, str, int, ForceState, FloatArray, Poses]:
     """Newton on the bodies' six dofs with the lines kept in equilibrium (partitioned).
@@ -106,31 +166,23 @@ def solve_coupled(system: System, mesh: Mesh, x: FloatArray, settings: StaticsSe
     scale = max(problem.model.load_scale(),
                 max((b.mass * mesh.gravity for b in problem.bodies), default=0.0))
     tol = max(settings.tolerance * scale, problem.model.roundoff_floor(x))
-    n = problem.n_free
-    x, R, state = _equilibrate(problem, x, poses, hold, counters)
-    for it in range(settings.max_iterations + 1):
-        norm = float(np.abs(R).max(initial=0.0))
-        counters.history.append(norm)
-        if norm <= tol:
-            return True, f"converged in {it} body iterations", it, state, x, poses
-        if it == settings.max_iterations:
-            break
-        K = problem.tangent(x, poses, state)
-        counters.tangents += 1
-        counters.factorizations += 1
-        dq = _reduced_step(K, R, n)
-        dq = _limit(np.concatenate((np.zeros(n), dq)), problem, settings)[n:]
-        merit0, alpha = float(np.linalg.norm(R[n:])), 1.0
-        for _ in range(8):
-            x_try, p_try = problem.update(x, poses, np.concatenate((np.zeros(n), alpha * dq)))
-            x_try, R_try, s_try = _equilibrate(problem, x_try, p_try, hold, counters)
-            if np.linalg.norm(R_try[n:]) < merit0:
-                break
-            alpha *= 0.5
-        x, poses, R, state = x_try, p_try, R_try, s_try
+    policy = NewtonPolicy(tolerance=tol, max_iterations=settings.max_iterations,
+                          stiffness_update=1, age_per="iteration", refresh_ratio=None,
+                          stall_limit=0, max_halvings=7)
+    body_counters = Counters()
+    out = newton_solve(_BodyNewton(problem, hold, counters, settings), (x, poses), policy,
+                       TangentCache(), body_counters)
+    counters.residuals += body_counters.residuals
+    counters.tangents += body_counters.tangents
+    counters.factorizations += body_counters.factorizations
+    counters.history.extend(out.history)
+    x, poses = out.trial.x, out.u[1]
+    if out.converged:
+        return True, f"converged in {out.iterations} body iterations", out.iterations, \
+            out.trial.state, x, poses
     return (False, f"coupled statics did not converge in {settings.max_iterations} body "
-            f"iterations: largest out-of-balance force {counters.history[-1]:.3e}",
-            settings.max_iterations, state, x, poses)
+            f"iterations ({out.reason}): largest out-of-balance force {out.norm:.3e}",
+            out.iterations, out.trial.state, x, poses)
 
 
 def _equilibrate(problem: CoupledStatics, x: FloatArray, poses: Poses, hold, counters):
@@ -141,19 +193,6 @@ def _equilibrate(problem: CoupledStatics, x: FloatArray, poses: Poses, hold, cou
     R, state = problem.residual(x, poses)
     counters.residuals += 1
     return x, R, state
-
-
-def _reduced_step(K, R: FloatArray, n: int) -> FloatArray:
-    """Body step from the coupled tangent with the line dofs condensed out."""
-    K = K.tocsc()
-    K_bb = K[n:, n:].toarray()
-    if n == 0:
-        return np.linalg.solve(K_bb, R[n:])
-    K_bl, K_lb = K[n:, :n].toarray(), K[:n, n:].toarray()
-    lu = spla.splu(K[:n, :n].tocsc())
-    schur = K_bb - K_bl @ lu.solve(K_lb)
-    rhs = R[n:] - K_bl @ lu.solve(R[:n])
-    return np.linalg.solve(schur, rhs)
 
 
 def _limit(du: FloatArray, problem: CoupledStatics, settings: StaticsSettings) -> FloatArray:

@@ -1,11 +1,12 @@
 """Time-domain simulation of a cable system (Tuah 1982, sec. 4.2).
 
 :func:`simulate` starts from a static equilibrium (solved here unless given), then advances
-with :class:`~moorline.solvers.newmark.Stepper`. A step that fails to converge is cut in half
-(recursively, ``max_step_cuts`` times) with a fresh tangent; if that fails too, a
-:class:`~moorline.errors.ConvergenceError` names the time and the line and node with the
-largest residual. Output records are kept in memory and, when a writer is given, streamed to
-NetCDF as they are produced.
+with :class:`~moorline.solvers.newmark.Stepper` (or its compiled backend). A step that fails to
+converge is cut in half (recursively, ``max_step_cuts`` times) with a fresh tangent; if that
+fails too, the run ends and the result says so (``success`` False, the time and the line and
+node, or body dof, with the largest residual), holding the histories computed until then.
+Output records are kept in memory and, when a writer is given, streamed to NetCDF as they are
+produced.
 """
 
 from __future__ import annotations
@@ -15,18 +16,19 @@ from collections.abc import Callable
 from dataclasses import asdict
 
 import numpy as np
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..errors import ConvergenceError
 from ..mesh import Mesh, discretize
 from ..model import DynamicsSettings, StaticsSettings, System
 from ..results import DynamicResult, StaticResult
-from .assembly import gather_free, scatter_free
+from .assembly import gather_free, scatter_free, solve_sparse
+from .body_model import BodyModel
 from .dynamic_model import DynamicModel, MaterialState
 from .equilibrium import StaticModel
 from .excitation import Excitation
 from .newmark import Coefficients, Stepper, StepState
+from .newton import NewtonPolicy
 from .statics import describe_dof, solve_statics
 
 FloatArray = NDArray[np.float64]
@@ -92,15 +94,20 @@ def simulate(
     n_steps = int(round(settings.duration / settings.dt))
     next_output, cuts = every, 0
     level, calm = 0, 0  # sub-steps 2**level per output step while Newton struggles
+    failure: StepFailedError | None = None
     for k in range(1, n_steps + 1):
         target = k * settings.dt
         h = (target - state.t) / 2**level
         used_cuts = 0
-        for i in range(2**level):
-            step = target - state.t if i == 2**level - 1 else h
-            state, used = _advance(stepper, excitation, state, step,
-                                   settings.max_step_cuts - level, mesh)
-            used_cuts += used
+        try:
+            for i in range(2**level):
+                step = target - state.t if i == 2**level - 1 else h
+                state, used = _advance(stepper, excitation, state, step,
+                                       settings.max_step_cuts - level, mesh)
+                used_cuts += used
+        except StepFailedError as exc:
+            failure = exc
+            break
         cuts += used_cuts
         level, calm = _adapt(level, calm, used_cuts, settings.max_step_cuts)
         if state.t >= next_output - 1e-9 * settings.dt or k == n_steps:
@@ -108,6 +115,12 @@ def simulate(
             next_output += every
         if progress is not None:
             progress(state.t)
+    if failure is not None:
+        if recorder.records["time"][-1] < state.t:
+            recorder.add(state)  # the last completed step
+        counters = dict(stepper.counters, steps=k - 1, step_cuts=cuts)
+        logger.warning("%s: %s", system.name, failure.message())
+        return recorder.result(False, failure.message(), counters, system, asdict(settings))
     counters = dict(stepper.counters, steps=n_steps, step_cuts=cuts)
     return recorder.result(True, f"completed {n_steps} steps", counters, system,
                            asdict(settings))
@@ -115,24 +128,22 @@ def simulate(
 
 def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: float,
              system: System | None = None):
-    """The coupled stepper for systems with bodies; else the compiled stepper when the model
-    allows it, else the general one."""
+    """The time stepper of the settings: the compiled backend when the model allows it, else
+    the general one (the same algorithm; lines, points and bodies)."""
     from .fast_newmark import FastStepper, fast_path_reason
 
     coefficients = Coefficients.for_scheme(settings.scheme, settings.alpha)
-    if model.mesh.body_names:
-        from .coupled_dynamics import CoupledStepper
-
-        return CoupledStepper(system, model, Coefficients.for_scheme("newmark", 0.0), tolerance,
-                              settings.max_iterations, settings.stiffness_update,
-                              _rayleigh(settings), settings.variant)
-    reason = fast_path_reason(model, fluid, settings.scheme, settings.variant)
+    policy = NewtonPolicy(tolerance=tolerance, max_iterations=settings.max_iterations,
+                          stiffness_update=settings.stiffness_update, age_per="solve")
+    rayleigh = _rayleigh(settings)
+    has_bodies = bool(model.mesh.body_names)
+    reason = fast_path_reason(model, fluid, settings.scheme, settings.variant, has_bodies,
+                              rayleigh is not None)
     if reason is None and settings.fast_path:
-        return FastStepper(model, coefficients, tolerance, settings.max_iterations,
-                           settings.stiffness_update)
+        return FastStepper(model, coefficients, policy)
     logger.info("general stepper (compiled step not used: %s)", reason or "disabled")
-    return Stepper(model, coefficients, settings.variant, tolerance, settings.max_iterations,
-                   settings.stiffness_update)
+    bodies = BodyModel(system, model.mesh, fluid) if has_bodies else None
+    return Stepper(model, coefficients, settings.variant, policy, bodies, rayleigh)
 
 
 def _adapt(level: int, calm: int, used_cuts: int, max_cuts: int) -> tuple[int, int]:
@@ -196,7 +207,7 @@ def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
         if np.any(massive):
             rhs = gather_free(ev.nodal, mesh.dof_of_node)
             a_free = np.zeros(len(rhs))
-            a_free[massive] = spla.splu(M[massive][:, massive].tocsc()).solve(rhs[massive])
+            a_free[massive] = solve_sparse(M[massive][:, massive], rhs[massive])
             a = a + scatter_free(a_free, mesh.dof_of_node)
             ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
     return StepState(0.0, x, v, a, ev.material, ev)
@@ -206,56 +217,62 @@ def _with_bodies(state: StepState, initial) -> StepState:
     """Bodies at their static poses, at rest."""
     from dataclasses import replace as dc_replace
 
-    from ..mesh import rotation_matrix
-    from .coupled_dynamics import BodyState
+    from .bodies import BodyState
 
     pose = initial.body_pose if isinstance(initial, StaticResult) else None
     if pose is None or not len(pose):
         raise ConvergenceError("dynamics of a system with bodies needs its static state")
-    R = np.array([rotation_matrix(p[3:]) for p in pose])
-    zeros = np.zeros((len(pose), 6))
-    return dc_replace(state, a=np.zeros_like(state.a),
-                      bodies=BodyState(pose[:, :3].copy(), R, zeros, zeros.copy()))
+    return dc_replace(state, a=np.zeros_like(state.a), bodies=BodyState.from_pose(pose))
 
 
-def _advance(stepper: Stepper, excitation: Excitation, state: StepState, h: float,
+class StepFailedError(Exception):
+    """A step that did not converge after all its cuts (internal to :func:`simulate`)."""
+
+    def __init__(self, time: float, where: str | None, residual: float) -> None:
+        super().__init__(time, where, residual)
+        self.time, self.where, self.residual = time, where, residual
+
+    def message(self) -> str:
+        at = f" at {self.where}" if self.where else ""
+        return (f"Newton iterations did not converge at t = {self.time:.6g}{at} "
+                f"(residual {self.residual:.3e}) after all step cuts")
+
+
+def _advance(stepper, excitation: Excitation, state: StepState, h: float,
              cuts_left: int, mesh: Mesh) -> tuple[StepState, int]:
     """One step of size ``h``, halving it recursively when Newton fails."""
     t1 = state.t + h
     constrained = excitation.constrained_state(t1)
     forces = excitation.point_forces(t1, mesh.n_nodes)
     new, ok, norm = stepper.step(state, h, constrained, forces)
-    if ok:
+    if ok and np.all(np.isfinite(new.x)):
         return new, 0
     if cuts_left == 0:
-        where = (None if state.bodies is not None
-                 else _worst(stepper, state, h, constrained, forces))
-        raise ConvergenceError("Newton iterations did not converge", time=t1, where=where,
-                               residual=norm)
-    _forget_tangent(stepper)
+        raise StepFailedError(t1, _worst(stepper, state, h, constrained, forces), norm)
+    stepper.forget_tangent()
     half, used1 = _advance(stepper, excitation, state, h / 2, cuts_left - 1, mesh)
     full, used2 = _advance(stepper, excitation, half, h / 2, cuts_left - 1, mesh)
-    _forget_tangent(stepper)
+    stepper.forget_tangent()
     return full, 1 + used1 + used2
-
-
-def _forget_tangent(stepper) -> None:
-    if hasattr(stepper, "lu_valid"):
-        stepper.lu_valid = False
-    else:
-        stepper.lu = None
 
 
 def _worst(stepper, state: StepState, h: float, constrained, forces) -> str:
     """Where the residual of the predicted state is largest (for the error message)."""
-    model = stepper.model
-    general = Stepper(model, stepper.c, "iterative", 0.0, 0, 1)
-    x1 = state.x + h * state.v + 0.5 * h * h * state.a
-    x1[~general.free] = constrained[0]
-    v1, a1 = general._kinematics(state, x1, h)
-    ev = model.evaluate(x1, v1, a1, state.t + h, state.material, h, False, forces)
-    r = general._residual(state, ev, a1)
-    return describe_dof(model.mesh, int(np.argmax(np.abs(r))))
+    general = stepper if isinstance(stepper, Stepper) else Stepper(
+        stepper.model, stepper.c, "iterative", stepper.policy)
+    dof = general.worst_dof(state, h, constrained, forces)
+    return describe_unknown(stepper.model.mesh, general.bodies.body_dof, dof)
+
+
+def describe_unknown(mesh: Mesh, body_dof: NDArray[np.int64], dof: int) -> str:
+    """A node dof (point, or line, node and elements) or a body dof, in words."""
+    if dof < mesh.n_dofs:
+        return describe_dof(mesh, dof)
+    for b, first in enumerate(body_dof):
+        if 0 <= first <= dof < first + 6:
+            label = ("surge", "sway", "heave", "roll", "pitch", "yaw")[dof - first]
+            return f"body {mesh.body_names[b]} ({label})"
+    return f"unknown {dof}"
 
 
 class _Recorder:

@@ -7,7 +7,7 @@ exact tangent, same modified-Newton refresh rule, backtracking on the residual n
 into one numba function per step so that Python overhead does not dominate a step that takes
 tens of microseconds. The element loads come from :func:`moorline.physics.fused._kernel`; the
 effective tangent is assembled straight into band storage (nodes ordered by reverse
-Cuthill-McKee) and factorized by a banded LU without pivoting (the effective tangent
+Cuthill-McKee) and factored by a banded LU without pivoting (the effective tangent
 ``M / (beta h^2) + gamma C / (beta h) + K`` is dominated by its mass and stiffness blocks,
 which are symmetric positive definite). Tests compare it step by step with the general
 stepper.
@@ -218,13 +218,16 @@ def _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1):
 def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_drag,
                  with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
                  seabed_z, k_sb, c_sb, ramp, mu, v_slip, h, beta, gamma, tol, max_iter,
-                 refresh, lu, buf, rvec, trial, counters):
-    """One Newmark step with modified-Newton iterations.
+                 refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
+                 stall_limit, max_halvings):
+    """One Newmark step with modified-Newton iterations: the algorithm of
+    :func:`moorline.solvers.newton.solve` (same refresh, line-search, stale-tangent and stall
+    rules, constants from the same :class:`~moorline.solvers.newton.NewtonPolicy`).
 
     On entry ``x1, v1, a1`` hold the constrained nodes' kinematics at the new time (free
-    nodes are predicted here). ``lu`` holds the factorized effective tangent when
+    nodes are predicted here). ``lu`` holds the factored effective tangent when
     ``refresh`` is False. ``counters`` accumulates [iterations, residuals, factorizations].
-    Returns (converged, final max-norm, factorized this step).
+    Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
     cv = gamma / (beta * h)
@@ -239,11 +242,11 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_d
     counters[1] += 1
     norm = _norm_inf_free(buf[11], band, rvec)
     have_tangent = refresh
-    factorized = False
+    refactored = False
     stalled = 0
     for _ in range(max_iter):
         if norm <= tol:
-            return True, norm, factorized
+            return True, norm, refactored
         if refresh:
             if not have_tangent:
                 _evaluate(x1, v1, a1, uf, af, elements, props, with_drag, with_added_mass,
@@ -255,9 +258,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_d
                       node_mass, ca, cv, buf[12], buf[13], buf[14], buf[15], buf[16],
                       seabed_on)
             if not _band_lu(lu, bw):
-                return False, norm, factorized
+                return False, norm, refactored
             counters[2] += 1
-            factorized = True
+            refactored = True
             refresh = False
         merit0 = 0.0
         for k in range(rvec.shape[0]):
@@ -267,7 +270,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_d
         counters[0] += 1
         alpha = 1.0
         better = False
-        for _ls in range(5):
+        for _ls in range(max_halvings + 1):
             for n in range(x1.shape[0]):
                 for c in range(3):
                     k = band[n, c]
@@ -285,17 +288,21 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_d
                 better = True
                 break
             alpha *= 0.5
-        have_tangent = True
-        if not better and not factorized:
-            refresh = True  # stale tangent: refresh at the new point
-        elif n_new > 0.5 * norm:
+        if not better and not refactored:
+            # a stale tangent: refresh it at the same point and retry
             refresh = True
-        stalled = stalled + 1 if n_new > 0.9 * norm else 0
+            have_tangent = False
+            _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
+            continue
+        have_tangent = True
+        if n_new > refresh_ratio * norm:
+            refresh = True
+        stalled = stalled + 1 if n_new > stall_ratio * norm else 0
         x1[:, :] = trial
         norm = n_new
-        if stalled >= 3:
-            break
-    return norm <= tol, norm, factorized
+        if stall_limit > 0 and stalled >= stall_limit:
+            return False, norm, refactored
+    return norm <= tol, norm, refactored
 
 
 def make_buffers(n_el: int, n_nodes: int) -> tuple:
@@ -308,10 +315,15 @@ def make_buffers(n_el: int, n_nodes: int) -> tuple:
             np.zeros((n_nodes, 2)))
 
 
-def fast_path_reason(model, fluid, scheme: str, variant: str) -> str | None:
+def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
+                     rayleigh: bool = False) -> str | None:
     """Why the compiled step cannot run this model (None when it can)."""
     from ..waves import CurrentProfile, StillWater
 
+    if bodies:
+        return "rigid bodies"
+    if rayleigh:
+        return "Rayleigh damping"
     if model._fused is None:
         return "viscoelastic lines or the numpy kernel"
     if scheme != "newmark" or variant != "iterative":
@@ -329,17 +341,14 @@ def fast_path_reason(model, fluid, scheme: str, variant: str) -> str | None:
 
 
 class FastStepper:
-    """Drop-in replacement of :class:`~moorline.solvers.newmark.Stepper` running
-    :func:`newmark_step` (see :func:`fast_path_reason` for when it applies)."""
+    """The compiled backend of :class:`~moorline.solvers.newmark.Stepper`: the same step
+    (see :func:`fast_path_reason` for when it applies), run by :func:`newmark_step`."""
 
-    def __init__(self, model, coefficients, tolerance: float, max_iterations: int,
-                 stiffness_update: int) -> None:
+    def __init__(self, model, coefficients, policy) -> None:
         mesh = model.mesh
         self.model = model
         self.c = coefficients
-        self.tol = tolerance
-        self.max_iterations = max_iterations
-        self.stiffness_update = stiffness_update
+        self.policy = policy
         self.band, self.bw = band_ordering(mesh.elements, mesh.dof_of_node)
         self.free = mesh.free_nodes
         n_dof = int(self.free.sum()) * 3
@@ -354,12 +363,15 @@ class FastStepper:
         self.mu, self.v_slip = (model.friction[0], model.friction[2]) if model.friction \
             else (0.0, 1.0)
         self.dof = mesh.dof_of_node
-        self.carried = None
         from ..waves import StillWater
 
         zeros = np.zeros((mesh.n_elements, 3))
         self._still = (zeros, zeros) if isinstance(model.fluid, StillWater) else None
         self._no_forces = np.zeros((mesh.n_nodes, 3))
+
+    def forget_tangent(self) -> None:
+        """Drop the factorization (after a step cut)."""
+        self.lu_valid = False
 
     @property
     def counters(self) -> dict:
@@ -390,16 +402,19 @@ class FastStepper:
         x1[fixed], v1[fixed], a1[fixed] = constrained
         uf, af = self._fluid(s0.t + h, s0.x)
         forces = point_forces if point_forces is not None else self._no_forces
-        refresh = (not self.lu_valid) or self.lu_h != h or self.lu_age >= self.stiffness_update
+        pol = self.policy
+        refresh = (not self.lu_valid) or self.lu_h != h or self.lu_age >= pol.stiffness_update
         f = self.fused
         m = self.model
-        ok, norm, factorized = newmark_step(
+        ok, norm, refactored = newmark_step(
             s0.x, s0.v, s0.a, x1, v1, a1, self.free, self.band, self.bw, mesh.elements,
             f.props, f.with_drag, f.with_added_mass, m.node_mass, m.external, forces, uf, af,
             self.seabed_on, float(mesh.seabed_z), m.k_seabed, m.c_seabed, m.seabed_ramp,
-            self.mu, self.v_slip, h, self.c.beta, self.c.gamma, self.tol, self.max_iterations,
-            refresh, self.lu, self.buf, self.rvec, self.trial, self.counts)
-        if factorized:
+            self.mu, self.v_slip, h, self.c.beta, self.c.gamma, pol.tolerance,
+            pol.max_iterations, refresh, self.lu, self.buf, self.rvec, self.trial, self.counts,
+            np.inf if pol.refresh_ratio is None else pol.refresh_ratio, pol.stall_ratio,
+            pol.stall_limit, pol.max_halvings)
+        if refactored:
             self.lu_valid, self.lu_h, self.lu_age = True, h, 0
         if not ok:
             self.lu_valid = False
@@ -411,7 +426,3 @@ class FastStepper:
                         MaterialState(strain, s0.material.maxwell), el_forces)
         return StepState(s0.t + h, x1, v1, a1, ev.material, ev), True, float(norm)
 
-    @property
-    def lu_state(self):
-        """For step cutting: forget the factorization."""
-        return self.lu_valid

@@ -342,7 +342,7 @@ def body_modal_matrices(system: System, mesh: Mesh, positions: FloatArray,
     """
     from ..mesh import rotation_matrix
     from .bodies import Poses, transformation, world_arms
-    from .coupled_dynamics import rigid_mass
+    from .body_model import rigid_mass
     from .coupled_statics import CoupledStatics
 
     problem = problem or CoupledStatics(system, mesh)

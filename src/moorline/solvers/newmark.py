@@ -1,20 +1,31 @@
-"""One implicit time step: Newmark (beta = 1/4, gamma = 1/2) or HHT-alpha, with equilibrium
-iterations (Tuah 1982, sec. 4.2).
+"""The implicit time step: Newmark (beta, gamma) or HHT-alpha, with equilibrium iterations or
+the source's one-solve variants (Tuah 1982, sec. 4.2), for lines, points and rigid bodies
+alike.
 
-With ``h`` the step, the Newmark relations (Tuah eq. 4.2.7a,b for beta = 1/4, gamma = 1/2)
+With ``h`` the step, the Newmark relations (Tuah eq. 4.2.7a,b; beta = 1/4, gamma = 1/2 there)
 
     a1 = (x1 - x0 - h v0 - h^2 (1/2 - beta) a0) / (beta h^2)
     v1 = v0 + h ((1 - gamma) a0 + gamma a1)
 
-turn the equation of motion into a static-equivalent problem in ``x1`` whose residual is the
-effective residual of eq. 4.2.10,
+turn the equation of motion into a static-equivalent problem in the unknowns at the new time
+whose residual is the effective residual of eq. 4.2.10,
 
     r = (1 + alpha) F(x1, v1, a1) - alpha F0 - M_s a1      (alpha = 0: Newmark)
 
-(inertia, structural and added, always at the new time; HHT weights the other forces) and
-whose tangent is the effective stiffness of eq. 4.2.9a, assembled exactly:
+(inertia, structural, added and rigid-body, always at the new time; HHT weights the other
+forces) and whose tangent is the effective stiffness of eq. 4.2.9a, assembled exactly:
 
     K_eff = (M_s + M_a) / (beta h^2) + (1 + alpha) (gamma C / (beta h) + K).
+
+The unknowns are the free node dofs and the six dofs of every free body (none without bodies);
+nodes on bodies are slaves through the master-slave transformation (Tuah eq. 3.3.6-3.3.10),
+``P``, and the line tangent is ``P^T K P`` plus the body blocks (:mod:`.body_model`). Rayleigh
+damping ``a0 M + a1 K0`` (``M`` and ``K0`` at the start) applies to all unknowns.
+
+Variants: ``iterative`` solves each step by the Newton core (:mod:`.newton`);
+``residual_feedback`` makes one solve per step from the full residual (eq. 4.2.10, the error
+carried into the next step); ``incremental`` makes one solve per step from the load increment
+only (the imbalance left by the previous step is not corrected).
 """
 
 from __future__ import annotations
@@ -22,17 +33,25 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .assembly import BlockPattern, SparseFactor, gather_free, scatter_free
+from .assembly import SparseFactor, factorize, gather_free, scatter_free
+from .bodies import BodyState, transformation
+from .body_model import BodyModel
 from .dynamic_model import DynamicModel, Evaluation, MaterialState
+from .newton import Counters, NewtonPolicy, TangentCache, max_norm, solve
 
 FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
 class StepState:
-    """The state at the end of a completed step."""
+    """The state at the end of a completed step.
+
+    ``body_other`` holds the bodies' non-inertial generalized forces (nb, 6) at this state
+    (HHT weights them with the next step's).
+    """
 
     t: float
     x: FloatArray
@@ -40,7 +59,8 @@ class StepState:
     a: FloatArray
     material: MaterialState
     evaluation: Evaluation
-    bodies: object = None  # coupled_dynamics.BodyState when the system has bodies
+    bodies: BodyState | None = None
+    body_other: FloatArray | None = None
 
 
 @dataclass(frozen=True)
@@ -59,49 +79,134 @@ class Coefficients:
         return cls((1 - alpha) ** 2 / 4, 0.5 - alpha, alpha)
 
 
+@dataclass
+class _Trial:
+    """One evaluation of the step's residual."""
+
+    r: FloatArray
+    x: FloatArray
+    v: FloatArray
+    a: FloatArray
+    bodies: BodyState | None
+    arms: FloatArray
+    ev: Evaluation
+    body_other: FloatArray | None
+
+    @property
+    def has_tangent(self) -> bool:
+        return self.ev.K is not None
+
+
+@dataclass(frozen=True)
+class _Step:
+    """What one step's residual depends on besides the unknowns."""
+
+    s0: StepState
+    h: float
+    constrained: tuple
+    point_forces: FloatArray | None
+
+
 class Stepper:
-    """Performs steps, keeping the factorized effective tangent between them."""
+    """Performs steps, keeping the factored effective tangent between them.
+
+    Parameters
+    ----------
+    model
+        Forces of lines and points (:class:`~moorline.solvers.dynamic_model.DynamicModel`).
+    coefficients
+        Newmark/HHT parameters.
+    variant
+        ``iterative``, ``residual_feedback`` or ``incremental``.
+    policy
+        Newton constants (tolerance, iterations, refresh rule).
+    bodies
+        The rigid bodies (:class:`~moorline.solvers.body_model.BodyModel`); default none.
+    rayleigh
+        ``(a0, a1)`` of Rayleigh damping, or ``None``.
+    """
 
     def __init__(self, model: DynamicModel, coefficients: Coefficients, variant: str,
-                 tolerance: float, max_iterations: int, stiffness_update: int) -> None:
+                 policy: NewtonPolicy, bodies: BodyModel | None = None,
+                 rayleigh: tuple[float, float] | None = None) -> None:
         self.model = model
         self.c = coefficients
         self.variant = variant
-        self.tol = tolerance
-        self.max_iterations = max_iterations
-        self.stiffness_update = stiffness_update
+        self.policy = policy
         mesh = model.mesh
-        self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
-        self.factorizer = SparseFactor(self.pattern)
+        self.bodies = bodies if bodies is not None else BodyModel(None, mesh, model.fluid)
+        layout = self.bodies.layout
+        self.layout = layout
+        self.pattern = layout.pattern
+        self.coupled = len(mesh.slave_node) > 0 or not self.bodies.empty
+        self.factorizer = None if self.coupled else SparseFactor(self.pattern)
         self.dof = mesh.dof_of_node
         self.free = mesh.free_nodes
-        self.lu: SparseFactor | None = None
-        self.lu_h = np.nan
-        self.lu_age = 0
+        self.rayleigh = rayleigh
+        self.C_rayleigh: sp.csr_matrix | None = None
+        self.cache = TangentCache()
+        self.work = Counters()
         self.carried = None  # incremental variant: imbalance left by the previous step
-        self.counters = {"iterations": 0, "residuals": 0, "tangents": 0, "factorizations": 0}
 
-    def _kinematics(self, s0: StepState, x1: FloatArray, h: float):
-        b, g = self.c.beta, self.c.gamma
+    @property
+    def counters(self) -> dict[str, int]:
+        """Iterations, residual evaluations, tangents and factorizations so far."""
+        return self.work.as_dict()
+
+    def forget_tangent(self) -> None:
+        """Drop the factorization (after a step cut)."""
+        self.cache.forget()
+
+    # ------------------------------------------------------------------ Newton problem
+    def residual(self, u: tuple[FloatArray, FloatArray], tangent: bool) -> _Trial:
+        """Effective residual (eq. 4.2.10) at unknowns ``u = (x1, dq)``."""
+        st = self._current
+        s0, h = st.s0, st.h
+        x1, dq = u
+        b, g, alpha = self.c.beta, self.c.gamma, self.c.alpha
         a1 = (x1 - s0.x - h * s0.v - h * h * (0.5 - b) * s0.a) / (b * h * h)
         v1 = s0.v + h * ((1 - g) * s0.a + g * a1)
-        return v1, a1
-
-    def _residual(self, s0: StepState, ev: Evaluation, a1: FloatArray) -> FloatArray:
-        alpha = self.c.alpha
+        fixed = ~self.free
+        v1[fixed], a1[fixed] = st.constrained[1], st.constrained[2]
+        bs, arms = None, np.zeros((0, 3))
+        if s0.bodies is not None:
+            bs = self.bodies.advance(s0.bodies, dq, h, b, g)
+            x1 = x1.copy()
+            arms = self.bodies.place(x1, v1, a1, bs)
+        t1 = s0.t + h
+        ev = self.model.evaluate(x1, v1, a1, t1, s0.material, h, tangent, st.point_forces)
         m_s = self.model.node_mass[:, None]
+        other = ev.nodal - ev.inertial
+        inertial = ev.inertial - m_s * a1
         if alpha:
             ev0 = s0.evaluation
-            other1 = ev.nodal - ev.inertial
-            other0 = ev0.nodal - ev0.inertial
-            total = (1 + alpha) * other1 - alpha * other0 + ev.inertial - m_s * a1
+            node = (1 + alpha) * other - alpha * (ev0.nodal - ev0.inertial) + inertial
         else:
-            total = ev.nodal - m_s * a1
-        return gather_free(total, self.dof)
+            node = ev.nodal - m_s * a1
+        r = np.zeros(self.layout.n_unknowns)
+        r[: self.layout.n_free] = gather_free(node, self.dof)
+        body_other = None
+        if bs is not None:
+            body_other, body_inertial = self.bodies.forces(bs, other, inertial, arms, t1)
+            weighted = body_other if not alpha else ((1 + alpha) * body_other
+                                                     - alpha * self._body_other(s0))
+            for k, d in enumerate(self.bodies.body_dof):
+                if d >= 0:
+                    r[d:d + 6] = weighted[k] + body_inertial[k]
+        if self.C_rayleigh is not None:
+            damping = self.C_rayleigh @ self._velocity(v1, bs)
+            if alpha:
+                damping = (1 + alpha) * damping - alpha * (self.C_rayleigh
+                                                           @ self._velocity(s0.v, s0.bodies))
+            r -= damping
+        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other)
 
-    def _factorize(self, ev: Evaluation, h: float) -> None:
+    def factorize(self, u, trial: _Trial):
+        """Factorization of the effective tangent (eq. 4.2.9a) at the trial."""
+        h = self._current.h
         b, g, alpha = self.c.beta, self.c.gamma, self.c.alpha
         ca, cv, ck = 1.0 / (b * h * h), (1 + alpha) * g / (b * h), 1 + alpha
+        ev = trial.ev
         blocks = ck * ev.K + cv * ev.C
         if ev.Ma is not None:
             blocks = blocks + ca * ev.Ma
@@ -109,82 +214,152 @@ class Stepper:
         nodes = nodes + ck * ev.node_K + cv * ev.node_C
         if ev.node_M is not None:
             nodes = nodes + ca * ev.node_M
-        self.lu = self.factorizer.factor(self.pattern.values(blocks, nodes))
-        self.lu_h, self.lu_age = h, 0
-        self.counters["tangents"] += 1
-        self.counters["factorizations"] += 1
+        if not self.coupled:
+            data = self.pattern.values(blocks, nodes)
+            if self.C_rayleigh is not None:
+                data = data + cv * self._rayleigh_data
+            return self.factorizer.factor(data)
+        K = self._transform(self.pattern.assemble(blocks, nodes), trial.arms)
+        body = self.bodies.blocks(trial.bodies, ev.nodal, trial.arms, self._current.s0.t + h,
+                                  ca, cv, ck)
+        K = K + self._body_matrix(body)
+        if self.C_rayleigh is not None:
+            K = K + cv * self.C_rayleigh
+        return factorize(K)
 
-    def _trial(self, s0, x1, h, constrained, point_forces, tangent):
-        v1, a1 = self._kinematics(s0, x1, h)
-        v1[~self.free], a1[~self.free] = constrained[1], constrained[2]
-        ev = self.model.evaluate(x1, v1, a1, s0.t + h, s0.material, h, tangent, point_forces)
-        self.counters["residuals"] += 1
-        r = self._residual(s0, ev, a1)
-        return ev, r, float(np.abs(r).max(initial=0.0)), a1
+    def update(self, u, du: FloatArray):
+        """Unknowns after the step ``du``."""
+        x1, dq = u
+        x1 = x1 + scatter_free(du[: self.layout.n_free], self.dof)
+        if len(dq):
+            dq = dq.copy()
+            for k, d in enumerate(self.bodies.body_dof):
+                if d >= 0:
+                    dq[k] += du[d:d + 6]
+        return x1, dq
 
-    def _search(self, s0, x1, dx, norm, h, constrained, point_forces, max_halvings=4):
-        """Backtrack along ``dx`` until the residual decreases (slack/taut and seabed
-        contact switches make the residual non-smooth; a full step can cycle)."""
-        alpha, merit0 = 1.0, norm
-        for _ in range(max_halvings + 1):
-            trial = x1 + alpha * dx
-            ev, r, n, a1 = self._trial(s0, trial, h, constrained, point_forces, False)
-            merit = float(np.linalg.norm(r))
-            if merit < merit0:
-                break
-            alpha *= 0.5
-        return trial, ev, r, n, a1, merit < merit0
-
-    def step(self, s0: StepState, h: float, constrained, point_forces) -> tuple[StepState, bool,
-                                                                                 float]:
-        """Advance from ``s0`` by ``h``. Returns the new state, convergence and the final
-        residual max-norm."""
+    # ------------------------------------------------------------------ the step
+    def step(self, s0: StepState, h: float, constrained, point_forces
+             ) -> tuple[StepState, bool, float]:
+        """Advance from ``s0`` by ``h``. Returns the new state (``s0`` when the step failed),
+        convergence and the final residual max-norm."""
+        if self.rayleigh is not None and self.C_rayleigh is None:
+            self._setup_rayleigh(s0)
+        self._current = _Step(s0, h, constrained, point_forces)
         x1 = s0.x + h * s0.v + 0.5 * h * h * s0.a
         x1[~self.free] = constrained[0]
-        refresh = self.lu is None or self.lu_h != h or self.lu_age >= self.stiffness_update
-        ev, r, norm, a1 = self._trial(s0, x1, h, constrained, point_forces, refresh)
+        dq = (h * s0.bodies.vel + 0.5 * h * h * s0.bodies.acc if s0.bodies is not None
+              else np.zeros((0, 6)))
+        u = (x1, dq)
+        if self.variant != "iterative":
+            return self._one_shot(u, h)
+        out = solve(self, u, self.policy, self.cache, self.work, key=h)
+        if not out.converged:
+            return s0, False, out.norm
+        return self._state(out.trial), True, out.norm
+
+    def _state(self, trial: _Trial) -> StepState:
+        st = self._current
+        return StepState(st.s0.t + st.h, trial.x, trial.v, trial.a, trial.ev.material,
+                         trial.ev, trial.bodies, trial.body_other)
+
+    def _one_shot(self, u, h: float) -> tuple[StepState, bool, float]:
+        """Residual feedback / purely incremental: one solve per step, no iteration."""
+        refresh = self.cache.needs_refresh(self.policy, h)
+        self.work.residuals += 1
+        trial = self.residual(u, refresh)
+        r = trial.r
         if self.variant == "incremental" and self.carried is not None:
             r = r - self.carried
-        if self.variant != "iterative":
-            return self._one_shot(s0, x1, h, constrained, point_forces, ev, r, refresh)
-        stalled = 0
-        for _ in range(self.max_iterations):
-            if norm <= self.tol:
-                self.lu_age += 1
-                return StepState(s0.t + h, x1, *self._kinematics_c(s0, x1, h, constrained),
-                                 ev.material, ev), True, norm
-            if refresh:
-                self._factorize(ev if ev.K is not None else self._trial(
-                    s0, x1, h, constrained, point_forces, True)[0], h)
-                refresh = False
-            dx = scatter_free(self.lu.solve(r), self.dof)
-            self.counters["iterations"] += 1
-            x_new, ev_new, r_new, n_new, a1, better = self._search(
-                s0, x1, dx, float(np.linalg.norm(r)), h, constrained, point_forces)
-            if not better and self.lu_age > 0:
-                refresh = True  # stale tangent: refresh and retry from the same point
-                self.lu_age = 0
+        if refresh:
+            if not trial.has_tangent:
+                trial = self.residual(u, True)
+                self.work.residuals += 1
+            self.cache.factor, self.cache.age, self.cache.key = self.factorize(u, trial), 0, h
+            self.work.tangents += 1
+            self.work.factorizations += 1
+        u = self.update(u, self.cache.factor.solve(r))
+        self.work.iterations += 1
+        end = self.residual(u, False)
+        self.work.residuals += 1
+        self.carried = end.r if self.variant == "incremental" else None
+        self.cache.age += 1
+        return self._state(end), True, max_norm(end.r)
+
+    # ------------------------------------------------------------------ pieces
+    def _transform(self, K: sp.csr_matrix, arms: FloatArray) -> sp.csr_matrix:
+        """``P^T K P``: the line tangent over the extended dofs onto the unknowns."""
+        lay = self.layout
+        P = transformation(self.model.mesh, lay.ext_dofs, lay.n_free, lay.body_dof, arms)
+        return (P.T @ K @ P).tocsr()
+
+    def _body_matrix(self, blocks: list[FloatArray]) -> sp.csr_matrix:
+        """The body blocks as a sparse matrix over the unknowns."""
+        n = self.layout.n_unknowns
+        rows, cols, vals = [], [], []
+        for d, block in zip(self.bodies.body_dof, blocks, strict=True):
+            if d < 0:
                 continue
-            refresh = refresh or n_new > 0.5 * norm
-            stalled = stalled + 1 if n_new > 0.9 * norm else 0
-            x1, ev, r, norm = x_new, ev_new, r_new, n_new
-            if stalled >= 3:
-                break  # not converging (e.g. slack/taut switching): cut the step early
-        return s0, False, norm
+            i, j = np.meshgrid(np.arange(6) + d, np.arange(6) + d, indexing="ij")
+            rows.append(i.ravel())
+            cols.append(j.ravel())
+            vals.append(block.ravel())
+        if not rows:
+            return sp.csr_matrix((n, n))
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                    np.concatenate(cols))), shape=(n, n))
 
-    def _kinematics_c(self, s0, x1, h, constrained):
-        v1, a1 = self._kinematics(s0, x1, h)
-        v1[~self.free], a1[~self.free] = constrained[1], constrained[2]
-        return v1, a1
+    def _velocity(self, v: FloatArray, bs: BodyState | None) -> FloatArray:
+        u = np.zeros(self.layout.n_unknowns)
+        u[: self.layout.n_free] = gather_free(v, self.dof)
+        if bs is not None:
+            for k, d in enumerate(self.bodies.body_dof):
+                if d >= 0:
+                    u[d:d + 6] = bs.vel[k]
+        return u
 
-    def _one_shot(self, s0, x1, h, constrained, point_forces, ev, r, refresh):
-        """Residual feedback / purely incremental: one solve per step, no iteration."""
-        if refresh or self.lu is None:
-            self._factorize(ev, h)
-        x1 = x1 + scatter_free(self.lu.solve(r), self.dof)
-        self.counters["iterations"] += 1
-        ev, end, norm, _ = self._trial(s0, x1, h, constrained, point_forces, False)
-        self.carried = end if self.variant == "incremental" else None
-        self.lu_age += 1
-        return StepState(s0.t + h, x1, *self._kinematics_c(s0, x1, h, constrained),
-                         ev.material, ev), True, norm
+    def _body_other(self, s0: StepState) -> FloatArray:
+        """The bodies' non-inertial forces at a completed state (HHT)."""
+        if s0.body_other is not None:
+            return s0.body_other
+        x, v, a = s0.x.copy(), s0.v.copy(), s0.a.copy()
+        arms = self.bodies.place(x, v, a, s0.bodies)
+        ev = s0.evaluation
+        m_s = self.model.node_mass[:, None]
+        return self.bodies.forces(s0.bodies, ev.nodal - ev.inertial, ev.inertial - m_s * a,
+                                  arms, s0.t)[0]
+
+    def _setup_rayleigh(self, s0: StepState) -> None:
+        """Rayleigh damping ``a0 M + a1 K0`` from the mass and tangent at the start."""
+        a0, a1 = self.rayleigh
+        x, v, a = s0.x.copy(), np.zeros_like(s0.x), np.zeros_like(s0.x)
+        bs, arms = None, np.zeros((0, 3))
+        if s0.bodies is not None:
+            bs = BodyState(s0.bodies.r, s0.bodies.R)
+            arms = self.bodies.place(x, v, a, bs)
+        ev = self.model.evaluate(x, v, a, s0.t, s0.material, 1.0, True, None)
+        nodes_m = self.model.node_mass[:, None, None] * np.eye(3)
+        if ev.node_M is not None:
+            nodes_m = nodes_m + ev.node_M
+        if not self.coupled:
+            self._rayleigh_data = (a0 * self.pattern.values(ev.Ma, nodes_m)
+                                   + a1 * self.pattern.values(ev.K, ev.node_K))
+            p = self.pattern
+            self.C_rayleigh = sp.csr_matrix((self._rayleigh_data, p.indices, p.indptr),
+                                            shape=(p.n, p.n))
+            return
+        M = self._transform(self.pattern.assemble(ev.Ma, nodes_m), arms)
+        K = self._transform(self.pattern.assemble(ev.K, ev.node_K), arms)
+        pairs = self.bodies.mass_and_stiffness(bs)
+        M = M + self._body_matrix([p[0] for p in pairs])
+        K = K + self._body_matrix([p[1] for p in pairs])
+        self.C_rayleigh = (a0 * M + a1 * K).tocsr()
+
+    def worst_dof(self, state: StepState, h: float, constrained, forces) -> int:
+        """The unknown with the largest residual at the predicted state (for messages)."""
+        self._current = _Step(state, h, constrained, forces)
+        x1 = state.x + h * state.v + 0.5 * h * h * state.a
+        x1[~self.free] = constrained[0]
+        dq = (h * state.bodies.vel + 0.5 * h * h * state.bodies.acc
+              if state.bodies is not None else np.zeros((0, 6)))
+        return int(np.argmax(np.abs(self.residual((x1, dq), False).r)))

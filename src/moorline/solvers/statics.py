@@ -21,25 +21,25 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..mesh import Mesh, discretize
 from ..model import StaticsSettings, System
 from ..results import StaticResult
-from .assembly import BlockPattern, gather_free, scatter_free
+from .assembly import BlockPattern, SparseFactor, factorize, gather_free, scatter_free, solve_sparse
 from .equilibrium import ForceState, StaticModel
 from .initial_shape import initial_positions
+from .newton import Counters, NewtonPolicy, TangentCache
+from .newton import solve as newton_solve
 
 FloatArray = NDArray[np.float64]
 logger = logging.getLogger(__name__)
 
 
 @dataclass
-class _Counters:
-    residuals: int = 0
-    tangents: int = 0
-    factorizations: int = 0
+class _Counters(Counters):
+    """The Newton counters and the residual history of a static solve."""
+
     history: list[float] = field(default_factory=list)
 
 
@@ -161,37 +161,44 @@ def _residual(model: StaticModel, x: FloatArray, lam: float,
     return model.residual(x, lam)
 
 
-def _factorize(model: StaticModel, x: FloatArray, counters: _Counters,
-               shift: float = 0.0) -> spla.SuperLU:
-    K = model.tangent(x)
-    counters.tangents += 1
-    counters.factorizations += 1
-    if shift:
-        K = K + sp.identity(K.shape[0], format="csr") * shift
-    return spla.splu(K.tocsc())
+@dataclass
+class _StaticTrial:
+    r: FloatArray
+    state: ForceState
 
 
-def _line_search(model: StaticModel, x: FloatArray, dx: FloatArray, lam: float,
-                 R0: FloatArray, counters: _Counters, max_halvings: int = 12) -> FloatArray:
-    """Backtracking line search on the potential energy (Armijo), accepting at once any step
-    that lowers the residual norm. The static loads are conservative (``R = -dPi/dx``)
-    except a current's drag, which is held at its value at ``x`` (its work added to the
-    energy) for the search."""
-    r0 = float(np.linalg.norm(R0))
-    slope = -float(np.sum(gather_free(dx, model.mesh.dof_of_node) * R0))
-    frozen = model.drag_loads(x, lam)
-    energy0 = model.potential_energy(x, lam, frozen)
-    alpha = 1.0
-    for _ in range(max_halvings):
-        trial = x + alpha * dx
-        R, _ = _residual(model, trial, lam, counters)
-        if np.linalg.norm(R) < r0:
-            return alpha * dx
-        if slope < 0 and (model.potential_energy(trial, lam, frozen)
-                          <= energy0 + 1e-4 * alpha * slope):
-            return alpha * dx
-        alpha *= 0.5
-    return alpha * dx
+class _NewtonStatics:
+    """One load increment of the static balance as a problem of the Newton core: the exact
+    tangent, a step limited to ``max_step``, and a line search that also accepts a step
+    lowering the potential energy enough (Armijo; the loads are conservative but a current's
+    drag, held at its value at the start of the search, its work added to the energy)."""
+
+    def __init__(self, model: StaticModel, lam: float, max_step: float) -> None:
+        self.model, self.lam, self.max_step = model, lam, max_step
+        self.dof = model.mesh.dof_of_node
+        self.factorizer = SparseFactor(model.pattern)
+
+    def residual(self, x: FloatArray, tangent: bool) -> _StaticTrial:
+        return _StaticTrial(*self.model.residual(x, self.lam))
+
+    def factorize(self, x: FloatArray, trial: _StaticTrial) -> SparseFactor:
+        return self.factorizer.factor(self.model.tangent(x).data)
+
+    def update(self, x: FloatArray, du: FloatArray) -> FloatArray:
+        return x + scatter_free(du, self.dof)
+
+    def limit(self, x: FloatArray, du: FloatArray) -> FloatArray:
+        return gather_free(_limit_step(scatter_free(du, self.dof), self.max_step), self.dof)
+
+    def search_context(self, x: FloatArray, du: FloatArray, trial0: _StaticTrial):
+        frozen = self.model.drag_loads(x, self.lam)
+        slope = -float(np.sum(du * trial0.r))
+        return frozen, self.model.potential_energy(x, self.lam, frozen), slope
+
+    def accept(self, x, x_try, trial, alpha, du, trial0, context) -> bool:
+        frozen, energy0, slope = context
+        return slope < 0 and (self.model.potential_energy(x_try, self.lam, frozen)
+                              <= energy0 + 1e-4 * alpha * slope)
 
 
 def _longest_line(mesh: Mesh) -> float:
@@ -205,28 +212,24 @@ def _limit_step(dx: FloatArray, max_step: float) -> FloatArray:
 
 
 def _newton(model, x, start, target, settings, counters):
-    """Residual feedback with equilibrium iterations per load increment (Tuah eq. 4.1.2)."""
+    """Residual feedback with equilibrium iterations per load increment (Tuah eq. 4.1.2),
+    each increment solved by the Newton core."""
     tol = max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
-    dof = model.mesh.dof_of_node
     max_step = settings.max_step * _longest_line(model.mesh)
-    total, lu, state = 0, None, None
+    policy = NewtonPolicy(tolerance=tol, max_iterations=settings.max_iterations,
+                          stiffness_update=settings.stiffness_update, age_per="iteration",
+                          refresh_ratio=None, stall_limit=0, max_halvings=11)
+    total, state = 0, None
     for step in range(1, settings.load_steps + 1):
         lam = step / settings.load_steps
         _move_supports(model, x, start, target, lam)
-        for it in range(settings.max_iterations + 1):
-            R, state = _residual(model, x, lam, counters)
-            counters.history.append(float(np.abs(R).max(initial=0.0)))
-            if counters.history[-1] <= tol:
-                break
-            if it == settings.max_iterations:
-                return False, _failure(model, R, state, step, settings), total, state, x
-            if lu is None or it % settings.stiffness_update == 0:
-                lu = _factorize(model, x, counters)
-            dx = _limit_step(scatter_free(lu.solve(R), dof), max_step)
-            dx = _line_search(model, x, dx, lam, R, counters)
-            x = x + dx
-            total += 1
-        lu = None
+        out = newton_solve(_NewtonStatics(model, lam, max_step), x, policy, TangentCache(),
+                           counters)
+        counters.history.extend(out.history)
+        x, state, total = out.u, out.trial.state, total + out.iterations
+        if not out.converged:
+            return False, _failure(model, out.trial.r, state, step, settings, out.reason), \
+                total, state, x
     return True, f"converged in {total} iterations", total, state, x
 
 
@@ -243,7 +246,7 @@ def _incremental(model, x, start, target, settings, counters):
         d_prescribed[~mesh.free_nodes] = (target - start) / n
         rhs = (model.external / n).ravel()[free] - K[free][:, ~free] @ d_prescribed.ravel()[~free]
         counters.factorizations += 1
-        du = spla.spsolve(K[free][:, free].tocsc(), rhs)
+        du = solve_sparse(K[free][:, free], rhs)
         x = x + d_prescribed + scatter_free(du, mesh.dof_of_node)
         R, state = _residual(model, x, step / n, counters)
         counters.history.append(float(np.abs(R).max(initial=0.0)))
@@ -275,7 +278,7 @@ def _relaxation(model, x, start, target, settings, counters):
             counters.tangents += 1
         shift = sp.identity(K.shape[0], format="csr") * (damping / settings.pseudo_dt)
         counters.factorizations += 1
-        x_trial = x + scatter_free(spla.splu((K + shift).tocsc()).solve(R), dof)
+        x_trial = x + scatter_free(factorize(K + shift).solve(R), dof)
         K_age += 1
         lam = min(1.0, (it + 1) / settings.load_steps)
         _move_supports(model, x_trial, start, target, lam)
@@ -294,11 +297,13 @@ def _relaxation(model, x, start, target, settings, counters):
 
 
 def _failure(model: StaticModel, R: FloatArray, state: ForceState, step: int | None,
-             settings: StaticsSettings) -> str:
-    where = describe_dof(model.mesh, int(np.argmax(np.abs(R))))
+             settings: StaticsSettings, reason: str = "") -> str:
+    where = describe_dof(model.mesh, int(np.argmax(np.abs(R)))) if R.size else "-"
     at = f" in load step {step}/{settings.load_steps}" if step else ""
+    why = f" ({reason})" if reason and reason != "iteration limit" else ""
     return (f"{settings.method} did not converge{at} within {settings.max_iterations} "
-            f"iterations: largest out-of-balance force {np.abs(R).max():.3e} at {where}")
+            f"iterations{why}: largest out-of-balance force {np.abs(R).max(initial=0.0):.3e} "
+            f"at {where}")
 
 
 def describe_dof(mesh: Mesh, dof: int) -> str:

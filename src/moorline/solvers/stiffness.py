@@ -12,11 +12,10 @@ equilibria.
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..results import StaticResult
-from .assembly import BlockPattern
+from .assembly import BlockPattern, factorize
 from .equilibrium import StaticModel
 
 FloatArray = NDArray[np.float64]
@@ -44,7 +43,7 @@ def condensed_stiffness(result: StaticResult, nodes: list[int]) -> FloatArray:
     if condensed.size == 0:
         return K_rr
     K_rc = K[kept][:, condensed].toarray()
-    lu = spla.splu(K[condensed][:, condensed].tocsc())
+    lu = factorize(K[condensed][:, condensed])
     return K_rr - K_rc @ lu.solve(np.ascontiguousarray(K_rc.T))
 
 

@@ -67,7 +67,6 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 import xarray as xr
 from numpy.typing import NDArray
 
@@ -78,7 +77,7 @@ from ..physics import element
 from ..results import StaticResult
 from ..waves import random_sea, wave_number
 from ..waves.transfer import kinematics_transfer
-from .assembly import BlockPattern
+from .assembly import BlockPattern, solve_sparse
 from .bodies import long_wave_geometry
 from .modal import body_modal_matrices, modal_matrices
 from .statics import equilibrium_for
@@ -405,7 +404,7 @@ class _Response:
             out = np.empty_like(F)
             for j, w in enumerate(omega):
                 A = (self.K - w * w * self.M + 1j * w * C).tocsc()
-                out[j] = spla.splu(A).solve(F[j])
+                out[j] = solve_sparse(A, F[j])
             return out
         return self._foss(C, F, omega)
 

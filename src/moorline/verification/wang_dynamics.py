@@ -186,7 +186,7 @@ class LinearModel:
         moment-arm term of the fairlead forces, gravity and hydrostatics of the body.
     K_rayleigh
         The stiffness the dynamics' Rayleigh damping uses (``K`` without the moment-arm
-        term; :meth:`~moorline.solvers.coupled_dynamics.CoupledStepper.setup_rayleigh`).
+        term; :meth:`~moorline.solvers.newmark.Stepper._setup_rayleigh`).
     body
         Slice of the body dofs.
     """

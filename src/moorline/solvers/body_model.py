@@ -1,0 +1,245 @@
+"""Rigid bodies in the time stepper: kinematics of the bodies and their attached nodes, and the
+bodies' generalized forces with their exact derivatives (Tuah 1982 sec. 3.2.c and 3.3; Wang,
+Er and Iu eq. 24-34).
+
+Body kinematics: position ``r``, rotation ``R``, velocity ``(v, omega)`` and acceleration
+``(a, alpha)`` in world axes. Over a step the body moves by ``dq = (dr, dtheta)`` with
+``R1 = exp([dtheta x]) R0`` and Newmark's relations applied to ``dq``. Attached nodes follow:
+``x = r + R a``, ``v = v_r + omega x (R a)``, ``a = a_r + alpha x (R a) + omega x (omega x R a)``.
+Body equation about its origin (rigid-body inertia with the centre of gravity offset ``c``):
+
+    m (a_r + alpha x c + omega x (omega x c)) = F,
+    c x m(...) + I_G alpha + omega x (I_G omega) = M,
+
+plus constant added mass ``A`` and radiation damping ``B`` (Tuah eq. 3.2.c.20), hydrostatics,
+gravity, constant and time-varying loads, drag, long-wave loads and exciting-force tables, and
+the lines' forces through the master-slave transformation. The body blocks of the Newton matrix
+are exact for everything but the gyroscopic and centripetal terms (second order in the angular
+velocity).
+
+A system without bodies has an empty :class:`BodyModel`: every method is then a no-op, so the
+time stepper has one code path.
+"""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..mesh import Mesh
+from ..model import System
+from .bodies import BodyDofs, BodyState, body_loads, long_wave_geometry, skew
+from .excitation import motion_value, ramp
+
+logger = logging.getLogger(__name__)
+FloatArray = NDArray[np.float64]
+
+
+class BodyModel:
+    """The bodies of a mesh (in mesh order) and their loads."""
+
+    def __init__(self, system: System | None, mesh: Mesh, fluid) -> None:
+        self.mesh = mesh
+        self.fluid = fluid
+        names = mesh.body_names
+        self.bodies = [system.bodies[n] for n in names] if names else []
+        self.layout = BodyDofs.of(mesh, self.bodies)
+        self.body_dof = self.layout.body_dof
+        self.added = [_matrix(b.added_mass) for b in self.bodies]
+        self.damping = [_matrix(b.damping) for b in self.bodies]
+        self.origin0 = [np.asarray(b.position, dtype=float) for b in self.bodies]
+        self._exciting: dict[int, tuple | None] = {}
+
+    @property
+    def empty(self) -> bool:
+        """No bodies."""
+        return not self.bodies
+
+    def set_origins(self, state: BodyState) -> None:
+        """Wave phases of exciting-force tables refer to the bodies' starting positions."""
+        self.origin0 = [np.asarray(r, dtype=float).copy() for r in state.r]
+        self._exciting.clear()
+
+    # ------------------------------------------------------------------ kinematics
+    def advance(self, b0: BodyState, dq: FloatArray, h: float, beta: float,
+                gamma: float) -> BodyState:
+        """Body state after the motion ``dq`` (nb, 6) over a step ``h`` (Newmark)."""
+        acc = (dq - h * b0.vel - h * h * (0.5 - beta) * b0.acc) / (beta * h * h)
+        vel = b0.vel + h * ((1 - gamma) * b0.acc + gamma * acc)
+        held = self.body_dof < 0
+        acc[held], vel[held] = 0.0, 0.0
+        moved = b0.moved(dq[:, :3], dq[:, 3:])
+        return BodyState(moved.r, moved.R, vel, acc)
+
+    def place(self, x: FloatArray, v: FloatArray, a: FloatArray, bs: BodyState) -> FloatArray:
+        """Put the attached nodes on their bodies (in place); returns their world arms."""
+        m = self.mesh
+        if not len(m.slave_node):
+            return np.zeros((0, 3))
+        b = m.slave_body
+        arms = np.einsum("kij,kj->ki", bs.R[b], m.slave_arm)
+        w, al = bs.vel[b, 3:], bs.acc[b, 3:]
+        x[m.slave_node] = bs.r[b] + arms
+        v[m.slave_node] = bs.vel[b, :3] + np.cross(w, arms)
+        a[m.slave_node] = bs.acc[b, :3] + np.cross(al, arms) + np.cross(w, np.cross(w, arms))
+        return arms
+
+    # ------------------------------------------------------------------ forces
+    def forces(self, bs: BodyState, node_other: FloatArray, node_inertial: FloatArray,
+               arms: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
+        """Generalized forces on the free bodies about their origins, (nb, 6) each: the
+        non-inertial part (loads, damping, fluid, excitation, the attached nodes' forces
+        through ``T^T``) and the inertial part (minus rigid-body inertia and added mass, and
+        the attached nodes' inertial forces)."""
+        nb = len(self.bodies)
+        other, inertial = np.zeros((nb, 6)), np.zeros((nb, 6))
+        m = self.mesh
+        for b, body in enumerate(self.bodies):
+            if self.body_dof[b] < 0:
+                continue
+            mine = m.slave_body == b
+            arm = arms[mine]
+            f_o, f_i = node_other[m.slave_node[mine]], node_inertial[m.slave_node[mine]]
+            gen, _ = body_loads(body, bs.r[b], bs.R[b], m.gravity, m.water_density)
+            gen[:3] += f_o.sum(axis=0) + _history(body, t)
+            gen[3:] += np.cross(arm, f_o).sum(axis=0)
+            gen -= self.damping[b] @ bs.vel[b]
+            gen[:3] += self._fluid_loads(body, bs, b, t)[0]
+            gen += self._excitation(body, b, t)
+            other[b] = gen
+            ine = -(self._inertia(body, bs, b) + self.added[b] @ bs.acc[b])
+            ine[:3] += f_i.sum(axis=0)
+            ine[3:] += np.cross(arm, f_i).sum(axis=0)
+            inertial[b] = ine
+        return other, inertial
+
+    def blocks(self, bs: BodyState, node_forces: FloatArray, arms: FloatArray, t: float,
+               ca: float, cv: float, ck: float) -> list[FloatArray]:
+        """Body blocks (6, 6) of the effective tangent ``ca M + cv C + ck K`` of the free
+        bodies (rigid mass and added mass, damping and drag, hydrostatics and the rotation of
+        the attached nodes' moment arms under fixed forces ``node_forces``)."""
+        out = []
+        m = self.mesh
+        for b, body in enumerate(self.bodies):
+            if self.body_dof[b] < 0:
+                out.append(np.zeros((6, 6)))
+                continue
+            stiff = body_loads(body, bs.r[b], bs.R[b], m.gravity, m.water_density)[1]
+            mine = m.slave_body == b
+            for f, arm in zip(node_forces[m.slave_node[mine]], arms[mine], strict=True):
+                stiff[3:, 3:] -= skew(f) @ skew(arm)
+            damp = self.damping[b].copy()
+            damp[:3, :3] -= self._fluid_loads(body, bs, b, t)[1]
+            out.append(ca * (rigid_mass(body, bs.R[b]) + self.added[b]) + cv * damp
+                       + ck * stiff)
+        return out
+
+    def mass_and_stiffness(self, bs: BodyState) -> list[tuple[FloatArray, FloatArray]]:
+        """Per free body: the mass (rigid plus added) and the hydrostatic stiffness at ``bs``
+        (for Rayleigh damping)."""
+        m = self.mesh
+        return [(rigid_mass(body, bs.R[b]) + self.added[b],
+                 body_loads(body, bs.r[b], bs.R[b], m.gravity, m.water_density)[1])
+                for b, body in enumerate(self.bodies)]
+
+    def _inertia(self, body, bs: BodyState, b: int) -> FloatArray:
+        """Rigid-body inertia force and moment about the origin (world axes)."""
+        R = bs.R[b]
+        c = R @ np.asarray(body.center_of_gravity, float)
+        I_G = R @ np.asarray(body.inertia, float) @ R.T
+        w, al = bs.vel[b, 3:], bs.acc[b, 3:]
+        a_G = bs.acc[b, :3] + np.cross(al, c) + np.cross(w, np.cross(w, c))
+        F = body.mass * a_G
+        M = np.cross(c, F) + I_G @ al + np.cross(w, I_G @ w)
+        return np.concatenate((F, M))
+
+    def _fluid_loads(self, body, bs: BodyState, b: int, t: float):
+        """Drag on the relative velocity and long-wave excitation at the body origin, with the
+        drag's velocity derivative (3, 3)."""
+        force, dF_dv = np.zeros(3), np.zeros((3, 3))
+        area = np.asarray(body.drag_area, dtype=float)
+        if not body.wave_loads and not np.any(area):
+            return force, dF_dv
+        rho, g = self.mesh.water_density, self.mesh.gravity
+        u, a, eta = self.fluid.kinematics(bs.r[b][None, :], t)
+        if np.any(area):
+            rel = u[0] - bs.vel[b, :3]
+            force += 0.5 * rho * body.Cd * area * np.abs(rel) * rel
+            dF_dv -= np.diag(rho * body.Cd * area * np.abs(rel))
+        if body.wave_loads:
+            area_wp, volume = long_wave_geometry(body, float(bs.r[b, 2]), rho, g)
+            force += rho * volume * a[0] + self.added[b][:3, :3] @ a[0]
+            force[2] += rho * g * area_wp * float(eta[0])
+        return force, dF_dv
+
+    def _excitation(self, body, b: int, t: float) -> FloatArray:
+        """Wave exciting force of the body's table (about its origin, world axes), summed over
+        the components of the wave field (a regular wave or a random sea) and ramped like the
+        field: ``F_j = sum_m a_m |X_j(w_m)| cos(w_m t - k_m x_0 - phi_m + arg X_j(w_m))`` for
+        ``eta = sum_m a_m cos(k_m x - w_m t + phi_m)``, ``x_0`` the body origin's position at
+        the start of the run (the static pose) along each component's heading."""
+        if body.excitation is None:
+            return np.zeros(6)
+        if b not in self._exciting:
+            self._exciting[b] = _exciting_terms(body.excitation, self.fluid, self.origin0[b])
+        terms = self._exciting[b]
+        if terms is None:
+            return np.zeros(6)
+        a, w, shift, amp, phase, ramp_time = terms
+        factor = ramp(t, ramp_time)[0]
+        return factor * (a[:, None] * amp * np.cos((w * t - shift)[:, None] + phase)).sum(axis=0)
+
+
+def _matrix(value) -> FloatArray:
+    return np.asarray(value if value is not None else np.zeros((6, 6)), dtype=float)
+
+
+def _history(body, t: float) -> FloatArray:
+    history = getattr(body, "force_history", None)
+    return motion_value(history, t)[0] if history is not None else np.zeros(3)
+
+
+def rigid_mass(body, R: FloatArray) -> FloatArray:
+    """Rigid-body 6x6 mass matrix about the body origin, world axes, for rotation ``R``:
+    ``[[m I, -m [c x]], [m [c x], I_G - m [c x]^2]]`` with ``c = R c_body`` the centre of
+    gravity offset."""
+    c = R @ np.asarray(body.center_of_gravity, float)
+    I_G = R @ np.asarray(body.inertia, float) @ R.T
+    S = skew(c)
+    M = np.zeros((6, 6))
+    M[:3, :3] = body.mass * np.eye(3)
+    M[:3, 3:] = -body.mass * S
+    M[3:, :3] = body.mass * S
+    M[3:, 3:] = I_G - body.mass * S @ S
+    return M
+
+
+def _exciting_terms(table, fluid, origin: FloatArray) -> tuple | None:
+    """Per wave component: amplitude, frequency, phase shift ``k x_0 + phi``, and the
+    table's force amplitude and phase interpolated at its frequency (zero above the table's
+    last frequency); ``None`` without waves."""
+    wave = getattr(fluid, "wave", fluid)
+    if hasattr(wave, "omegas"):
+        a, w, phi = wave.amplitudes, wave.omegas, wave.phases
+        k, heading = wave.wave_numbers, np.radians(wave.headings_deg)
+    elif getattr(wave, "omega", None) is not None:
+        a, w, phi = (np.array([wave.amplitude]), np.array([wave.omega]),
+                     np.array([float(getattr(wave, "phase", 0.0))]))
+        k = np.array([float(wave.wave_number)])
+        heading = np.radians(np.array([float(getattr(wave, "heading_deg", 0.0))]))
+    else:
+        return None
+    omegas = np.asarray(table.omegas, dtype=float)
+    beyond = (w > omegas[-1]) & (a > 1e-3 * a.max(initial=0.0))
+    if np.any(beyond):
+        logger.warning("wave components above the exciting-force table's last frequency "
+                       "(%.4g rad/s) get no exciting force", omegas[-1])
+    amp = np.column_stack([np.interp(w, omegas, np.asarray(table.amplitude)[:, j], right=0.0)
+                           for j in range(6)])
+    phase = np.radians(np.column_stack([np.interp(w, omegas, np.asarray(table.phase_deg)[:, j])
+                                        for j in range(6)]))
+    along = origin[0] * np.cos(heading) + origin[1] * np.sin(heading)
+    return (np.asarray(a, float), np.asarray(w, float), k * along + phi, amp, phase,
+            float(getattr(wave, "ramp_time", 0.0)))
