@@ -151,6 +151,26 @@ class SparseFactor:
         return y[self.inverse]
 
 
+def factorize(matrix: sp.spmatrix | sp.sparray) -> spla.SuperLU:
+    """Sparse LU (SuperLU) of a general square matrix, for systems without a
+    :class:`BlockPattern` (e.g. the harmonic-balance Jacobian).
+
+    Returns
+    -------
+    scipy.sparse.linalg.SuperLU
+        ``.solve(rhs)`` solves with the factorization.
+
+    Raises
+    ------
+    numpy.linalg.LinAlgError
+        When the matrix is singular.
+    """
+    try:
+        return spla.splu(sp.csc_matrix(matrix))
+    except RuntimeError as exc:  # SuperLU: "Factor is exactly singular"
+        raise np.linalg.LinAlgError(str(exc)) from None
+
+
 def gather_free(values: FloatArray, dof_of_node: IntArray) -> FloatArray:
     """Nodal vectors (n_nodes, 3) to a dof vector (n_dofs,), dropping left-out dofs."""
     mask = dof_of_node >= 0
