@@ -159,3 +159,26 @@ def test_regular_waves_on_a_riser_equal_the_time_domain_steady_state():
     amplitude = np.abs(result.positions - result.coefficients[0][None]).max()
     assert amplitude > 0.05  # m: the wave moves the riser
     assert np.abs(td.positions[last] - series).max() < 0.01 * amplitude
+
+
+def test_sparse_jacobian_equals_finite_differences_of_the_residual():
+    """The block-sparse Jacobian of the harmonic-balance residual against its central finite
+    differences, at a state with every harmonic present: the Tcheou line in still water (4
+    elements: tension, drag, added mass, weight; 3 harmonics)."""
+    from moorline.solvers.harmonic import HarmonicBalance
+    from moorline.verification import tcheou_t1, tcheou_t2
+
+    system = tcheou_t2.forced_system(7000.0, 4, 10.0)
+    static = solve_statics(system, tcheou_t1.SETTINGS)
+    balance = HarmonicBalance(system, HarmonicSettings(period=10.0, harmonics=3), static)
+    u = balance.initial() + np.random.default_rng(1).normal(0.0, 0.5, balance.n_unknowns)
+    _, J, _ = balance.evaluate(u, True)
+    assert J.shape == (balance.n_unknowns, balance.n_unknowns)
+    h = 1e-4  # m
+    fd = np.empty(J.shape)
+    for i in range(len(u)):
+        e = np.zeros_like(u)
+        e[i] = h
+        fd[:, i] = (balance.evaluate(u + e, False)[0] - balance.evaluate(u - e, False)[0]) / (2 * h)
+    dense = J.toarray()
+    assert np.abs(dense - fd).max() < 1e-7 * np.abs(fd).max()

@@ -11,6 +11,7 @@ import pytest
 
 from moorline.sweep import load_study, study_from_dict
 from moorline.verification import wang_dynamics as wd
+from moorline.verification.signals import harmonic_fit
 
 ROOT = Path(__file__).resolve().parents[1]
 W3_STUDY = ROOT / "cases" / "studies" / "wang_w3.yaml"
@@ -85,8 +86,8 @@ def test_quasi_static_response_at_zero_frequency(equilibrium):
 def test_signal_helpers():
     t = np.arange(0.0, 40 * math.pi / 1.6, 0.01)
     y = 0.3 + 0.5 * np.sin(1.6 * t + 0.4) + 0.05 * np.sin(3.2 * t)
-    mean, amplitude, phase = wd.harmonic_fit(t, y, 1.6)
-    assert (mean, amplitude, phase) == pytest.approx((0.3, 0.5, 0.4), abs=1e-3)
+    fit = harmonic_fit(t, y, 1.6)
+    assert (fit.mean, fit.amplitude(), fit.phase()) == pytest.approx((0.3, 0.5, 0.4), abs=1e-3)
     assert wd.crossing_period(t, y) == pytest.approx(2 * math.pi / 1.6, rel=1e-5)
     period, resolution = wd.dominant_period(t, np.sin(3.2 * t))
     assert abs(period - math.pi / 1.6) <= resolution

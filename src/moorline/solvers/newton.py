@@ -58,6 +58,8 @@ class NewtonPolicy:
         the solve (``stall_limit = 0``: never).
     max_halvings
         Line-search halvings of a step (``max_halvings + 1`` trials).
+    merit
+        What the line search asks to decrease: the residual's 2-norm or its max-norm.
     """
 
     tolerance: float
@@ -68,6 +70,7 @@ class NewtonPolicy:
     stall_ratio: float = 0.9
     stall_limit: int = 3
     max_halvings: int = 4
+    merit: Literal["l2", "max"] = "l2"
 
 
 @dataclass
@@ -236,17 +239,18 @@ def _factorize(problem: Problem, u: Any, trial: Trial, cache: TangentCache, key:
 
 def _line_search(problem: Problem, u: Any, du: FloatArray, trial0: Trial,
                  policy: NewtonPolicy, counters: Counters) -> tuple[Any, Trial, bool]:
-    """Halve the step until the problem accepts the trial (default: the residual 2-norm
-    decreases). Returns the last trial and whether it was accepted."""
+    """Halve the step until the merit decreases or the problem accepts the trial. Returns the
+    last trial and whether it was accepted."""
     accept = getattr(problem, "accept", None)
-    merit0 = float(np.linalg.norm(trial0.r))
+    measure = max_norm if policy.merit == "max" else np.linalg.norm
+    merit0 = float(measure(trial0.r))
     context = problem.search_context(u, du, trial0) if hasattr(problem, "search_context") \
         else None
     alpha = 1.0
     for _ in range(policy.max_halvings + 1):
         u_try = problem.update(u, alpha * du)
         trial = _evaluate(problem, u_try, False, counters)
-        if float(np.linalg.norm(trial.r)) < merit0:
+        if float(measure(trial.r)) < merit0:
             return u_try, trial, True
         if accept is not None and accept(u, u_try, trial, alpha, du, trial0, context):
             return u_try, trial, True

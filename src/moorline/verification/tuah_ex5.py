@@ -148,6 +148,7 @@ from ..results import DynamicResult, StaticResult
 from ..solvers.statics import solve_statics
 from ..waves.dispersion import wave_number
 from .core import Row
+from .signals import harmonic_fit
 
 FloatArray = NDArray[np.float64]
 
@@ -455,16 +456,6 @@ def _one_shot(system: System, static: StaticResult, settings: DynamicsSettings) 
 
 
 # ----------------------------------------------------------------------------- analysis
-def harmonic_fit(t: FloatArray, y: FloatArray, omega: float) -> tuple[complex, float]:
-    """Least-squares fit of ``c0 + c1 t + Re(Y e^{-i w t}) + (second harmonic)``; returns the
-    complex first-harmonic amplitude ``Y`` (same time convention as the exciting forces)
-    and the slope ``c1`` (a slow drift)."""
-    cols = [np.ones_like(t), t - t.mean(), np.cos(omega * t), np.sin(omega * t),
-            np.cos(2 * omega * t), np.sin(2 * omega * t)]
-    coef, *_ = np.linalg.lstsq(np.column_stack(cols), y, rcond=None)
-    return complex(coef[2], coef[3]), float(coef[1])
-
-
 def up_crossing_period(t: FloatArray, y: FloatArray, period_guess: float) -> float:
     """Mean interval between up-crossings of ``y`` minus its linear trend, crossings closer
     than half ``period_guess`` merged (the snap spikes can add extra crossings)."""
@@ -548,8 +539,8 @@ def run(fast: bool = False) -> list[Row]:
                         note=f"source: slightly longer than the wave's; here "
                              f"{100 * (period / WAVE_PERIOD - 1):+.2f} %"))
 
-    heave, _ = harmonic_fit(t3, three.pose[w3, 2], OMEGA)
-    cable, _ = harmonic_fit(t3, three.fairlead_force[w3, 2], OMEGA)
+    heave = harmonic_fit(t3, three.pose[w3, 2], OMEGA, 2, trend=True).phasor()
+    cable = harmonic_fit(t3, three.fairlead_force[w3, 2], OMEGA, 2, trend=True).phasor()
     denominator = heave_denominator()
     linear = abs(X_HEAVE * AMPLITUDE * np.exp(1j * wave_number_ex5() * _mean_x(three))
                  + cable) / abs(denominator)
@@ -560,8 +551,9 @@ def run(fast: bool = False) -> list[Row]:
                          f"{abs(cable):.0f} lbf"))
 
     w8 = window(eight, start)
-    surge3, drift3 = harmonic_fit(t3, three.pose[w3, 0], OMEGA)
-    surge8, _ = harmonic_fit(eight.time[w8], eight.pose[w8, 0], OMEGA)
+    fit3 = harmonic_fit(t3, three.pose[w3, 0], OMEGA, 2, trend=True)
+    surge3, drift3 = fit3.phasor(), fit3.slope
+    surge8 = harmonic_fit(eight.time[w8], eight.pose[w8, 0], OMEGA, 2, trend=True).phasor()
     ratio = abs(surge8) / abs(surge3)
     rows.append(Row(CASE, "surge amplitude 8 el / 3 el", 1.0, ratio, 0.1,
                     note=f"source: 8 el slightly larger; 3 el {abs(surge3):.3f} ft, "
@@ -619,7 +611,8 @@ def _feedback_rows(iterative: Run, feedback: Run, start: float) -> list[Row]:
         amps = []
         for r in (iterative, feedback):
             mask = (r.time >= end - n * WAVE_PERIOD - 1e-9) & (r.time <= end + 1e-9)
-            amps.append(abs(harmonic_fit(r.time[mask], r.pose[mask, dof], OMEGA)[0]))
+            amps.append(harmonic_fit(r.time[mask], r.pose[mask, dof], OMEGA, 2,
+                                     trend=True).amplitude())
         fits[name] = amps
         rows.append(Row(CASE, f"residual feedback dt 0.005 vs iterative dt 0.02: {name} "
                         "amplitude", amps[0], amps[1], 0.02, unit="ft",

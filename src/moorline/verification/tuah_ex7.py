@@ -65,6 +65,7 @@ from ..solvers.dynamics import simulate
 from ..solvers.statics import solve_statics
 from . import tuah_ex5 as ex5
 from .core import Row
+from .signals import harmonic_fit
 
 FloatArray = NDArray[np.float64]
 
@@ -206,8 +207,8 @@ def run(fast: bool = False) -> list[Row]:
                         unit="s", note=f"{100 * (period / ex5.WAVE_PERIOD - 1):+.2f} % "
                                        f"from the wave's"))
 
-    heave, _ = ex5.harmonic_fit(t, pose[w, 2], ex5.OMEGA)
-    cable, _ = ex5.harmonic_fit(t, _fairlead_force(res)[w, 2], ex5.OMEGA)
+    heave = harmonic_fit(t, pose[w, 2], ex5.OMEGA, 2, trend=True).phasor()
+    cable = harmonic_fit(t, _fairlead_force(res)[w, 2], ex5.OMEGA, 2, trend=True).phasor()
     x0 = float(main.static.body_pose[0, 0])
     mass = ex5.disc_mass(ex5.design_catenary().V_b * len(AZIMUTHS_DEG))
     denominator = complex(ex5.RHO * ex5.GRAVITY * ex5.WATERPLANE
@@ -219,7 +220,8 @@ def run(fast: bool = False) -> list[Row]:
                     note=f"bare disc RAO {abs(wave_force) / abs(denominator):.3f} ft; legs' "
                          f"1st-harmonic vertical force {abs(cable):.0f} lbf"))
 
-    surge, drift = ex5.harmonic_fit(t, pose[w, 0], ex5.OMEGA)
+    fit = harmonic_fit(t, pose[w, 0], ex5.OMEGA, 2, trend=True)
+    surge, drift = fit.phasor(), fit.slope
     sway = float(np.abs(pose[:, 1] - pose[0, 1]).max())
     rows.append(Row(CASE, "surge amplitude vs Example 5's (3 el)", EX5_SURGE, abs(surge), 0.15,
                     unit="ft", note=f"drift {drift:+.3f} ft/s; static offset {x0:+.3f} ft "
@@ -230,8 +232,8 @@ def run(fast: bool = False) -> list[Row]:
         amps = []
         for r in (res, fine.result):
             m = _window(r.time, start, 21.0)
-            amps.append(abs(ex5.harmonic_fit(r.time[m], r.body_history(ex5.BODY)[m, 2],
-                                              ex5.OMEGA)[0]))
+            amps.append(harmonic_fit(r.time[m], r.body_history(ex5.BODY)[m, 2], ex5.OMEGA, 2,
+                                     trend=True).amplitude())
         rows.append(Row(CASE, f"heave amplitude dt {DT} vs dt {DT / 2} (first 21 s)", amps[1],
                         amps[0], 0.01, unit="ft", note="the source used 0.005 s"))
     return rows

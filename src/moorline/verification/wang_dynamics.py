@@ -113,6 +113,7 @@ from ..solvers.dynamics import simulate
 from ..solvers.stiffness import group_stiffness
 from ..sweep import run_study, steady_window
 from .core import Row
+from .signals import harmonic_fit
 from .wang_w1 import (
     DEPTH,
     INCLINATION_DEG,
@@ -301,16 +302,6 @@ def rayleigh_coefficients(ratio: float, frequencies: tuple[float, float]) -> tup
 
 
 # ----------------------------------------------------------------------------- signals
-def harmonic_fit(time: FloatArray, signal: FloatArray, omega: float
-                 ) -> tuple[float, float, float]:
-    """Least-squares ``mean + amplitude sin(omega t + phase)``: (mean, amplitude, phase
-    [rad])."""
-    t = np.asarray(time, float)
-    A = np.column_stack((np.ones_like(t), np.cos(omega * t), np.sin(omega * t)))
-    c = np.linalg.lstsq(A, np.asarray(signal, float), rcond=None)[0]
-    return float(c[0]), float(math.hypot(c[1], c[2])), float(math.atan2(c[1], c[2]))
-
-
 def crossing_period(time: FloatArray, signal: FloatArray) -> float:
     """Mean period between up-crossings of the mean (linear interpolation of the crossing
     times): (last crossing - first crossing) / (number of crossings - 1)."""
@@ -438,7 +429,7 @@ def run_w2(quick: bool = False) -> list[Row]:
     result, amp = run.result, run.amplitudes
     window = steady_window(result.time, PERIOD, 5)
     t, pose = result.time[window], result.body_history(BODY)[window]
-    surge_mean = harmonic_fit(t, pose[:, 0], OMEGA)[0]
+    surge_mean = harmonic_fit(t, pose[:, 0], OMEGA).mean
     heave_period, heave_resolution = dominant_period(t, pose[:, 2])
     qs = quasi_static_response(run.eq, rayleigh)
     static_tension = float(run.eq.result.tension.max())
@@ -486,8 +477,9 @@ def _small_amplitude_rows(duration: float, dt: float) -> list[Row]:
     X = linear.response(OMEGA, force, rayleigh)[linear.body]
     window = steady_window(run.result.time, PERIOD, 5)
     t, pose = run.result.time[window], run.result.body_history(BODY)[window]
-    _, ax, phx = harmonic_fit(t, pose[:, 0], OMEGA)
-    _, ary, _ = harmonic_fit(t, pose[:, 4], OMEGA)
+    surge = harmonic_fit(t, pose[:, 0], OMEGA)
+    ax, phx = surge.amplitude(), surge.phase()
+    ary = harmonic_fit(t, pose[:, 4], OMEGA).amplitude()
     static = np.linalg.solve(body_stiffness(run.eq), force)[0]
     zero = float(abs(linear.response(0.0, force, (0.0, 0.0))[linear.body][0]))
     freqs = linear.frequencies()
