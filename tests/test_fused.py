@@ -233,7 +233,7 @@ def test_outputs_are_fresh_arrays():
 def test_element_subset_and_functional_form():
     """The functional form on a subset of the elements (how a caller with viscoelastic
     elements would use it) equals the full evaluation restricted to that subset; the
-    compiled sum_to_nodes and midpoints equal the numpy ones."""
+    compiled midpoints equal the numpy ones."""
     mesh = discretize(_system())
     x, v, a = _configuration(mesh, "mixed", 5)
     rng = np.random.default_rng(5)
@@ -250,9 +250,6 @@ def test_element_subset_and_functional_form():
     for name in ("element_forces", "total_forces", "added_mass_force", "tension", "strain",
                  "taut", "K", "C", "Ma"):
         np.testing.assert_array_equal(getattr(sub, name), getattr(full, name)[keep], name)
-    for forces in (full.total_forces, full.added_mass_force):
-        np.testing.assert_array_equal(fused.sum_to_nodes(forces, mesh.elements, mesh.n_nodes),
-                                      hydro.sum_to_nodes(forces, mesh.elements, mesh.n_nodes))
     np.testing.assert_array_equal(full.nodal, hydro.sum_to_nodes(full.total_forces,
                                                                  mesh.elements, mesh.n_nodes))
     np.testing.assert_array_equal(fused.midpoints(x, mesh.elements),

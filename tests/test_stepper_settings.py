@@ -161,3 +161,48 @@ def test_every_setting_has_an_effect_in_every_combination(bodies):
                     assert differ(here, hist[scheme, other, zeta]), ("variant", variant, other)
             assert differ(here, runs[not waves, visco][scheme, variant, zeta]), "waves"
             assert differ(here, runs[waves, not visco][scheme, variant, zeta]), "viscoelastic"
+
+
+@pytest.mark.parametrize("scheme,zeta", [("newmark", 0.0), ("hht", 0.05)])
+def test_the_stepper_tangent_with_a_spinning_body_equals_finite_differences(scheme, zeta):
+    """The effective tangent of a step (lines, a body with an offset centre of gravity that
+    spins and accelerates, added mass, drag, Rayleigh damping) against central differences
+    of the step's residual in every unknown, node and body dofs."""
+    from moorline.solvers.bodies import BodyState
+    from moorline.solvers.dynamic_model import DynamicModel
+    from moorline.solvers.dynamics import _fluid, _initial_state, _stepper, _with_bodies
+    from moorline.solvers.excitation import Excitation
+    from moorline.solvers.newmark import _Step
+
+    system = spring_body(F0)
+    body = replace(system.bodies["b"], center_of_gravity=(0.3, -0.2, -0.5),
+                   inertia=((1e5, 2e3, 0), (2e3, 8e4, 1e3), (0, 1e3, 6e4)),
+                   drag_area=(4.0, 3.0, 2.0), Cd=1.0)
+    system = replace(system, bodies={"b": body})
+    start = solve_statics(system)
+    settings = DynamicsSettings(dt=0.05, scheme=scheme, alpha=-0.2, rayleigh_ratio=zeta,
+                                rayleigh_frequencies=(1.0, 10.0))
+    fluid = _fluid(system, settings)
+    model = DynamicModel(start.mesh, fluid)
+    exc = Excitation(system, start.mesh, start.positions)
+    state = _with_bodies(_initial_state(model, exc, start.positions, settings.dt), start)
+    spin = np.array([[0.1, -0.05, 0.02, 0.3, -0.2, 0.4]])
+    state = replace(state, bodies=BodyState(state.bodies.r, state.bodies.R, spin, 0.5 * spin))
+    stepper = _stepper(model, fluid, settings, 1e-6, system)
+    stepper._setup_rayleigh(state) if zeta else None
+    h = settings.dt
+    stepper._current = _Step(state, h, exc.constrained_state(h), None)
+    x1 = state.x + h * state.v
+    dq = np.array([[0.02, -0.01, 0.03, 0.04, -0.03, 0.05]])
+    u = (x1, dq)
+    K = stepper.tangent_matrix(u, stepper.residual(u, True)).toarray()
+    n = K.shape[0]
+    fd = np.empty_like(K)
+    eps = 1e-6
+    for j in range(n):
+        e = np.zeros(n)
+        e[j] = eps
+        plus = stepper.residual(stepper.update(u, e), False).r
+        minus = stepper.residual(stepper.update(u, -e), False).r
+        fd[:, j] = -(plus - minus) / (2 * eps)
+    assert np.allclose(K, fd, rtol=1e-5, atol=1e-6 * np.abs(K).max())

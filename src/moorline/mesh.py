@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .model import System
+from .physics.rigid_body import rotation_matrix
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -165,17 +166,6 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
     out = {k: np.asarray(v, dtype=float)[line_of_element] for k, v in props.items()}
     out["viscoelastic"] = out["viscoelastic"] > 0.5
     return out
-
-
-def rotation_matrix(rotation_vector: FloatArray) -> FloatArray:
-    """Rotation matrix of a rotation vector (Rodrigues' formula)."""
-    v = np.asarray(rotation_vector, dtype=float)
-    angle = float(np.linalg.norm(v))
-    if angle < 1e-300:
-        return np.eye(3)
-    k = v / angle
-    K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
-    return np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * K @ K
 
 
 def world_position(system: System, point) -> FloatArray:

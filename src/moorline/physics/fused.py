@@ -321,36 +321,6 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
-def sum_to_nodes(forces: FloatArray, elements: IntArray, n_nodes: int) -> FloatArray:
-    """Add the forces each element exerts on its nodes into a nodal array (compiled).
-
-    Same result, in the same order of summation, as
-    :func:`moorline.physics.hydro.sum_to_nodes`.
-
-    Parameters
-    ----------
-    forces
-        Forces on the two nodes of every element, shape (n_elements, 2, 3).
-    elements
-        Node indices of each element, shape (n_elements, 2).
-    n_nodes
-        Number of nodes.
-
-    Returns
-    -------
-    FloatArray
-        Nodal forces, shape (n_nodes, 3).
-    """
-    out = np.zeros((n_nodes, 3))
-    for e in range(elements.shape[0]):
-        for k in range(2):
-            node = elements[e, k]
-            for c in range(3):
-                out[node, c] += forces[e, k, c]
-    return out
-
-
-@numba.njit(cache=True, fastmath=False, error_model="numpy")
 def _midpoints_into(x, elements, out):
     for e in range(elements.shape[0]):
         i = elements[e, 0]

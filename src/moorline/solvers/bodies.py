@@ -8,6 +8,8 @@ body at arm ``a`` (body frame) sits at ``x = r + R a``; a small body motion move
 ``T^T f`` (force and moment about the origin); their tangent transforms as ``T^T K T`` plus the
 change of the moment arms under fixed forces, ``-[f x][R a x]`` (see
 :func:`moorline.solvers.stiffness.group_stiffness`, checked against finite differences).
+The rotation maps and the body loads are the kernels of :mod:`moorline.physics.rigid_body`;
+this module unpacks the model's :class:`~moorline.model.Body` for them.
 """
 
 from __future__ import annotations
@@ -18,25 +20,16 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ..mesh import Mesh, rotation_matrix
+from ..mesh import Mesh
 from ..model import Body, System
+from ..physics import rigid_body as rb
+from ..physics.rigid_body import inverse_left_jacobian, rotation_matrix, rotation_vector, skew
+
+__all__ = ["BodyDofs", "BodyState", "Poses", "body_loads", "body_mass_matrix",
+           "inverse_left_jacobian", "long_wave_geometry", "place_slaves", "rotation_vector",
+           "skew", "transformation", "waterplane", "world_arms"]
 
 FloatArray = NDArray[np.float64]
-
-
-def skew(v: FloatArray) -> FloatArray:
-    """Cross-product matrix ``[v x]``."""
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
-
-
-def rotation_vector(R: FloatArray) -> FloatArray:
-    """Rotation vector of a rotation matrix (inverse of Rodrigues' formula)."""
-    cos = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)
-    angle = float(np.arccos(cos))
-    w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
-    if angle < 1e-8:
-        return 0.5 * w
-    return angle / (2.0 * np.sin(angle)) * w
 
 
 @dataclass(frozen=True)
@@ -62,15 +55,14 @@ class BodyState:
         """The poses the case gives, at rest."""
         bodies = [system.bodies[n] for n in mesh.body_names]
         r = np.array([b.position for b in bodies], dtype=float).reshape(-1, 3)
-        R = np.array([rotation_matrix(np.asarray(b.rotation, float)) for b in bodies])
-        return cls(r, R.reshape(-1, 3, 3))
+        R = rotation_matrix(np.array([b.rotation for b in bodies], dtype=float).reshape(-1, 3))
+        return cls(r, R)
 
     @classmethod
     def from_pose(cls, pose: FloatArray) -> BodyState:
         """At rest at poses (nb, 6): position and rotation vector."""
         pose = np.asarray(pose, dtype=float).reshape(-1, 6)
-        R = np.array([rotation_matrix(p[3:]) for p in pose]).reshape(-1, 3, 3)
-        return cls(pose[:, :3].copy(), R)
+        return cls(pose[:, :3].copy(), rotation_matrix(pose[:, 3:]))
 
     def copy(self) -> BodyState:
         """An independent copy."""
@@ -78,13 +70,12 @@ class BodyState:
 
     def moved(self, dr: FloatArray, dtheta: FloatArray) -> BodyState:
         """The poses after small motions ``dr``, ``dtheta`` (n_bodies, 3) each (motions kept)."""
-        R = np.array([rotation_matrix(d) @ R0 for d, R0 in zip(dtheta, self.R, strict=True)])
-        return BodyState(self.r + dr, R.reshape(-1, 3, 3), self.vel, self.acc)
+        R = rotation_matrix(np.asarray(dtheta, float)) @ self.R
+        return BodyState(self.r + dr, R, self.vel, self.acc)
 
     def as_array(self) -> FloatArray:
         """(n_bodies, 6): position and rotation vector."""
-        rv = np.array([rotation_vector(R) for R in self.R]).reshape(-1, 3)
-        return np.hstack((self.r, rv))
+        return np.hstack((self.r, rotation_vector(self.R).reshape(-1, 3)))
 
     pose = as_array
 
@@ -107,19 +98,23 @@ def world_arms(mesh: Mesh, poses: Poses) -> FloatArray:
 
 
 def transformation(mesh: Mesh, ext_dofs: int, n_free: int, body_dof: NDArray[np.int64],
-                   arms: FloatArray) -> sp.csr_matrix:
+                   arms: FloatArray, blocks: FloatArray | None = None,
+                   free_scale: float = 1.0) -> sp.csr_matrix:
     """The sparse map ``P`` from the unknowns (free node dofs, free body dofs) to the extended
-    node dofs (free nodes, then attached nodes), ``dx_ext = P du``."""
-    rows, cols, vals = [np.arange(n_free)], [np.arange(n_free)], [np.ones(n_free)]
+    node dofs (free nodes, then attached nodes), ``dx_ext = P du``: identity (times
+    ``free_scale``) on the free node dofs and, for every attached node, ``T = [I, -[R a x]]``
+    or its own (3, 6) block of ``blocks`` (n_slaves, 3, 6)."""
+    rows, cols = [np.arange(n_free)], [np.arange(n_free)]
+    vals = [np.full(n_free, float(free_scale))]
     for k, (b, arm) in enumerate(zip(mesh.slave_body, arms, strict=True)):
         if body_dof[b] < 0:
             continue
-        T = np.hstack((np.eye(3), -skew(arm)))
+        T = np.hstack((np.eye(3), -skew(arm))) if blocks is None else blocks[k]
         r = n_free + 3 * k + np.repeat(np.arange(3), 6)
         c = body_dof[b] + np.tile(np.arange(6), 3)
         rows.append(r)
         cols.append(c)
-        vals.append(T.ravel())
+        vals.append(np.asarray(T).ravel())
     n_u = n_free + 6 * int(np.sum(body_dof >= 0))
     return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
                          shape=(ext_dofs, n_u))
@@ -127,13 +122,8 @@ def transformation(mesh: Mesh, ext_dofs: int, n_free: int, body_dof: NDArray[np.
 
 def waterplane(hs) -> tuple[float, tuple[float, float]]:
     """Waterplane area and its second moments about x and y (roll, pitch) of a box or
-    vertical cylinder hull; zeros for other hydrostatics."""
-    if hs.kind == "box":
-        return hs.length * hs.width, (hs.length * hs.width**3 / 12.0,
-                                      hs.width * hs.length**3 / 12.0)
-    if hs.kind == "cylinder":
-        return np.pi * hs.diameter**2 / 4.0, (np.pi * hs.diameter**4 / 64.0,) * 2
-    return 0.0, (0.0, 0.0)
+    vertical cylinder hull; zeros for other hydrostatics (:func:`rigid_body.waterplane`)."""
+    return rb.waterplane(hs.kind, hs.length, hs.width, hs.diameter)
 
 
 def long_wave_geometry(body: Body, z: float, rho: float = 0.0,
@@ -148,74 +138,38 @@ def long_wave_geometry(body: Body, z: float, rho: float = 0.0,
         k = np.asarray(hs.stiffness, dtype=float)
         k33 = float(k[2, 2] if k.ndim == 2 else k[2])
         return max(k33, 0.0) / (rho * gravity), hs.volume
-    draft = float(np.clip(hs.height / 2 - z, 0.0, hs.height)) \
-        if hs.kind in ("box", "cylinder") else 0.0
+    draft = float(rb.hull_draft(hs.height, z)[0]) if hs.kind in ("box", "cylinder") else 0.0
     return area_wp, (area_wp * draft if area_wp else hs.volume)
 
 
 def body_loads(body: Body, r: FloatArray, R: FloatArray, gravity: float,
                rho: float) -> tuple[FloatArray, FloatArray]:
     """Gravity, hydrostatics and constant loads on a body: generalized force (6,) about its
-    origin and its tangent ``K = -d(force)/d(dr, dtheta)`` (6, 6)."""
-    force = np.asarray(body.force, dtype=float).copy()
-    K = np.zeros((6, 6))
-    weight = np.array([0.0, 0.0, -body.mass * gravity])
-    _point_load(force, K, weight, R @ np.asarray(body.center_of_gravity, float))
+    origin and its tangent ``K = -d(force)/d(dr, dtheta)`` (6, 6). Unpacks ``body`` for the
+    kernels of :mod:`moorline.physics.rigid_body`."""
+    force, K = rb.gravity_load(body.mass, body.center_of_gravity, R, gravity)
+    force = np.asarray(body.force, dtype=float) + force
     hs = body.hydrostatics
+    parts = []
     if hs.kind in ("box", "cylinder"):
-        _shape_hydrostatics(hs, r, R, gravity, rho, force, K)
+        area, inertia = waterplane(hs)
+        parts = [rb.hull_buoyancy(area, hs.height, r, R, rho, gravity),
+                 rb.waterplane_restoring(inertia, R, rho, gravity)]
     elif hs.kind == "matrix":
-        buoyancy = np.array([0.0, 0.0, rho * gravity * hs.volume])
-        _point_load(force, K, buoyancy, R @ np.asarray(hs.center_of_buoyancy, float))
-        stiffness = np.asarray(hs.stiffness if hs.stiffness is not None else np.zeros((6, 6)))
-        turn = rotation_vector(R @ rotation_matrix(np.asarray(body.rotation, float)).T)
-        q = np.concatenate((r - np.asarray(body.position, float), turn))
-        force -= stiffness @ q
-        jac = np.eye(6)
-        jac[3:, 3:] = inverse_left_jacobian(turn)
-        K += stiffness @ jac
+        stiffness = hs.stiffness if hs.stiffness is not None else np.zeros((6, 6))
+        parts = [rb.point_load([0.0, 0.0, rho * gravity * hs.volume], hs.center_of_buoyancy,
+                               R),
+                 rb.matrix_restoring(stiffness, r, R, body.position,
+                                     rotation_matrix(body.rotation))]
+    for load, dK in parts:
+        force, K = force + load, K + dK
     return force, K
 
 
-def _point_load(force: FloatArray, K: FloatArray, f: FloatArray, arm: FloatArray) -> None:
-    """Add a constant force ``f`` acting at world arm ``arm``; its moment changes as the arm
-    rotates: ``K_rot -= [f x][arm x]``."""
-    force[:3] += f
-    force[3:] += np.cross(arm, f)
-    K[3:, 3:] -= skew(f) @ skew(arm)
-
-
-def _shape_hydrostatics(hs, r, R, gravity, rho, force, K) -> None:
-    """Buoyancy of a box or vertical cylinder at its draft (origin at the shape's centre),
-    acting at the centre of buoyancy, and the waterplane restoring ``rho g I_wp`` in roll and
-    pitch (small-angle, Tuah eq. 3.2.c.20's restoring coefficients)."""
-    area, inertia = waterplane(hs)
-    draft = float(np.clip(hs.height / 2.0 - r[2], 0.0, hs.height))
-    wet = 0.0 < hs.height / 2.0 - r[2] < hs.height
-    buoyancy = np.array([0.0, 0.0, rho * gravity * area * draft])
-    center = np.array([0.0, 0.0, -hs.height / 2.0 + draft / 2.0])
-    arm = R @ center
-    _point_load(force, K, buoyancy, arm)
-    if wet:
-        K[2, 2] += rho * gravity * area  # d(buoyancy)/dz = -rho g A
-        # the centre of buoyancy rises by half the draft change: d(arm)/dz = -R e_z / 2
-        d_arm = -0.5 * R[:, 2]
-        K[3:, 2] -= np.cross(d_arm, buoyancy) + np.cross(arm, [0.0, 0.0, -rho * gravity * area])
-    tilt = rotation_vector(R)
-    restoring = rho * gravity * np.array([inertia[0], inertia[1], 0.0])
-    force[3:] -= restoring * tilt
-    K[3:, 3:] += np.diag(restoring) @ inverse_left_jacobian(tilt)
-
-
-def inverse_left_jacobian(phi: FloatArray) -> FloatArray:
-    """``d phi / d theta`` for ``R(phi) <- exp([dtheta x]) R(phi)``: how the rotation vector
-    changes under a small rotation applied on the left (SO(3) inverse left Jacobian)."""
-    angle = float(np.linalg.norm(phi))
-    P = skew(phi)
-    if angle < 1e-6:
-        return np.eye(3) - 0.5 * P + P @ P / 12.0
-    c = 1.0 / angle**2 - (1.0 + np.cos(angle)) / (2.0 * angle * np.sin(angle))
-    return np.eye(3) - 0.5 * P + c * P @ P
+def body_mass_matrix(body: Body, R: FloatArray) -> FloatArray:
+    """Rigid-body 6x6 mass matrix of ``body`` about its origin, world axes, at rotation ``R``
+    (:func:`moorline.physics.rigid_body.rigid_mass`)."""
+    return rb.rigid_mass(body.mass, body.center_of_gravity, body.inertia, R)
 
 
 @dataclass(frozen=True)

@@ -13,9 +13,10 @@ Body equation about its origin (rigid-body inertia with the centre of gravity of
 
 plus constant added mass ``A`` and radiation damping ``B`` (Tuah eq. 3.2.c.20), hydrostatics,
 gravity, constant and time-varying loads, drag, long-wave loads and exciting-force tables, and
-the lines' forces through the master-slave transformation. The body blocks of the Newton matrix
-are exact for everything but the gyroscopic and centripetal terms (second order in the angular
-velocity).
+the lines' forces through the master-slave transformation. The physics are the kernels of
+:mod:`moorline.physics.rigid_body`; the body blocks of the Newton matrix are exact, the
+gyroscopic and centripetal terms and the rotation of the inertia included (the long-wave
+loads' dependence on the draft aside).
 
 A system without bodies has an empty :class:`BodyModel`: every method is then a no-op, so the
 time stepper has one code path.
@@ -30,7 +31,8 @@ from numpy.typing import NDArray
 
 from ..mesh import Mesh
 from ..model import System
-from .bodies import BodyDofs, BodyState, body_loads, long_wave_geometry, skew
+from ..physics import rigid_body as rb
+from .bodies import BodyDofs, BodyState, body_loads, body_mass_matrix, long_wave_geometry, skew
 from .excitation import motion_value, ramp
 
 logger = logging.getLogger(__name__)
@@ -86,6 +88,34 @@ class BodyModel:
         a[m.slave_node] = bs.acc[b, :3] + np.cross(al, arms) + np.cross(w, np.cross(w, arms))
         return arms
 
+    def kinematic_blocks(self, bs: BodyState, arms: FloatArray, dq: FloatArray, ca: float,
+                         cv: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """How the attached nodes' position, velocity and acceleration change with the step's
+        body motion ``dq`` = (dr, phi), ``R = exp([phi x]) R0``, for Newmark's ``d acc / d dq =
+        ca``, ``d vel / d dq = cv``: three (n_slaves, 3, 6) blocks, exact (with ``arm = R a``,
+        ``d arm = -[arm x] J(phi) d phi``, ``J`` the left Jacobian of the exp map):
+
+            dx = dr + d arm
+            dv = cv dr + cv d omega x arm + omega x d arm
+            da = ca dr + ca d alpha x arm + alpha x d arm + d omega x (omega x arm)
+                 + omega x (d omega x arm) + omega x (omega x d arm)
+        """
+        m = self.mesh
+        n = len(m.slave_node)
+        bx, bv, ba = (np.zeros((n, 3, 6)) for _ in range(3))
+        eye = np.eye(3)
+        for k in range(n):
+            b = m.slave_body[k]
+            A = skew(arms[k])
+            W, Al = skew(bs.vel[b, 3:]), skew(bs.acc[b, 3:])
+            d_arm = -A @ rb.left_jacobian(dq[b, 3:])
+            bx[k] = np.hstack((eye, d_arm))
+            bv[k] = np.hstack((cv * eye, -cv * A + W @ d_arm))
+            wa = skew(np.cross(bs.vel[b, 3:], arms[k]))
+            ba[k] = np.hstack((ca * eye, -ca * A + Al @ d_arm - cv * (wa + W @ A)
+                               + W @ W @ d_arm))
+        return bx, bv, ba
+
     # ------------------------------------------------------------------ forces
     def forces(self, bs: BodyState, node_other: FloatArray, node_inertial: FloatArray,
                arms: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
@@ -109,17 +139,22 @@ class BodyModel:
             gen[:3] += self._fluid_loads(body, bs, b, t)[0]
             gen += self._excitation(body, b, t)
             other[b] = gen
-            ine = -(self._inertia(body, bs, b) + self.added[b] @ bs.acc[b])
+            ine = -(self._inertia(body, bs, b)[0] + self.added[b] @ bs.acc[b])
             ine[:3] += f_i.sum(axis=0)
             ine[3:] += np.cross(arm, f_i).sum(axis=0)
             inertial[b] = ine
         return other, inertial
 
     def blocks(self, bs: BodyState, node_forces: FloatArray, arms: FloatArray, t: float,
-               ca: float, cv: float, ck: float) -> list[FloatArray]:
+               ca: float, cv: float, ck: float, dq: FloatArray | None = None
+               ) -> list[FloatArray]:
         """Body blocks (6, 6) of the effective tangent ``ca M + cv C + ck K`` of the free
-        bodies (rigid mass and added mass, damping and drag, hydrostatics and the rotation of
-        the attached nodes' moment arms under fixed forces ``node_forces``)."""
+        bodies: rigid mass and added mass, damping and drag, hydrostatics, the rotation of the
+        attached nodes' moment arms under their forces ``node_forces`` (as weighted in the
+        residual), and the exact derivative of the rigid-body inertia (never HHT-weighted):
+        ``ca d_acc + (cv / ck) d_vel + d_rot``. Derivatives with respect to a rotation are
+        taken for ``R <- exp([e x]) R`` and chained to the step's rotation vector ``dq`` by the
+        left Jacobian ``J(dq)``."""
         out = []
         m = self.mesh
         for b, body in enumerate(self.bodies):
@@ -128,32 +163,32 @@ class BodyModel:
                 continue
             stiff = body_loads(body, bs.r[b], bs.R[b], m.gravity, m.water_density)[1]
             mine = m.slave_body == b
+            arm_terms = np.zeros((6, 6))
             for f, arm in zip(node_forces[m.slave_node[mine]], arms[mine], strict=True):
-                stiff[3:, 3:] -= skew(f) @ skew(arm)
+                arm_terms[3:, 3:] -= skew(f) @ skew(arm)
             damp = self.damping[b].copy()
             damp[:3, :3] -= self._fluid_loads(body, bs, b, t)[1]
-            out.append(ca * (rigid_mass(body, bs.R[b]) + self.added[b]) + cv * damp
-                       + ck * stiff)
+            _, d_acc, d_vel, d_rot = self._inertia(body, bs, b)
+            turned = ck * stiff + arm_terms + d_rot  # derivatives for R <- exp([e x]) R
+            if dq is not None:
+                turned[:, 3:] = turned[:, 3:] @ rb.left_jacobian(dq[b, 3:])
+            out.append(ca * (d_acc + self.added[b]) + cv * damp + (cv / ck) * d_vel + turned)
         return out
 
     def mass_and_stiffness(self, bs: BodyState) -> list[tuple[FloatArray, FloatArray]]:
         """Per free body: the mass (rigid plus added) and the hydrostatic stiffness at ``bs``
         (for Rayleigh damping)."""
         m = self.mesh
-        return [(rigid_mass(body, bs.R[b]) + self.added[b],
+        return [(body_mass_matrix(body, bs.R[b]) + self.added[b],
                  body_loads(body, bs.r[b], bs.R[b], m.gravity, m.water_density)[1])
                 for b, body in enumerate(self.bodies)]
 
-    def _inertia(self, body, bs: BodyState, b: int) -> FloatArray:
-        """Rigid-body inertia force and moment about the origin (world axes)."""
-        R = bs.R[b]
-        c = R @ np.asarray(body.center_of_gravity, float)
-        I_G = R @ np.asarray(body.inertia, float) @ R.T
-        w, al = bs.vel[b, 3:], bs.acc[b, 3:]
-        a_G = bs.acc[b, :3] + np.cross(al, c) + np.cross(w, np.cross(w, c))
-        F = body.mass * a_G
-        M = np.cross(c, F) + I_G @ al + np.cross(w, I_G @ w)
-        return np.concatenate((F, M))
+    def _inertia(self, body, bs: BodyState, b: int):
+        """Rigid-body inertia force and moment about the origin (world axes) and their
+        derivatives with respect to acceleration, velocity and rotation
+        (:func:`moorline.physics.rigid_body.inertia_load`)."""
+        return rb.inertia_load(body.mass, body.center_of_gravity, body.inertia, bs.R[b],
+                               bs.vel[b], bs.acc[b])
 
     def _fluid_loads(self, body, bs: BodyState, b: int, t: float):
         """Drag on the relative velocity and long-wave excitation at the body origin, with the
@@ -165,13 +200,12 @@ class BodyModel:
         rho, g = self.mesh.water_density, self.mesh.gravity
         u, a, eta = self.fluid.kinematics(bs.r[b][None, :], t)
         if np.any(area):
-            rel = u[0] - bs.vel[b, :3]
-            force += 0.5 * rho * body.Cd * area * np.abs(rel) * rel
-            dF_dv -= np.diag(rho * body.Cd * area * np.abs(rel))
+            drag, dF_dv = rb.body_drag(rho, body.Cd, area, u[0], bs.vel[b, :3])
+            force = force + drag
         if body.wave_loads:
             area_wp, volume = long_wave_geometry(body, float(bs.r[b, 2]), rho, g)
-            force += rho * volume * a[0] + self.added[b][:3, :3] @ a[0]
-            force[2] += rho * g * area_wp * float(eta[0])
+            force = force + rb.long_wave_load(rho, g, volume, area_wp, self.added[b][:3, :3],
+                                              a[0], float(eta[0]))
         return force, dF_dv
 
     def _excitation(self, body, b: int, t: float) -> FloatArray:
@@ -188,8 +222,7 @@ class BodyModel:
         if terms is None:
             return np.zeros(6)
         a, w, shift, amp, phase, ramp_time = terms
-        factor = ramp(t, ramp_time)[0]
-        return factor * (a[:, None] * amp * np.cos((w * t - shift)[:, None] + phase)).sum(axis=0)
+        return rb.wave_excitation(t, a, w, shift, amp, phase, ramp(t, ramp_time)[0])
 
 
 def _matrix(value) -> FloatArray:
@@ -199,21 +232,6 @@ def _matrix(value) -> FloatArray:
 def _history(body, t: float) -> FloatArray:
     history = getattr(body, "force_history", None)
     return motion_value(history, t)[0] if history is not None else np.zeros(3)
-
-
-def rigid_mass(body, R: FloatArray) -> FloatArray:
-    """Rigid-body 6x6 mass matrix about the body origin, world axes, for rotation ``R``:
-    ``[[m I, -m [c x]], [m [c x], I_G - m [c x]^2]]`` with ``c = R c_body`` the centre of
-    gravity offset."""
-    c = R @ np.asarray(body.center_of_gravity, float)
-    I_G = R @ np.asarray(body.inertia, float) @ R.T
-    S = skew(c)
-    M = np.zeros((6, 6))
-    M[:3, :3] = body.mass * np.eye(3)
-    M[:3, 3:] = -body.mass * S
-    M[3:, :3] = body.mass * S
-    M[3:, 3:] = I_G - body.mass * S @ S
-    return M
 
 
 def _exciting_terms(table, fluid, origin: FloatArray) -> tuple | None:
@@ -236,10 +254,6 @@ def _exciting_terms(table, fluid, origin: FloatArray) -> tuple | None:
     if np.any(beyond):
         logger.warning("wave components above the exciting-force table's last frequency "
                        "(%.4g rad/s) get no exciting force", omegas[-1])
-    amp = np.column_stack([np.interp(w, omegas, np.asarray(table.amplitude)[:, j], right=0.0)
-                           for j in range(6)])
-    phase = np.radians(np.column_stack([np.interp(w, omegas, np.asarray(table.phase_deg)[:, j])
-                                        for j in range(6)]))
-    along = origin[0] * np.cos(heading) + origin[1] * np.sin(heading)
-    return (np.asarray(a, float), np.asarray(w, float), k * along + phi, amp, phase,
-            float(getattr(wave, "ramp_time", 0.0)))
+    amp, phase = rb.exciting_table(omegas, table.amplitude, table.phase_deg, w)
+    return (np.asarray(a, float), np.asarray(w, float), rb.wave_shift(k, heading, phi, origin),
+            amp, phase, float(getattr(wave, "ramp_time", 0.0)))

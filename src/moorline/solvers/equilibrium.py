@@ -62,7 +62,7 @@ class StaticModel:
                                                 m.slack_smoothing)
         el_forces = element.nodal_forces(tension, unit)
         nodal = lam * self.external
-        nodal = nodal + _sum_to_nodes(el_forces, m.elements, m.n_nodes)
+        nodal = nodal + hydro.sum_to_nodes(el_forces, m.elements, m.n_nodes)
         if np.isfinite(m.seabed_z):
             nodal[:, 2] += self._seabed(x)[0]
         if self.current is not None:
@@ -79,7 +79,7 @@ class StaticModel:
         zero = np.zeros_like(x)
         f, _, dF_dx = hydro.drag_forces(x, zero, u_mid, el, m.length0, m.diameter, m.Cd,
                                         m.Ct, m.water_density)
-        nodal = _sum_to_nodes(f, el, m.n_nodes)
+        nodal = hydro.sum_to_nodes(f, el, m.n_nodes)
         area = m.node_drag_area * m.node_Cd
         if np.any(area > 0):
             u_nodes = self.current.kinematics(x, 0.0)[0]
@@ -160,11 +160,3 @@ class StaticModel:
             return 0.0
         reach = float(np.abs(x).max(initial=1.0))
         return 64 * np.finfo(float).eps * float(np.max(m.EA / m.length0)) * reach
-
-
-def _sum_to_nodes(el_forces: FloatArray, elements: NDArray[np.int64], n_nodes: int) -> FloatArray:
-    out = np.zeros((n_nodes, 3))
-    for k in range(3):
-        out[:, k] = (np.bincount(elements[:, 0], el_forces[:, 0, k], n_nodes)
-                     + np.bincount(elements[:, 1], el_forces[:, 1, k], n_nodes))
-    return out

@@ -340,14 +340,11 @@ def body_modal_matrices(system: System, mesh: Mesh, positions: FloatArray,
     problem : CoupledStatics
         Its dof numbering (``n_free``, ``body_dof``, ``bodies``).
     """
-    from ..mesh import rotation_matrix
-    from .bodies import Poses, transformation, world_arms
-    from .body_model import rigid_mass
+    from .bodies import Poses, body_mass_matrix, rotation_matrix, transformation, world_arms
     from .coupled_statics import CoupledStatics
 
     problem = problem or CoupledStatics(system, mesh)
-    poses = Poses(body_pose[:, :3].copy(), np.array([rotation_matrix(p[3:])
-                                                     for p in body_pose]))
+    poses = Poses(body_pose[:, :3].copy(), rotation_matrix(body_pose[:, 3:]))
     _, state = problem.residual(positions, poses)
     K = problem.tangent(positions, poses, state, taut_axial)
     K = ((K + K.T) * 0.5).tocsr()
@@ -363,7 +360,7 @@ def body_modal_matrices(system: System, mesh: Mesh, positions: FloatArray,
             if not settings.added_mass:
                 added = 0.0 * added
             M[d:d + 6, d:d + 6] = (M[d:d + 6, d:d + 6].toarray()
-                                   + rigid_mass(body, poses.R[b]) + added)
+                                   + body_mass_matrix(body, poses.R[b]) + added)
     return K, M.tocsr(), P, problem
 
 

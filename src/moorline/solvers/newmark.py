@@ -91,6 +91,7 @@ class _Trial:
     arms: FloatArray
     ev: Evaluation
     body_other: FloatArray | None
+    node_forces: FloatArray  # (n_nodes, 3) the forces the attached nodes pass to the bodies
 
     @property
     def has_tangent(self) -> bool:
@@ -186,6 +187,7 @@ class Stepper:
         r = np.zeros(self.layout.n_unknowns)
         r[: self.layout.n_free] = gather_free(node, self.dof)
         body_other = None
+        node_forces = (1 + alpha) * other + inertial
         if bs is not None:
             body_other, body_inertial = self.bodies.forces(bs, other, inertial, arms, t1)
             weighted = body_other if not alpha else ((1 + alpha) * body_other
@@ -199,14 +201,47 @@ class Stepper:
                 damping = (1 + alpha) * damping - alpha * (self.C_rayleigh
                                                            @ self._velocity(s0.v, s0.bodies))
             r -= damping
-        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other)
+        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other, node_forces)
 
     def factorize(self, u, trial: _Trial):
         """Factorization of the effective tangent (eq. 4.2.9a) at the trial."""
+        if not self.coupled:
+            return self.factorizer.factor(self._tangent_data(trial))
+        return factorize(self.tangent_matrix(u, trial))
+
+    def tangent_matrix(self, u, trial: _Trial) -> sp.csr_matrix:
+        """The effective tangent ``-dr/du`` (eq. 4.2.9a) at the trial, assembled."""
+        if not self.coupled:
+            p = self.pattern
+            return sp.csr_matrix((self._tangent_data(trial), p.indices, p.indptr),
+                                 shape=(p.n, p.n))
         h = self._current.h
+        ca, cv, ck = self._factors(h)
+        cv1 = cv / ck  # d vel / d u (Newmark), not HHT-weighted
+        ev, arms = trial.ev, trial.arms
+        K, C = self.pattern.assemble(ev.K, ev.node_K), self.pattern.assemble(ev.C, ev.node_C)
+        nodes_m = self.model.node_mass[:, None, None] * np.eye(3)
+        if ev.node_M is not None:
+            nodes_m = nodes_m + ev.node_M
+        M = self.pattern.assemble(ev.Ma, nodes_m)
+        bx, bv, ba = self.bodies.kinematic_blocks(trial.bodies, arms, u[1], ca, cv1)
+        Px, Pv, Pa = (self._map(arms, blocks, scale)
+                      for blocks, scale in ((bx, 1.0), (bv, cv1), (ba, ca)))
+        T = self._map(arms)
+        lines = T.T @ (ck * (K @ Px + C @ Pv) + M @ Pa)
+        body = self.bodies.blocks(trial.bodies, trial.node_forces, arms,
+                                  self._current.s0.t + h, ca, cv, ck, u[1])
+        out = lines + self._body_matrix(body)
+        if self.C_rayleigh is not None:
+            out = out + cv * self.C_rayleigh
+        return out.tocsr()
+
+    def _factors(self, h: float) -> tuple[float, float, float]:
+        """``(1 / (beta h^2), (1 + alpha) gamma / (beta h), 1 + alpha)``."""
         b, g, alpha = self.c.beta, self.c.gamma, self.c.alpha
-        ca, cv, ck = 1.0 / (b * h * h), (1 + alpha) * g / (b * h), 1 + alpha
-        ev = trial.ev
+        return 1.0 / (b * h * h), (1 + alpha) * g / (b * h), 1 + alpha
+
+    def _line_blocks(self, ev: Evaluation, ca: float, cv: float, ck: float):
         blocks = ck * ev.K + cv * ev.C
         if ev.Ma is not None:
             blocks = blocks + ca * ev.Ma
@@ -214,18 +249,14 @@ class Stepper:
         nodes = nodes + ck * ev.node_K + cv * ev.node_C
         if ev.node_M is not None:
             nodes = nodes + ca * ev.node_M
-        if not self.coupled:
-            data = self.pattern.values(blocks, nodes)
-            if self.C_rayleigh is not None:
-                data = data + cv * self._rayleigh_data
-            return self.factorizer.factor(data)
-        K = self._transform(self.pattern.assemble(blocks, nodes), trial.arms)
-        body = self.bodies.blocks(trial.bodies, ev.nodal, trial.arms, self._current.s0.t + h,
-                                  ca, cv, ck)
-        K = K + self._body_matrix(body)
+        return blocks, nodes
+
+    def _tangent_data(self, trial: _Trial) -> FloatArray:
+        ca, cv, ck = self._factors(self._current.h)
+        data = self.pattern.values(*self._line_blocks(trial.ev, ca, cv, ck))
         if self.C_rayleigh is not None:
-            K = K + cv * self.C_rayleigh
-        return factorize(K)
+            data = data + cv * self._rayleigh_data
+        return data
 
     def update(self, u, du: FloatArray):
         """Unknowns after the step ``du``."""
@@ -287,10 +318,16 @@ class Stepper:
         return self._state(end), True, max_norm(end.r)
 
     # ------------------------------------------------------------------ pieces
-    def _transform(self, K: sp.csr_matrix, arms: FloatArray) -> sp.csr_matrix:
-        """``P^T K P``: the line tangent over the extended dofs onto the unknowns."""
+    def _map(self, arms: FloatArray, blocks: FloatArray | None = None,
+             scale: float = 1.0) -> sp.csr_matrix:
+        """Map from the unknowns to the extended node dofs (master-slave, Tuah eq. 3.3.6)."""
         lay = self.layout
-        P = transformation(self.model.mesh, lay.ext_dofs, lay.n_free, lay.body_dof, arms)
+        return transformation(self.model.mesh, lay.ext_dofs, lay.n_free, lay.body_dof, arms,
+                              blocks, scale)
+
+    def _transform(self, K: sp.csr_matrix, arms: FloatArray) -> sp.csr_matrix:
+        """``P^T K P``: a matrix over the extended dofs onto the unknowns."""
+        P = self._map(arms)
         return (P.T @ K @ P).tocsr()
 
     def _body_matrix(self, blocks: list[FloatArray]) -> sp.csr_matrix:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..physics.rigid_body import skew
 from ..results import StaticResult
 from .assembly import BlockPattern, factorize
 from .equilibrium import StaticModel
@@ -57,10 +58,6 @@ def point_stiffness(result: StaticResult, point: str) -> FloatArray:
     return condensed_stiffness(result, [int(mesh.point_node[mesh.point_index(point)])])
 
 
-def _skew(v: FloatArray) -> FloatArray:
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
-
-
 def group_stiffness(result: StaticResult, points: list[str], reference: FloatArray) -> FloatArray:
     """6x6 stiffness of a group of points rigidly tied to a reference point.
 
@@ -78,8 +75,8 @@ def group_stiffness(result: StaticResult, points: list[str], reference: FloatArr
     nodes = [int(mesh.point_node[mesh.point_index(p)]) for p in points]
     Kc = condensed_stiffness(result, nodes)
     arms = result.positions[nodes] - np.asarray(reference, dtype=float)
-    T = np.vstack([np.hstack((np.eye(3), -_skew(a))) for a in arms])
+    T = np.vstack([np.hstack((np.eye(3), -skew(a))) for a in arms])
     K6 = T.T @ Kc @ T
     forces = StaticModel(mesh).forces(result.positions).nodal[nodes]
-    K6[3:, 3:] -= sum(_skew(f) @ _skew(a) for f, a in zip(forces, arms, strict=True))
+    K6[3:, 3:] -= sum(skew(f) @ skew(a) for f, a in zip(forces, arms, strict=True))
     return K6

@@ -105,9 +105,10 @@ from numpy.typing import NDArray
 
 from ..mesh import discretize
 from ..model import DynamicsSettings, Motion, System
+from ..physics.rigid_body import rotation_matrix, skew
 from ..results import DynamicResult, StaticResult
 from ..solvers.assembly import BlockPattern
-from ..solvers.bodies import body_loads, skew, transformation
+from ..solvers.bodies import body_loads, body_mass_matrix, transformation
 from ..solvers.dynamic_model import DynamicModel
 from ..solvers.dynamics import simulate
 from ..solvers.stiffness import group_stiffness
@@ -234,7 +235,7 @@ def linearize(system: System, static: StaticResult) -> LinearModel:
         ext[node] = n_free + 3 * k + np.arange(3)
     pattern = BlockPattern(mesh.elements, ext)
     pose = static.body_pose
-    R = np.array([_rotation(p[3:]) for p in pose])
+    R = rotation_matrix(pose[:, 3:])
     arms = np.einsum("kij,kj->ki", R[mesh.slave_body], mesh.slave_arm)
     body_dof = np.array([n_free])
     P = transformation(mesh, n_free + 3 * len(mesh.slave_node), n_free, body_dof, arms)
@@ -246,7 +247,7 @@ def linearize(system: System, static: StaticResult) -> LinearModel:
     K = (P.T @ pattern.assemble(ev.K, ev.node_K) @ P).toarray()
     body = system.bodies[mesh.body_names[0]]
     d = slice(n_free, n_free + 6)
-    M[d, d] += _rigid_mass(body, R[0])
+    M[d, d] += body_mass_matrix(body, R[0])
     if body.added_mass is not None:
         M[d, d] += np.asarray(body.added_mass, float)
     K[d, d] += body_loads(body, pose[0, :3], R[0], mesh.gravity, mesh.water_density)[1]
@@ -254,24 +255,6 @@ def linearize(system: System, static: StaticResult) -> LinearModel:
     for f, arm in zip(ev.nodal[mesh.slave_node], arms, strict=True):
         K[n_free + 3:n_free + 6, n_free + 3:n_free + 6] -= skew(f) @ skew(arm)
     return LinearModel(M, K, K_rayleigh, d)
-
-
-def _rotation(phi: FloatArray) -> FloatArray:
-    from ..mesh import rotation_matrix
-
-    return rotation_matrix(np.asarray(phi, float))
-
-
-def _rigid_mass(body, R: FloatArray) -> FloatArray:
-    """6x6 rigid-body mass about the body origin, world axes."""
-    c = R @ np.asarray(body.center_of_gravity, float)
-    S = skew(c)
-    M = np.zeros((6, 6))
-    M[:3, :3] = body.mass * np.eye(3)
-    M[:3, 3:] = -body.mass * S
-    M[3:, :3] = body.mass * S
-    M[3:, 3:] = R @ np.asarray(body.inertia, float) @ R.T - body.mass * S @ S
-    return M
 
 
 def body_stiffness(eq: Equilibrium) -> FloatArray:
@@ -282,7 +265,7 @@ def body_stiffness(eq: Equilibrium) -> FloatArray:
     body = eq.system.bodies[BODY]
     pose = result.body_pose[0]
     K = group_stiffness(result, list(FAIRLEADS), pose[:3])
-    return K + body_loads(body, pose[:3], _rotation(pose[3:]), result.mesh.gravity,
+    return K + body_loads(body, pose[:3], rotation_matrix(pose[3:]), result.mesh.gravity,
                           result.mesh.water_density)[1]
 
 
@@ -290,7 +273,7 @@ def surge_pitch_frequency(eq: Equilibrium) -> float:
     """Lowest natural frequency [rad/s] of the rigid box in surge and pitch on its
     quasi-static mooring stiffness (:func:`body_stiffness`), line inertia ignored."""
     K = body_stiffness(eq)
-    M = _rigid_mass(eq.system.bodies[BODY], _rotation(eq.result.body_pose[0, 3:]))
+    M = body_mass_matrix(eq.system.bodies[BODY], rotation_matrix(eq.result.body_pose[0, 3:]))
     idx = np.ix_([0, 4], [0, 4])
     return float(np.sqrt(sla.eigh(K[idx], M[idx], eigvals_only=True)[0]))
 
@@ -396,7 +379,7 @@ def quasi_static_response(eq: Equilibrium, rayleigh: tuple[float, float],
     or drag.
     """
     K = body_stiffness(eq)
-    M = _rigid_mass(eq.system.bodies[BODY], _rotation(eq.result.body_pose[0, 3:]))
+    M = body_mass_matrix(eq.system.bodies[BODY], rotation_matrix(eq.result.body_pose[0, 3:]))
     force = np.zeros(6)
     force[0] = amplitude
     C = rayleigh[0] * M + rayleigh[1] * K
