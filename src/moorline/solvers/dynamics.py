@@ -157,10 +157,7 @@ def _rayleigh(settings: DynamicsSettings) -> tuple[float, float] | None:
 
 
 def _statics_settings(system: System) -> StaticsSettings:
-    for analysis in system.analyses:
-        if isinstance(analysis, StaticsSettings):
-            return analysis
-    return StaticsSettings()
+    return system.first(StaticsSettings)
 
 
 def _fluid(system: System, settings: DynamicsSettings, ramp_current: bool = True):

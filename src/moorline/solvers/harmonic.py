@@ -32,75 +32,21 @@ waves); elastic lines only (the standard linear solid carries history).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-import xarray as xr
 from numpy.typing import NDArray
 
 from ..errors import ConvergenceError, MoorlineError
-from ..mesh import Mesh
 from ..model import HarmonicSettings, System
-from ..results import StaticResult
+from ..results import HarmonicResult, StaticResult
 from .assembly import BlockPattern, gather_free, scatter_free
 from .dynamic_model import DynamicModel
 from .excitation import Excitation
 from .statics import equilibrium_for
 
 FloatArray = NDArray[np.float64]
-
-
-@dataclass
-class HarmonicResult:
-    """The periodic response.
-
-    Attributes
-    ----------
-    period, omega
-        Period and fundamental circular frequency.
-    coefficients
-        Node position coefficients (2 n + 1, n_nodes, 3): the mean, then ``A_k``, ``B_k``.
-    time, positions, tension
-        One period of the response: (n_t,), (n_t, n_nodes, 3), (n_t, n_elements).
-    static_positions
-        The static state linearized from (n_nodes, 3).
-    iterations, residual_history
-        Newton iterations and the largest harmonic residual after each.
-    """
-
-    period: float
-    omega: float
-    coefficients: FloatArray
-    time: FloatArray
-    positions: FloatArray
-    tension: FloatArray
-    static_positions: FloatArray
-    iterations: int
-    residual_history: list[float]
-    mesh: Mesh
-    settings: HarmonicSettings
-    counters: dict = field(default_factory=dict)
-
-    def amplitude(self, harmonic: int = 1) -> FloatArray:
-        """Amplitude ``sqrt(A_k^2 + B_k^2)`` of harmonic ``k`` per node and axis."""
-        a, b = self.coefficients[2 * harmonic - 1], self.coefficients[2 * harmonic]
-        return np.sqrt(a * a + b * b)
-
-    def to_xarray(self) -> xr.Dataset:
-        """Coefficients (dim ``term``), one period of positions and tensions (dim ``time``)."""
-        n = self.settings.harmonics
-        terms = ["mean"] + [f"{p}{k}" for k in range(1, n + 1) for p in ("cos", "sin")]
-        return xr.Dataset(
-            {"coefficients": (("term", "node", "xyz"), self.coefficients),
-             "position": (("time", "node", "xyz"), self.positions),
-             "tension": (("time", "element"), self.tension),
-             "static_position": (("node", "xyz"), self.static_positions)},
-            coords={"term": terms, "time": self.time, "node": np.arange(self.mesh.n_nodes),
-                    "element": np.arange(self.mesh.n_elements), "xyz": ["x", "y", "z"]},
-            attrs={"analysis": "harmonic", "kind": "harmonic", "period": self.period,
-                   "harmonics": n, "iterations": self.iterations})
 
 
 def _basis(times: FloatArray, omega: float, n: int) -> tuple[FloatArray, ...]:
@@ -267,7 +213,9 @@ def solve_harmonic(system: System, settings: HarmonicSettings,
                           positions=positions, tension=tension_out,
                           static_positions=x_static.copy(), iterations=len(history),
                           residual_history=history, mesh=mesh, settings=settings,
-                          counters={"samples": n_t, "unknowns": (2 * n + 1) * n_dof})
+                          counters={"samples": n_t, "unknowns": (2 * n + 1) * n_dof},
+                          message=f"converged in {len(history)} Newton iterations "
+                                  f"({n} harmonics)", case=system.name, units=system.units)
 
 
 def _resample(values: FloatArray, times: FloatArray, t_out: FloatArray, omega: float,
