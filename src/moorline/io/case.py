@@ -201,6 +201,9 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
         if env.current.headings is not None and len(env.current.headings) != n:
             fail(f"headings must have {n} entries like z_levels", "environment.current.headings")
     for k, analysis in enumerate(spec.analyses or ()):
+        if isinstance(analysis, StaticsSpec) and analysis.current_drag and spec.bodies:
+            fail("statics with the current's drag is not supported yet for systems with "
+                 "bodies (remove current_drag or the bodies)", f"analyses[{k}].current_drag")
         if isinstance(analysis, StochasticSpec):
             if env.waves.kind != "random":
                 fail("a stochastic analysis needs a random sea (environment.waves kind: "
