@@ -19,6 +19,7 @@ WITH_FIELD = [
     ("position_component_text", "points.anchor.position[2]"),
     ("unknown_analysis_kind", "analyses[0].kind"),
     ("unknown_units_system", "units"),
+    ("current_drag_with_bodies", "analyses[0].current_drag"),
 ]
 
 

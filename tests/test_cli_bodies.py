@@ -36,7 +36,7 @@ def test_statics_json_has_body_pose_and_mooring_stiffness(tmp_path):
     assert np.allclose(K, K.T, rtol=1e-6, atol=1e-6 * np.abs(K).max())
 
 
-def test_dynamics_with_a_body_streams_its_pose_and_animates(tmp_path):
+def test_dynamics_with_a_body_streams_its_pose_and_animates(tmp_path, undescribed):
     case = _case(tmp_path)
     out = tmp_path / "out"
     result = CliRunner().invoke(cli, ["run", str(case), "--out", str(out), "--quiet"])
@@ -44,7 +44,9 @@ def test_dynamics_with_a_body_streams_its_pose_and_animates(tmp_path):
     folder = out / "wang-box"
     assert (folder / "body_motion.png").is_file()
     assert (folder / "snapshots_3d.png").is_file()
+    assert undescribed(folder / "results.nc") == []
     with xr.open_dataset(folder / "results.nc", group="dynamics") as ds:
+        assert list(ds["dof"].values) == ["surge", "sway", "heave", "roll", "pitch", "yaw"]
         pose = ds["body_pose"].values
         assert pose.shape[1:] == (1, 6)
         assert np.ptp(pose[:, 0, 0]) > 1e-3  # the harmonic surge force moves the box

@@ -14,7 +14,7 @@ from moorline.model import DynamicsSettings, OutputSettings, StaticsSettings, St
 from moorline.verification.tuah_ex6 import ex6_system
 
 
-def test_strumming_analysis_runs_from_a_case_file(tmp_path):
+def test_strumming_analysis_runs_from_a_case_file(tmp_path, undescribed):
     system = ex6_system(gravity=32.174)
     analyses = (StaticsSettings(start="straight"),
                 DynamicsSettings(duration=2.0, dt=0.005, tolerance=1e-8),
@@ -32,7 +32,10 @@ def test_strumming_analysis_runs_from_a_case_file(tmp_path):
                                      str(tmp_path / "again"), "--quiet"])
     assert again.exit_code == 0, again.output
     assert (tmp_path / "again" / "strumming.png").stat().st_size > 0
+    assert undescribed(folder / "results.nc") == []
     with xr.open_dataset(folder / "results.nc", group="strumming") as ds:
+        assert list(ds["mode"].values) == [1, 2, 3, 4]  # modes numbered from 1
+        assert ds.attrs["status"] == "completed" and ds.attrs["success"] == 1
         cl = ds["lift_coefficient"].values
         assert cl.shape[1] == 4 and np.isfinite(cl).all()
         assert np.abs(cl).max() > 0.1  # shedding established (C_L0 = 0.2)

@@ -108,7 +108,7 @@ def test_refuses_bodies_viscoelastic_and_bad_settings():
         solve_harmonic(disc, HarmonicSettings(period=3.0), static)
 
 
-def test_example_case_runs_from_the_cli(tmp_path):
+def test_example_case_runs_from_the_cli(tmp_path, undescribed):
     path = Path(__file__).resolve().parents[1] / "cases" / "tcheou_t2.yaml"
     if not path.is_file():
         pytest.skip("cases/tcheou_t2.yaml not present")
@@ -121,7 +121,9 @@ def test_example_case_runs_from_the_cli(tmp_path):
     assert result.exit_code == 0, result.output
     folder = tmp_path / system.name
     assert (folder / "harmonic.png").stat().st_size > 0
+    assert undescribed(folder / "results.nc") == []
     with xr.open_dataset(folder / "results.nc", group="harmonic") as ds:
+        assert ds.attrs["status"] == "converged" and ds.attrs["success"] == 1
         assert ds["coefficients"].dims == ("term", "node", "xyz")
         assert ds.attrs["period"] == 10.0
         top = int(np.argmax(ds["static_position"].values[:, 2]))

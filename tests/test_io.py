@@ -234,6 +234,7 @@ BAD_CASES = [
     ("random_gamma_below_one", "environment.waves.gamma", "must be >= 1"),
     ("random_record_length_zero", "environment.waves.record_length", "must be > 0"),
     ("stochastic_without_random_sea", "analyses[1].kind", "needs a random sea"),
+    ("current_drag_with_bodies", "analyses[0].current_drag", "not supported yet"),
     ("body_point_unknown_body", "points.fairlead.body", "unknown body 'hull'"),
 ]
 

@@ -139,7 +139,7 @@ def test_to_xarray() -> None:
     assert ds.attrs["case"] == "modes-string"
     assert ds.attrs["units"] == "SI"
     assert "moorline_version" in ds.attrs
-    assert ds["omega"].attrs["units"] == "rad/time"
+    assert ds["omega"].attrs["units"] == "rad/s"
     assert list(ds["dominant"].values) == list(result.dominant)
 
 
@@ -155,8 +155,8 @@ def test_modes_json_contract(tmp_path: Path) -> None:
     result = _invoke("modes", OC3, "--n", 6, "--out", tmp_path, "--json", "--quiet")
     assert result.exit_code == 0, result.output
     data = json.loads(result.stdout)
-    assert set(data) == {"case", "modes"}
-    assert data["case"] == "oc3-line"
+    assert set(data) == {"case", "converged", "status", "message", "modes"}
+    assert data["case"] == "oc3-line" and data["converged"] and data["status"] == "converged"
     modes = data["modes"]
     assert [m["index"] for m in modes] == [1, 2, 3, 4, 5, 6]
     for mode in modes:
@@ -169,6 +169,7 @@ def test_modes_json_contract(tmp_path: Path) -> None:
     assert (directory / "mode_shapes.png").stat().st_size > 0
     with xr.open_dataset(directory / "results.nc", group="modal") as ds:
         np.testing.assert_allclose(ds["omega"].values, omegas)
+        assert list(ds["mode"].values) == [m["index"] for m in modes]  # one numbering
     # a second run replaces the modal group and keeps the others
     assert _invoke("statics", OC3, "--out", tmp_path, "--quiet").exit_code == 0
     again = _invoke("modes", OC3, "--n", 3, "--out", tmp_path, "--quiet")
@@ -181,7 +182,7 @@ def test_modes_json_contract(tmp_path: Path) -> None:
 
 
 @needs_oc3
-def test_modal_case_runs(tmp_path: Path) -> None:
+def test_modal_case_runs(tmp_path: Path, undescribed) -> None:
     case = yaml.safe_load(OC3.read_text())
     case["analyses"] = [{"kind": "statics"},
                         {"kind": "modal", "n_modes": 5, "mass": "consistent"},
@@ -201,8 +202,10 @@ def test_modal_case_runs(tmp_path: Path) -> None:
     assert all(0.5 <= m["omega"] <= 1.2 for m in data["analyses"][2]["modes"])
     directory = tmp_path / "oc3-line"
     assert (directory / "modal1_mode_shapes.png").is_file()
+    assert undescribed(directory / "results.nc") == []
     with xr.open_dataset(directory / "results.nc", group="modal2") as ds:
         assert ds.attrs["setting_added_mass"] == 0
+        assert list(ds.attrs["setting_band"]) == [0.5, 1.2]
 
 
 def test_modes_of_a_moored_body_include_its_six_rigid_body_modes():

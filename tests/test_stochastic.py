@@ -108,7 +108,7 @@ def test_body_system_the_disc_follows_long_waves():
     assert ds["body_std"].dims == ("body", "dof") and list(ds["dof"].values)[4] == "pitch"
 
 
-def test_stochastic_analysis_from_a_case_file(tmp_path):
+def test_stochastic_analysis_from_a_case_file(tmp_path, undescribed):
     system = replace(riser_system(), analyses=(StaticsSettings(),
                                                StochasticSettings(method="direct")))
     path = write_case(system, tmp_path / "riser.yaml")
@@ -118,7 +118,9 @@ def test_stochastic_analysis_from_a_case_file(tmp_path):
     assert result.exit_code == 0, result.output
     folder = tmp_path / "out" / system.name
     assert (folder / "stochastic.png").stat().st_size > 0
+    assert undescribed(folder / "results.nc") == []
     with xr.open_dataset(folder / "results.nc", group="stochastic") as ds:
+        assert ds.attrs["status"] == "converged" and ds.attrs["success"] == 1
         assert ds["displacement_spectrum"].dims == ("omega", "node", "xyz")
         assert ds.attrs["method"] == "direct"
         assert float(ds["tension_std"].max()) > 0

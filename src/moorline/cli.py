@@ -2,14 +2,15 @@
 
 ``statics`` and ``run`` write ``DIR/<case>/``: one results file ``results.nc`` with a NetCDF
 group per analysis (see :mod:`moorline.io.writers`), plots, ``summary.json`` and
-``summary.txt``. Each analysis kind a case may list has a runner in
-:data:`moorline.runners.RUNNERS`.
+``summary.txt``. The analysis kinds a case may list, with their runners, plots and summaries,
+are the table :data:`moorline.analyses.KINDS`.
 
-Exit codes: 0 success; 1 the analysis failed (no convergence, a verification row out of
-tolerance); 2 bad input (a case file that does not validate, a missing or unreadable file, an
-unknown name); 130 interrupted (Ctrl-C: the results file keeps what was computed). Expected
-errors print ``error: <file>: <key path>: <reason>`` on stderr, never a traceback; unexpected
-exceptions are bugs and keep their traceback.
+Exit codes: 0 success; 1 the analysis failed (a result with ``success`` False: no convergence,
+a time step that failed; its message is printed and what was computed is written; a
+verification row out of tolerance); 2 bad input (a case file that does not validate, a
+missing or unreadable file, an unknown name); 130 interrupted (Ctrl-C: the results file keeps
+what was computed). Expected errors print ``error: <file>: <key path>: <reason>`` on stderr,
+never a traceback; unexpected exceptions are bugs and keep their traceback.
 
 With ``--json`` a command prints exactly one JSON document on stdout and nothing else; logs,
 progress and errors go to stderr. This is the only module that configures ``logging``.
@@ -30,18 +31,16 @@ from rich.markup import escape
 from rich.table import Table
 
 from . import __version__
+from .analyses import KINDS
 from .console import _note, _status, _stdout
 from .errors import CaseError, ConvergenceError, MoorlineError
 from .runners import (
     RESULTS_FILE,
-    RUNNERS,
     RunContext,
-    _analysis_kind,
     _prefix,
     _run_analyses,
     _RunInterruptedError,
 )
-from .summaries import modal_summary
 
 logger = logging.getLogger(__name__)
 
@@ -170,7 +169,7 @@ def statics(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) ->
     """
     _configure_logging(verbose)
     system = _load(case)
-    settings = next((a for a in system.analyses if _analysis_kind(a) == "statics"), None)
+    settings = system.first("statics")
     context = _context(system, case, out, quiet)
     _run_analyses(context, [settings], ["statics"])
     _finish(case, context, context.outcomes[0].summary, as_json)
@@ -191,12 +190,12 @@ def run(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> Non
     """
     _configure_logging(verbose)
     system = _load(case)
-    kinds = [_analysis_kind(a) for a in system.analyses] or ["statics"]
+    kinds = [str(getattr(a, "kind", type(a).__name__)) for a in system.analyses] or ["statics"]
     analyses = list(system.analyses) or [None]
-    unknown = sorted({k for k in kinds if k not in RUNNERS})
+    unknown = sorted({k for k in kinds if k not in KINDS})
     if unknown:
         raise CaseError(f"analysis kind {', '.join(map(repr, unknown))} is not supported by "
-                        f"this version; supported: {', '.join(RUNNERS)}", str(case), "analyses")
+                        f"this version; supported: {', '.join(KINDS)}", str(case), "analyses")
     context = _context(system, case, out, quiet)
     _run_analyses(context, analyses, kinds)
     outcomes = context.outcomes
@@ -249,31 +248,31 @@ def modes(case: Path, n_modes: int | None, out: Path, as_json: bool, quiet: bool
     import dataclasses
 
     from .model import ModalSettings
-    from .plot import plot_mode_shapes
     from .solvers.modal import solve_modes
 
     _configure_logging(verbose)
     system = _load(case)
-    settings = next((a for a in system.analyses if _analysis_kind(a) == "modal"),
-                    ModalSettings())
+    settings = system.first(ModalSettings)
     if n_modes is not None:
         settings = dataclasses.replace(settings, n_modes=n_modes, band=None)
     context = _context(system, case, out, quiet)
-    plot_path = context.directory / "mode_shapes.png"
+    modal = KINDS["modal"]
     with _status(f"solving the modes of {system.name} ...", quiet) as update:
         result = solve_modes(system, settings)
         update("writing results ...")
         ds = result.to_xarray()
         _replace_group(context, ds, "modal")
         update("plotting ...")
-        plot_mode_shapes(ds, plot_path)
+        files = modal.plot_group(ds, context.directory)
     if as_json:
         from .io.writers import summary_json
 
-        click.echo(summary_json(modal_summary(result)))
+        click.echo(summary_json(modal.summarize(result)))
     else:
         _stdout().print(_modes_table(result))
-    _note(f"wrote {context.results}, {plot_path}", quiet)
+    _note(f"wrote {', '.join(str(f) for f in [context.results, *files])}", quiet)
+    if not result.success:
+        _fail(f"{case}: modal failed: {result.message}", EXIT_FAILED)
 
 
 def _replace_group(context: RunContext, ds: Any, group: str) -> None:
@@ -389,10 +388,10 @@ def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: b
     """Plot a saved RESULTS file (results.nc) again.
 
     Statics groups give configuration_xz.png and configuration_3d.png, dynamics groups
-    tension_history.png and motion_history.png (and body_motion.png with bodies; with
-    --animate, animation.gif); modal, strumming, stochastic and harmonic groups their own plot
-    (mode_shapes.png, strumming.png, stochastic.png, harmonic.png); prefixed with the group
-    name when a kind repeats.
+    tension_history.png and motion_history.png (and body_motion.png, snapshots_3d.png with
+    bodies; with --animate, animation.gif); modal, strumming, stochastic and harmonic groups
+    their own plot (mode_shapes.png, strumming.png, stochastic.png, harmonic.png); prefixed
+    with the group name when a kind repeats.
     """
     _configure_logging(verbose)
     from .io.writers import read_group, result_groups
@@ -402,7 +401,7 @@ def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: b
     try:
         groups = result_groups(results)
         datasets = {name: read_group(results, name) for name, kind in groups.items()
-                    if kind in ("statics", "dynamics", *OTHER_PLOTS)}
+                    if kind in KINDS}
     except (OSError, ValueError) as exc:
         reason = getattr(exc, "strerror", None) or str(exc)
         raise CaseError(f"cannot read as a NetCDF results file ({reason})", str(results)) from exc
@@ -423,45 +422,13 @@ def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: b
     _note(f"wrote {', '.join(str(f) for f in files)}", quiet)
 
 
-#: Analysis kinds with one plot each: kind -> (plot function name in moorline.plot, file).
-OTHER_PLOTS = {"modal": ("plot_mode_shapes", "mode_shapes.png"),
-               "strumming": ("plot_strumming", "strumming.png"),
-               "stochastic": ("plot_stochastic", "stochastic.png"),
-               "harmonic": ("plot_harmonic", "harmonic.png")}
-
-
 def _plot_group(ds: Any, kind: str, label: str, directory: Path) -> list[Path]:
-    """The plots of one analysis group; returns the files written."""
-    from . import plot as plots
-    from .plot import plot_configuration, plot_motion_history, plot_tension_history
-
-    prefix = _prefix(label, kind)
-    if kind in OTHER_PLOTS:
-        function, name = OTHER_PLOTS[kind]
-        path = directory / f"{prefix}{name}"
-        getattr(plots, function)(ds, path)
-        return [path]
-    if kind == "statics":
-        missing = [v for v in ("position", "element_nodes", "tension") if v not in ds.variables]
-        if missing:
-            raise CaseError(f"group {label}: not a statics result (missing "
-                            f"{', '.join(missing)})")
-        files = [directory / f"{prefix}configuration_xz.png",
-                 directory / f"{prefix}configuration_3d.png"]
-        plot_configuration(ds, *files)
-        return files
-    if not ds.sizes.get("time", 0):
-        return []
-    files = [directory / f"{prefix}tension_history.png",
-             directory / f"{prefix}motion_history.png"]
-    plot_tension_history(ds, files[0])
-    plot_motion_history(ds, files[1])
-    if "body_pose" in ds.variables:
-        from .plot import plot_body_motion
-
-        files.append(directory / f"{prefix}body_motion.png")
-        plot_body_motion(ds, files[-1])
-    return files
+    """The plots of one analysis group (its kind's plot in :data:`moorline.analyses.KINDS`);
+    returns the files written."""
+    try:
+        return KINDS[kind].plot_group(ds, directory, _prefix(label, kind))
+    except (KeyError, ValueError) as exc:
+        raise CaseError(f"group {label}: {exc}") from None
 
 
 @cli.command()

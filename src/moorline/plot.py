@@ -416,13 +416,14 @@ __all__ += ["plot_sweep_trends"]
 
 
 def plot_body_motion(dataset: xr.Dataset, path: str | Path) -> None:
-    """Six panels per run: body positions x, y, z and rotations about x, y, z (degrees) vs
-    time, one line per body, from a dynamics dataset with ``body_pose(time, body, dof)``."""
+    """Six panels per run: body surge, sway, heave (positions of the origin) and roll, pitch,
+    yaw (the rotation vector, degrees) vs time, one line per body, from a dynamics dataset
+    with ``body_pose(time, body, dof)``."""
     pose = dataset["body_pose"].values
     time = dataset["time"].values
     names = [str(b) for b in dataset["body"].values]
     fig = Figure(figsize=(11, 7), constrained_layout=True)
-    labels = ("x", "y", "z", "rotation x", "rotation y", "rotation z")
+    labels = ("surge", "sway", "heave", "roll", "pitch", "yaw")
     for k in range(6):
         ax = fig.add_subplot(2, 3, k + 1)
         scale = 1.0 if k < 3 else 180.0 / np.pi
@@ -505,9 +506,9 @@ def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
     Parameters
     ----------
     dataset
-        A strumming dataset (:meth:`moorline.solvers.strumming.StrummingResult.to_xarray`):
-        ``lift_coefficient(time, element)``, ``modal_amplitude(time, mode)``, optional
-        ``omega(mode)`` and the attribute ``CL0`` (drawn as +-C_L0).
+        A strumming dataset (:meth:`moorline.results.StrummingResult.to_xarray`):
+        ``lift_coefficient(time, element)``, ``modal_amplitude(time, mode)`` (modes numbered
+        from 1), optional ``omega(mode)`` and the attribute ``CL0`` (drawn as +-C_L0).
     path
         PNG file to write (parent directories are created).
     max_elements
@@ -530,9 +531,11 @@ def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
             axes[0].axhline(sign * cl0, color="k", linestyle="--", linewidth=0.8,
                             label="stationary C_L0" if sign > 0 else None)
     axes[0].set_ylabel("lift coefficient C_L")
+    numbers = (dataset["mode"].values if "mode" in dataset.coords
+               else np.arange(1, z.shape[1] + 1))
     for m in np.sort(np.argsort(-np.abs(z).max(axis=0))[:max_modes]):
         axes[1].plot(time, z[:, m], linewidth=0.8,
-                     label=f"mode {int(m) + 1} ({omega[m]:.3g} rad/s)")
+                     label=f"mode {int(numbers[m])} ({omega[m]:.3g} rad/s)")
     axes[1].set_ylabel("modal amplitude z_n")
     axes[1].set_xlabel("time [s]")
     for ax in axes:
@@ -550,7 +553,7 @@ def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -
     Parameters
     ----------
     dataset
-        A stochastic dataset (:meth:`moorline.solvers.stochastic.StochasticResult.to_xarray`).
+        A stochastic dataset (:meth:`moorline.results.StochasticResult.to_xarray`).
     path
         PNG file to write (parent directories are created).
     max_items
@@ -600,7 +603,7 @@ def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> 
     Parameters
     ----------
     dataset
-        A harmonic dataset (:meth:`moorline.solvers.harmonic.HarmonicResult.to_xarray`).
+        A harmonic dataset (:meth:`moorline.results.HarmonicResult.to_xarray`).
     path
         PNG file to write (parent directories are created).
     snapshots
@@ -638,3 +641,81 @@ def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> 
     fig.suptitle(f"harmonic balance: period {float(dataset.attrs.get('period', 0)):.4g}, "
                  f"{dataset.attrs.get('harmonics', '?')} harmonics")
     _save(fig, Path(path))
+
+
+# ----------------------------------------------------------------------------- per analysis group
+# One function per analysis kind (the ``plot`` of :data:`moorline.analyses.KINDS`):
+# ``(dataset, directory, prefix) -> files written``, used by ``moorline run`` and
+# ``moorline plot`` alike; ``prefix`` (the group name and ``_`` when a kind repeats) starts
+# every file name.
+
+
+def plot_statics_group(dataset: xr.Dataset, directory: str | Path,
+                       prefix: str = "") -> list[Path]:
+    """``configuration_xz.png`` and ``configuration_3d.png`` of a statics group.
+
+    Raises
+    ------
+    ValueError
+        When the dataset lacks ``position``, ``element_nodes`` or ``tension``.
+    """
+    missing = [v for v in ("position", "element_nodes", "tension") if v not in dataset.variables]
+    if missing:
+        raise ValueError(f"not a statics result (missing {', '.join(missing)})")
+    files = [Path(directory) / f"{prefix}configuration_xz.png",
+             Path(directory) / f"{prefix}configuration_3d.png"]
+    plot_configuration(dataset, *files)
+    return files
+
+
+def plot_dynamics_group(dataset: xr.Dataset, directory: str | Path,
+                        prefix: str = "") -> list[Path]:
+    """``tension_history.png``, ``motion_history.png`` and, with bodies, ``body_motion.png``
+    and ``snapshots_3d.png`` of a dynamics group (nothing without records)."""
+    if not dataset.sizes.get("time", 0):
+        return []
+    directory = Path(directory)
+    files = [directory / f"{prefix}tension_history.png",
+             directory / f"{prefix}motion_history.png"]
+    plot_tension_history(dataset, files[0])
+    plot_motion_history(dataset, files[1])
+    if "body_pose" in dataset.variables:
+        files += [directory / f"{prefix}body_motion.png", directory / f"{prefix}snapshots_3d.png"]
+        plot_body_motion(dataset, files[-2])
+        plot_snapshots(dataset, files[-1])
+    return files
+
+
+def plot_modal_group(dataset: xr.Dataset, directory: str | Path, prefix: str = "") -> list[Path]:
+    """``mode_shapes.png`` of a modal group."""
+    path = Path(directory) / f"{prefix}mode_shapes.png"
+    plot_mode_shapes(dataset, path)
+    return [path]
+
+
+def plot_strumming_group(dataset: xr.Dataset, directory: str | Path,
+                         prefix: str = "") -> list[Path]:
+    """``strumming.png`` of a strumming group."""
+    path = Path(directory) / f"{prefix}strumming.png"
+    plot_strumming(dataset, path)
+    return [path]
+
+
+def plot_stochastic_group(dataset: xr.Dataset, directory: str | Path,
+                          prefix: str = "") -> list[Path]:
+    """``stochastic.png`` of a stochastic group."""
+    path = Path(directory) / f"{prefix}stochastic.png"
+    plot_stochastic(dataset, path)
+    return [path]
+
+
+def plot_harmonic_group(dataset: xr.Dataset, directory: str | Path,
+                        prefix: str = "") -> list[Path]:
+    """``harmonic.png`` of a harmonic group."""
+    path = Path(directory) / f"{prefix}harmonic.png"
+    plot_harmonic(dataset, path)
+    return [path]
+
+
+__all__ += ["plot_dynamics_group", "plot_harmonic_group", "plot_modal_group",
+            "plot_statics_group", "plot_stochastic_group", "plot_strumming_group"]

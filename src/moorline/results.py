@@ -3,15 +3,26 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from . import __version__
+from .datasets import BODY_DOFS, Status, build_dataset, dynamics_dataset, group_attrs
 from .mesh import Mesh
 
 FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+
+__all__ = ["BODY_DOFS", "DynamicResult", "HarmonicResult", "ModalResult", "StaticResult",
+           "Status", "StochasticResult", "StrummingResult"]
+
+
+def _settle_status(result: Any, ok: Status) -> None:
+    """Set an empty ``status`` of a frozen result from its ``success``."""
+    if not result.status:
+        object.__setattr__(result, "status", str(ok if result.success else Status.FAILED))
 
 
 @dataclass(frozen=True)
@@ -42,6 +53,11 @@ class StaticResult:
         The mesh solved.
     case, units
         Case name and unit system (for output).
+    status
+        ``converged`` or ``failed`` (:class:`~moorline.datasets.Status`; set from ``success``
+        when not given).
+    settings
+        The statics settings used (for the group's attributes), when known.
     """
 
     success: bool
@@ -62,6 +78,11 @@ class StaticResult:
     extras: dict = field(default_factory=dict)
     body_pose: FloatArray = field(default_factory=lambda: np.zeros((0, 6)))
     current_drag: bool = False
+    status: str = ""
+    settings: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        _settle_status(self, Status.CONVERGED)
 
     def body_position(self, body: str) -> FloatArray:
         """Position of a body's origin (3,)."""
@@ -70,6 +91,13 @@ class StaticResult:
     def body_rotation(self, body: str) -> FloatArray:
         """Rotation vector of a body [rad] (3,)."""
         return self.body_pose[self.mesh.body_names.index(body), 3:].copy()
+
+    @property
+    def counters(self) -> dict[str, int]:
+        """``iterations``, ``load_steps``, ``n_residual``, ``n_tangent``, ``n_factorizations``."""
+        return {"iterations": self.iterations, "load_steps": self.load_steps,
+                "n_residual": self.n_residual, "n_tangent": self.n_tangent,
+                "n_factorizations": self.n_factorizations}
 
     @property
     def residual(self) -> float:
@@ -128,7 +156,8 @@ class StaticResult:
 
         ``max_tension`` is the largest tension of each line, its end tensions included (as in
         the ``--json`` summary); the attribute ``seabed_z`` (``-inf`` without seabed) and the
-        coordinate ``point_kind`` are there for the plots.
+        coordinate ``point_kind`` are there for the plots. Attributes: those of every group
+        (:func:`moorline.datasets.group_attrs`), ``converged`` (= ``success``), ``method``.
         """
         m = self.mesh
         ends = np.array([[self.end_force(n, e) for e in "ab"] for n in m.line_names])
@@ -136,43 +165,32 @@ class StaticResult:
         end_tension = np.linalg.norm(ends, axis=2)
         max_tension = [float(np.nanmax([*self.line_tension(n), *end_tension[k]]))
                        for k, n in enumerate(m.line_names)]
-        ds = xr.Dataset(
-            {
-                "position": (("node", "xyz"), self.positions),
-                "tension": (("element",), self.tension),
-                "end_force": (("line", "end", "xyz"), ends),
-                "end_tension": (("line", "end"), end_tension),
-                "max_tension": (("line",), max_tension),
-                "seabed_length": (("line",), [self.seabed_length(n) for n in m.line_names]),
-                "point_position": (("point", "xyz"),
-                                   self.positions[m.point_node].reshape(-1, 3)),
-                "residual_history": (("iteration",), self.residual_history),
-                "element_nodes": (("element", "pair"), m.elements),
-                "unstretched_length": (("element",), m.length0),
-            },
-            coords={
-                "xyz": ["x", "y", "z"], "end": ["a", "b"], "line": list(m.line_names),
-                "point": list(m.point_names),
-                "point_kind": (("point",), list(m.point_kind)),
-                "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
-            },
-            attrs={
-                "analysis": "statics", "case": self.case, "units": self.units,
-                "seabed_z": float(m.seabed_z),
-                "moorline_version": __version__, "method": self.method,
-                "converged": int(self.success), "message": self.message,
-                "iterations": self.iterations, "load_steps": self.load_steps,
-                "n_residual": self.n_residual, "n_tangent": self.n_tangent,
-                "n_factorizations": self.n_factorizations,
-            },
-        )
-        ds["position"].attrs["units"] = "length"
-        ds["tension"].attrs["units"] = "force"
+        data = {
+            "position": (("node", "xyz"), self.positions),
+            "tension": (("element",), self.tension),
+            "end_force": (("line", "end", "xyz"), ends),
+            "end_tension": (("line", "end"), end_tension),
+            "max_tension": (("line",), max_tension),
+            "seabed_length": (("line",), [self.seabed_length(n) for n in m.line_names]),
+            "point_position": (("point", "xyz"), self.positions[m.point_node].reshape(-1, 3)),
+            "residual_history": (("iteration",), self.residual_history),
+            "element_nodes": (("element", "pair"), m.elements),
+            "unstretched_length": (("element",), m.length0),
+        }
+        coords: dict[str, Any] = {
+            "xyz": ["x", "y", "z"], "end": ["a", "b"], "line": list(m.line_names),
+            "point": list(m.point_names), "point_kind": (("point",), list(m.point_kind)),
+            "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
+        }
         if m.body_names:
-            ds["body_pose"] = (("body", "dof"), self.body_pose)
-            ds = ds.assign_coords(body=list(m.body_names),
-                                  dof=["x", "y", "z", "rx", "ry", "rz"])
-        return ds
+            data["body_pose"] = (("body", "dof"), self.body_pose)
+            coords.update(body=list(m.body_names), dof=list(BODY_DOFS))
+        attrs = group_attrs("statics", case=self.case, units=self.units, success=self.success,
+                            status=self.status, message=self.message, counters=self.counters,
+                            settings=self.settings,
+                            extra={"converged": int(self.success), "method": self.method,
+                                   "seabed_z": float(m.seabed_z)})
+        return build_dataset("statics", data, coords, attrs)
 
 
 @dataclass(frozen=True)
@@ -196,6 +214,11 @@ class DynamicResult:
         ``step_cuts``.
     mesh, case, units, settings
         What was solved, for output.
+    body_pose, body_velocity, body_mooring_force
+        With bodies (n_t, n_bodies, 6), dofs :data:`~moorline.datasets.BODY_DOFS`.
+    status
+        ``completed``, ``failed`` or ``interrupted`` (set from ``success`` when not given); a
+        failed or interrupted run holds the records up to its last completed step.
     """
 
     success: bool
@@ -214,6 +237,10 @@ class DynamicResult:
     body_velocity: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
     body_mooring_force: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
     wave_elevation: FloatArray = field(default_factory=lambda: np.zeros(0))
+    status: str = ""
+
+    def __post_init__(self) -> None:
+        _settle_status(self, Status.COMPLETED)
 
     def body_history(self, body: str) -> FloatArray:
         """Pose history of a body (n_t, 6): position and rotation vector."""
@@ -228,51 +255,36 @@ class DynamicResult:
         """Position history of a named point (n_t, 3)."""
         return self.positions[:, self.mesh.point_node[self.mesh.point_index(point)]]
 
+    def records(self) -> dict[str, FloatArray]:
+        """The output records stacked over time, keyed as the solver's records (the input of
+        :data:`moorline.datasets.DYNAMIC_VARIABLES`)."""
+        n_t = len(self.time)
+        elevation = (self.wave_elevation if len(self.wave_elevation) == n_t
+                     else np.zeros(n_t))
+        return {"position": self.positions, "velocity": self.velocities,
+                "tension": self.tension, "end_force": self.end_force,
+                "wave_elevation": elevation, "body_pose": self.body_pose,
+                "body_velocity": self.body_velocity,
+                "body_mooring_force": self.body_mooring_force}
+
+    def dataset_attrs(self) -> dict[str, Any]:
+        """The attributes of the dynamics group (:func:`moorline.datasets.group_attrs` plus
+        ``complete`` and ``seabed_z``): also what the stream closes its group with."""
+        return group_attrs("dynamics", case=self.case, units=self.units, success=self.success,
+                           status=self.status, message=self.message, counters=self.counters,
+                           settings=self.settings,
+                           extra={"complete": int(self.success),
+                                  "seabed_z": float(self.mesh.seabed_z)})
+
     def to_xarray(self) -> xr.Dataset:
         """The histories as an :class:`xarray.Dataset` (dims time, node, element, xyz, line,
-        end, point).
+        end, point; body, dof with bodies).
 
         The same variables, coordinates and attributes as the ``dynamics`` group that
-        :class:`~moorline.io.stream.HistoryWriter` streams, plus ``end_tension`` and
-        ``fairlead_tension`` (end B).
+        :class:`~moorline.io.stream.HistoryWriter` streams: both come from
+        :data:`moorline.datasets.DYNAMIC_VARIABLES`.
         """
-        m = self.mesh
-        end_tension = np.linalg.norm(self.end_force, axis=-1)
-        ds = xr.Dataset(
-            {
-                "position": (("time", "node", "xyz"), self.positions),
-                "velocity": (("time", "node", "xyz"), self.velocities),
-                "tension": (("time", "element"), self.tension),
-                "end_force": (("time", "line", "end", "xyz"), self.end_force),
-                "end_tension": (("time", "line", "end"), end_tension),
-                "fairlead_tension": (("time", "line"), end_tension[:, :, 1]),
-                "wave_elevation": (("time",), self.wave_elevation if len(self.wave_elevation)
-                                   == len(self.time) else np.zeros(len(self.time))),
-                "element_nodes": (("element", "pair"), m.elements),
-                "point_node": (("point",), np.asarray(m.point_node, dtype=np.int64)),
-            },
-            coords={
-                "time": self.time, "xyz": ["x", "y", "z"], "end": ["a", "b"],
-                "line": list(m.line_names), "point": list(m.point_names),
-                "point_kind": (("point",), list(m.point_kind)),
-                "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
-            },
-            attrs={
-                "analysis": "dynamics", "case": self.case, "units": self.units,
-                "moorline_version": __version__, "success": int(self.success),
-                "complete": int(self.success), "message": self.message,
-                "seabed_z": float(m.seabed_z),
-                **{k: v for k, v in self.counters.items()},
-                **{f"setting_{k}": v for k, v in self.settings.items()},
-            },
-        )
-        if m.body_names:
-            ds["body_pose"] = (("time", "body", "dof"), self.body_pose)
-            ds["body_velocity"] = (("time", "body", "dof"), self.body_velocity)
-            ds["body_mooring_force"] = (("time", "body", "dof"), self.body_mooring_force)
-            ds = ds.assign_coords(body=list(m.body_names),
-                                  dof=["x", "y", "z", "rx", "ry", "rz"])
-        return ds
+        return dynamics_dataset(self.mesh, self.time, self.records(), self.dataset_attrs())
 
 
 @dataclass(frozen=True)
@@ -308,6 +320,10 @@ class ModalResult:
         Number of free degrees of freedom.
     settings
         The modal settings used (``n_modes``, ``band``, ``mass``, ``added_mass``).
+    status
+        ``converged`` or ``failed`` (set from ``success`` when not given).
+    counters
+        Solver counters besides ``n_dofs``.
     """
 
     success: bool
@@ -325,6 +341,11 @@ class ModalResult:
     solver: str = ""
     n_dofs: int = 0
     settings: dict = field(default_factory=dict)
+    status: str = ""
+    counters: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        _settle_status(self, Status.CONVERGED)
 
     @property
     def n_modes(self) -> int:
@@ -355,41 +376,290 @@ class ModalResult:
         displacements (for the plots: ``element_nodes`` and ``point_position`` too).
         """
         m = self.mesh
-        settings = {f"setting_{k}": (v if v is not None else "none") if not isinstance(v, bool)
-                    else int(v) for k, v in self.settings.items() if k != "band"}
-        band = self.settings.get("band")
-        if band is not None:
-            settings.update(setting_band_low=float(band[0]), setting_band_high=float(band[1]))
-        ds = xr.Dataset(
-            {
-                "omega": (("mode",), self.omega),
-                "period": (("mode",), self.period),
-                "frequency_hz": (("mode",), self.frequency_hz),
-                "dominant": (("mode",), np.array(self.dominant, dtype=str)),
-                "participation": (("mode", "xyz"), self.participation),
-                "effective_mass": (("mode", "xyz"), self.effective_mass),
-                "mode_shape": (("mode", "node", "xyz"), self.mode_shapes),
-                "position": (("node", "xyz"), self.positions),
-                "tension": (("element",), self.tension),
-                "element_nodes": (("element", "pair"), m.elements),
-                "point_position": (("point", "xyz"),
-                                   self.positions[m.point_node].reshape(-1, 3)),
-            },
-            coords={
-                "mode": np.arange(1, self.n_modes + 1), "xyz": ["x", "y", "z"],
-                "point": list(m.point_names), "point_kind": (("point",), list(m.point_kind)),
-                "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
-            },
-            attrs={
-                "analysis": "modal", "case": self.case, "units": self.units,
-                "moorline_version": __version__, "seabed_z": float(m.seabed_z),
-                "converged": int(self.success), "message": self.message,
-                "solver": self.solver, "n_dofs": int(self.n_dofs), **settings,
-            },
-        )
-        ds["omega"].attrs["units"] = "rad/time"
-        ds["period"].attrs["units"] = "time"
-        ds["frequency_hz"].attrs["units"] = "1/time"
-        ds["effective_mass"].attrs["units"] = "mass"
+        data = {
+            "omega": (("mode",), self.omega),
+            "period": (("mode",), self.period),
+            "frequency_hz": (("mode",), self.frequency_hz),
+            "dominant": (("mode",), np.array(self.dominant, dtype=str)),
+            "participation": (("mode", "xyz"), self.participation),
+            "effective_mass": (("mode", "xyz"), self.effective_mass),
+            "mode_shape": (("mode", "node", "xyz"), self.mode_shapes),
+            "position": (("node", "xyz"), self.positions),
+            "tension": (("element",), self.tension),
+            "element_nodes": (("element", "pair"), m.elements),
+            "point_position": (("point", "xyz"), self.positions[m.point_node].reshape(-1, 3)),
+        }
+        coords = {
+            "mode": np.arange(1, self.n_modes + 1), "xyz": ["x", "y", "z"],
+            "point": list(m.point_names), "point_kind": (("point",), list(m.point_kind)),
+            "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
+        }
+        attrs = group_attrs("modal", case=self.case, units=self.units, success=self.success,
+                            status=self.status, message=self.message,
+                            counters={"n_dofs": int(self.n_dofs), **self.counters},
+                            settings=self.settings,
+                            extra={"converged": int(self.success), "solver": self.solver,
+                                   "seabed_z": float(m.seabed_z)})
+        ds = build_dataset("modal", data, coords, attrs)
         ds["mode_shape"].attrs["normalization"] = "phi^T M phi = 1"
         return ds
+
+
+@dataclass(frozen=True)
+class StrummingResult:
+    """Histories of a strumming analysis (:func:`moorline.solvers.strumming.solve_strumming`),
+    at the in-line steps.
+
+    Attributes
+    ----------
+    time
+        (n_t,).
+    lift_coefficient, lift_rate
+        ``C_L`` and ``C_L'`` per element (n_t, n_elements).
+    modal_amplitude, modal_velocity
+        ``z_n``, ``z_n'`` of the current modes (n_t, n_modes).
+    displacement, velocity
+        Strumming displacement and velocity of the nodes about the in-line state
+        (n_t, n_nodes, 3), eq. 3.2.b.10.
+    strouhal_frequency, normal_speed
+        ``w_s`` and ``|V_NR|`` per element (n_t, n_elements), at the start of each in-line
+        step (the last row repeats the one before).
+    lift_direction
+        Unit lift direction per element at the start (n_elements, 3).
+    omega, mode_shapes, damping_ratio
+        The last modes: frequencies (n_modes,), mass-normalized shapes (n_modes, n_nodes,
+        3), eq. 3.2.b.8 damping ratios (n_modes,).
+    omega_history, refresh_times
+        Frequencies at every refresh (n_refresh, n_modes) and when.
+    parameters
+        Wake parameters per element at the start (:class:`~moorline.physics.wake.
+        WakeParameters`).
+    mesh, settings, counters
+        What was solved and what it took.
+    success, status, message, case, units
+        How it ended (``completed``/``failed``) and for output.
+    """
+
+    time: FloatArray
+    lift_coefficient: FloatArray
+    lift_rate: FloatArray
+    modal_amplitude: FloatArray
+    modal_velocity: FloatArray
+    displacement: FloatArray
+    velocity: FloatArray
+    strouhal_frequency: FloatArray
+    normal_speed: FloatArray
+    lift_direction: FloatArray
+    omega: FloatArray
+    mode_shapes: FloatArray
+    damping_ratio: FloatArray
+    omega_history: FloatArray
+    refresh_times: FloatArray
+    parameters: Any
+    mesh: Mesh
+    settings: Any
+    counters: dict = field(default_factory=dict)
+    success: bool = True
+    status: str = ""
+    message: str = ""
+    case: str = ""
+    units: str = "SI"
+
+    def __post_init__(self) -> None:
+        _settle_status(self, Status.COMPLETED)
+
+    def node_displacement(self, node: int) -> FloatArray:
+        """Strumming displacement history of one node (n_t, 3)."""
+        return self.displacement[:, node]
+
+    def to_xarray(self) -> xr.Dataset:
+        """The histories as an :class:`xarray.Dataset`.
+
+        Returns
+        -------
+        xarray.Dataset
+            ``lift_coefficient`` (time, element), ``modal_amplitude`` (time, mode),
+            ``displacement`` (time, node, xyz: the transverse strumming displacement),
+            ``strouhal_frequency`` and ``normal_speed`` (time, element), ``omega`` and
+            ``damping_ratio`` (mode, numbered from 1); attributes ``CL0``, ``strouhal``.
+        """
+        data = {"lift_coefficient": (("time", "element"), self.lift_coefficient),
+                "modal_amplitude": (("time", "mode"), self.modal_amplitude),
+                "displacement": (("time", "node", "xyz"), self.displacement),
+                "strouhal_frequency": (("time", "element"), self.strouhal_frequency),
+                "normal_speed": (("time", "element"), self.normal_speed),
+                "omega": (("mode",), self.omega),
+                "damping_ratio": (("mode",), self.damping_ratio)}
+        coords = {"time": self.time, "element": np.arange(self.mesh.n_elements),
+                  "node": np.arange(self.mesh.n_nodes),
+                  "mode": np.arange(1, len(self.omega) + 1), "xyz": ["x", "y", "z"]}
+        attrs = group_attrs("strumming", case=self.case, units=self.units,
+                            success=self.success, status=self.status, message=self.message,
+                            counters=self.counters, settings=self.settings,
+                            extra={"CL0": self.settings.CL0,
+                                   "strouhal": self.settings.strouhal})
+        return build_dataset("strumming", data, coords, attrs)
+
+
+@dataclass(frozen=True)
+class StochasticResult:
+    """Spectra, standard deviations and time series of the stochastic response
+    (:func:`moorline.solvers.stochastic.solve_stochastic`).
+
+    Attributes
+    ----------
+    omega, wave_spectrum, wave_amplitude
+        Frequencies (n_w,), ``S(omega)`` and the realization's complex amplitudes ``A_m``.
+    displacement_transfer
+        Node displacement per unit wave amplitude (n_w, n_nodes, 3), complex.
+    tension_transfer
+        Element tension per unit wave amplitude (n_w, n_elements), complex.
+    displacement_std, tension_std
+        Standard deviations (n_nodes, 3) and (n_elements,).
+    sigma_normal, sigma_tangential
+        Converged standard deviations of the relative velocity per element.
+    iterations, history
+        Linearization iterations and the largest relative change of ``sigma`` per iteration.
+    time, elevation, displacement, tension
+        Time series over one record: (n_t,), (n_t,) at the origin, (n_t, n_nodes, 3),
+        (n_t, n_elements).
+    body_names, body_transfer, body_std, body_motion
+        Free bodies: motion (:data:`~moorline.datasets.BODY_DOFS` about the body origin) per
+        unit wave amplitude (n_w, n_bodies, 6), standard deviations (n_bodies, 6) and time
+        series (n_t, n_bodies, 6).
+    success, status, message, case, units
+        How it ended (``converged``; ``failed`` when the linearization did not converge: the
+        last iterate) and for output.
+    """
+
+    omega: FloatArray
+    wave_spectrum: FloatArray
+    wave_amplitude: ComplexArray
+    displacement_transfer: ComplexArray
+    tension_transfer: ComplexArray
+    displacement_std: FloatArray
+    tension_std: FloatArray
+    sigma_normal: FloatArray
+    sigma_tangential: FloatArray
+    iterations: int
+    history: list[float]
+    time: FloatArray
+    elevation: FloatArray
+    displacement: FloatArray
+    tension: FloatArray
+    mesh: Mesh
+    settings: Any
+    d_omega: float
+    body_names: tuple[str, ...] = ()
+    body_transfer: ComplexArray = field(default_factory=lambda: np.zeros((0, 0, 6), complex))
+    body_std: FloatArray = field(default_factory=lambda: np.zeros((0, 6)))
+    body_motion: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
+    counters: dict = field(default_factory=dict)
+    success: bool = True
+    status: str = ""
+    message: str = ""
+    case: str = ""
+    units: str = "SI"
+
+    def __post_init__(self) -> None:
+        _settle_status(self, Status.CONVERGED)
+
+    def response_spectrum(self, transfer: ComplexArray) -> FloatArray:
+        """``|H|^2 S(omega)`` of a transfer function (n_w, ...)."""
+        shape = (-1,) + (1,) * (np.ndim(transfer) - 1)
+        return np.abs(transfer) ** 2 * self.wave_spectrum.reshape(shape)
+
+    def to_xarray(self) -> xr.Dataset:
+        """Spectra (dim ``omega``), standard deviations and time series (dim ``time``)."""
+        data = {"wave_spectrum": (("omega",), self.wave_spectrum),
+                "displacement_spectrum": (("omega", "node", "xyz"),
+                                          self.response_spectrum(self.displacement_transfer)),
+                "tension_spectrum": (("omega", "element"),
+                                     self.response_spectrum(self.tension_transfer)),
+                "displacement_std": (("node", "xyz"), self.displacement_std),
+                "tension_std": (("element",), self.tension_std),
+                "sigma_normal": (("element",), self.sigma_normal),
+                "sigma_tangential": (("element",), self.sigma_tangential),
+                "elevation": (("time",), self.elevation),
+                "displacement": (("time", "node", "xyz"), self.displacement),
+                "tension": (("time", "element"), self.tension)}
+        coords: dict[str, Any] = {
+            "omega": self.omega, "time": self.time, "node": np.arange(self.mesh.n_nodes),
+            "element": np.arange(self.mesh.n_elements), "xyz": ["x", "y", "z"]}
+        if self.body_names:
+            data.update(body_spectrum=(("omega", "body", "dof"),
+                                       self.response_spectrum(self.body_transfer)),
+                        body_std=(("body", "dof"), self.body_std),
+                        body_motion=(("time", "body", "dof"), self.body_motion))
+            coords.update(body=list(self.body_names), dof=list(BODY_DOFS))
+        attrs = group_attrs("stochastic", case=self.case, units=self.units,
+                            success=self.success, status=self.status, message=self.message,
+                            counters={"iterations": self.iterations, **self.counters},
+                            settings=self.settings,
+                            extra={"method": self.settings.method, "d_omega": self.d_omega})
+        return build_dataset("stochastic", data, coords, attrs)
+
+
+@dataclass(frozen=True)
+class HarmonicResult:
+    """The periodic response by harmonic balance (:func:`moorline.solvers.harmonic.
+    solve_harmonic`).
+
+    Attributes
+    ----------
+    period, omega
+        Period and fundamental circular frequency.
+    coefficients
+        Node position coefficients (2 n + 1, n_nodes, 3): the mean, then ``A_k``, ``B_k``.
+    time, positions, tension
+        One period of the response: (n_t,), (n_t, n_nodes, 3), (n_t, n_elements).
+    static_positions
+        The static state linearized from (n_nodes, 3).
+    iterations, residual_history
+        Newton iterations and the largest harmonic residual after each.
+    success, status, message, case, units
+        How it ended (``converged`` or ``failed``) and for output.
+    """
+
+    period: float
+    omega: float
+    coefficients: FloatArray
+    time: FloatArray
+    positions: FloatArray
+    tension: FloatArray
+    static_positions: FloatArray
+    iterations: int
+    residual_history: list[float]
+    mesh: Mesh
+    settings: Any
+    counters: dict = field(default_factory=dict)
+    success: bool = True
+    status: str = ""
+    message: str = ""
+    case: str = ""
+    units: str = "SI"
+
+    def __post_init__(self) -> None:
+        _settle_status(self, Status.CONVERGED)
+
+    def amplitude(self, harmonic: int = 1) -> FloatArray:
+        """Amplitude ``sqrt(A_k^2 + B_k^2)`` of harmonic ``k`` per node and axis."""
+        a, b = self.coefficients[2 * harmonic - 1], self.coefficients[2 * harmonic]
+        return np.sqrt(a * a + b * b)
+
+    def to_xarray(self) -> xr.Dataset:
+        """Coefficients (dim ``term``), one period of positions and tensions (dim ``time``)."""
+        n = self.settings.harmonics
+        terms = ["mean"] + [f"{p}{k}" for k in range(1, n + 1) for p in ("cos", "sin")]
+        data = {"coefficients": (("term", "node", "xyz"), self.coefficients),
+                "position": (("time", "node", "xyz"), self.positions),
+                "tension": (("time", "element"), self.tension),
+                "static_position": (("node", "xyz"), self.static_positions)}
+        coords = {"term": terms, "time": self.time, "node": np.arange(self.mesh.n_nodes),
+                  "element": np.arange(self.mesh.n_elements), "xyz": ["x", "y", "z"]}
+        attrs = group_attrs("harmonic", case=self.case, units=self.units,
+                            success=self.success, status=self.status, message=self.message,
+                            counters={"iterations": self.iterations, **self.counters},
+                            settings=self.settings,
+                            extra={"period": self.period, "harmonics": n})
+        return build_dataset("harmonic", data, coords, attrs)

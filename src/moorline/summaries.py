@@ -8,7 +8,14 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["dynamics_summary", "modal_summary", "statics_summary"]
+__all__ = ["dynamics_summary", "harmonic_summary", "history_summary", "modal_summary",
+           "statics_summary", "stochastic_summary", "strumming_summary"]
+
+
+def _outcome(result: Any) -> dict[str, Any]:
+    """``converged``, ``status`` and ``message`` of a result: the head of every summary."""
+    return {"converged": bool(result.success), "status": str(result.status),
+            "message": str(result.message)}
 
 
 def statics_summary(result: Any, with_stiffness: bool = True) -> dict[str, Any]:
@@ -53,9 +60,9 @@ def statics_summary(result: Any, with_stiffness: bool = True) -> dict[str, Any]:
             point["stiffness"] = np.asarray(stiffness.point_stiffness(result, name)).tolist()
         points[name] = point
     summary = {
-        "case": result.case, "converged": bool(result.success),
+        "case": result.case, **_outcome(result),
         "iterations": int(result.iterations), "units": result.units, "method": result.method,
-        "message": result.message, "lines": lines, "points": points,
+        "lines": lines, "points": points,
     }
     if mesh.body_names:
         summary["bodies"] = _bodies_summary(result, with_stiffness)
@@ -82,8 +89,15 @@ def _bodies_summary(result: Any, with_stiffness: bool) -> dict[str, Any]:
     return out
 
 
-def dynamics_summary(ds: Any, settings: Any, success: bool, message: str,
-                     counters: dict[str, int]) -> dict[str, Any]:
+def dynamics_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of a :class:`~moorline.results.DynamicResult` (see
+    :func:`history_summary`)."""
+    return history_summary(result.to_xarray(), result.settings, result.success,
+                           result.message, result.counters, result.status)
+
+
+def history_summary(ds: Any, settings: Any, success: bool, message: str,
+                    counters: dict[str, int], status: str = "") -> dict[str, Any]:
     """The ``--json`` object of a dynamics analysis, from its histories.
 
     Parameters
@@ -93,9 +107,9 @@ def dynamics_summary(ds: Any, settings: Any, success: bool, message: str,
         ``time``, ``end_force(time, line, end, xyz)``, ``position(time, node, xyz)``,
         ``point_node`` and the coordinate ``point_kind``.
     settings
-        The :class:`~moorline.model.DynamicsSettings`.
-    success, message
-        How the run ended.
+        The :class:`~moorline.model.DynamicsSettings` (or its fields as a dict).
+    success, message, status
+        How the run ended (``status`` default: ``completed`` or ``failed``).
     counters
         Solver counters (``steps``, ``iterations``, ``factorizations``, ``step_cuts``, ...);
         empty when the run failed.
@@ -103,7 +117,8 @@ def dynamics_summary(ds: Any, settings: Any, success: bool, message: str,
     Returns
     -------
     dict
-        ``{"converged", "message", "duration", "dt", "records", "time_start", "time_end",
+        ``{"converged", "status", "message", "duration", "dt", "records", "time_start",
+        "time_end",
         "lines": {id: {"end_a": {"max", "min", "mean", "std"}, "end_b": ...}},
         "points": {id: {"kind", "min": [x, y, z], "max": [x, y, z]}}, "counters"}``;
         statistics over the output records, in the case's units.
@@ -122,8 +137,10 @@ def dynamics_summary(ds: Any, settings: Any, success: bool, message: str,
         points[str(name)] = {"kind": str(kind),
                              "min": (path.min(axis=0) if len(path) else empty).tolist(),
                              "max": (path.max(axis=0) if len(path) else empty).tolist()}
-    return {"converged": bool(success), "message": message,
-            "duration": float(settings.duration), "dt": float(settings.dt),
+    fields = settings if isinstance(settings, dict) else vars(settings)
+    return {"converged": bool(success),
+            "status": status or ("completed" if success else "failed"), "message": message,
+            "duration": float(fields["duration"]), "dt": float(fields["dt"]),
             "records": int(len(time)),
             "time_start": float(time[0]) if len(time) else None,
             "time_end": float(time[-1]) if len(time) else None,
@@ -139,9 +156,37 @@ def _stats(values: np.ndarray) -> dict[str, float]:
 
 def modal_summary(result: Any) -> dict[str, Any]:
     """The ``--json`` object of a modal result (:class:`~moorline.results.ModalResult`):
-    ``{"case", "modes": [{"index", "omega", "period", "dominant"}]}``, ``index`` numbering
-    the modes from 1 in increasing frequency, ``omega`` in rad/s, ``period`` in s."""
+    ``{"case", "converged", "status", "message", "modes": [{"index", "omega", "period",
+    "dominant"}]}``, ``index`` numbering the modes from 1 in increasing frequency (as the
+    ``mode`` coordinate of the dataset), ``omega`` in rad/s, ``period`` in s."""
     modes = [{"index": k + 1, "omega": float(result.omega[k]),
               "period": float(result.period[k]), "dominant": str(result.dominant[k])}
              for k in range(result.n_modes)]
-    return {"case": result.case, "modes": modes}
+    return {"case": result.case, **_outcome(result), "modes": modes}
+
+
+def strumming_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of a :class:`~moorline.results.StrummingResult`: largest lift
+    coefficient and strumming displacement, the last modes' frequencies [rad/s]."""
+    return {**_outcome(result),
+            "max_lift_coefficient": float(np.abs(result.lift_coefficient).max(initial=0.0)),
+            "max_displacement": float(np.abs(result.displacement).max(initial=0.0)),
+            "modes": [float(w) for w in result.omega]}
+
+
+def stochastic_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of a :class:`~moorline.results.StochasticResult`: linearization
+    iterations, largest standard deviations, the tension standard deviation per element."""
+    return {**_outcome(result), "iterations": int(result.iterations),
+            "max_displacement_std": float(result.displacement_std.max(initial=0.0)),
+            "max_tension_std": float(result.tension_std.max(initial=0.0)),
+            "tension_std": [float(v) for v in result.tension_std]}
+
+
+def harmonic_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of a :class:`~moorline.results.HarmonicResult`: Newton
+    iterations, largest first-harmonic amplitude, tension range per element."""
+    return {**_outcome(result), "iterations": int(result.iterations),
+            "max_first_harmonic_amplitude": float(result.amplitude(1).max(initial=0.0)),
+            "tension_min": [float(v) for v in result.tension.min(axis=0)],
+            "tension_max": [float(v) for v in result.tension.max(axis=0)]}

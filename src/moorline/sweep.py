@@ -36,9 +36,10 @@ Statics and dynamics
 Quantities
     ``"<statistic> <signal>"``. Statistics over the steady window: ``amplitude`` (half the
     peak-to-peak), ``mean``, ``max``, ``min``; ``static``: the value in the static state.
-    Signals: ``<body>.<dof>`` (dof ``x y z rx ry rz``: position and rotation vector of a
-    body), ``<point>.<x|y|z>``, ``tension`` (largest element tension at each time),
-    ``tension <line>`` (largest in that line), ``fairlead <line>`` (tension at end b).
+    Signals: ``<body>.<dof>`` (dof ``surge sway heave roll pitch yaw``: position and
+    rotation vector of a body; the older ``x y z rx ry rz`` are the same),
+    ``<point>.<x|y|z>``, ``tension`` (largest element tension at each time), ``tension <line>``
+    (largest in that line), ``fairlead <line>`` (tension at end b).
 
 The case loop is separable: :func:`study_cases` lists the parameter sets,
 :func:`run_one` runs one (a pure function of the study and the parameters, returning a
@@ -67,13 +68,16 @@ import numpy as np
 import xarray as xr
 import yaml
 
+from .datasets import BODY_DOFS as _BODY_DOFS
 from .errors import CaseError, MoorlineError
 
 logger = logging.getLogger(__name__)
 
 Statistic = Literal["amplitude", "mean", "max", "min", "static"]
 STATISTICS: tuple[str, ...] = ("amplitude", "mean", "max", "min", "static")
-BODY_DOFS = ("x", "y", "z", "rx", "ry", "rz")
+BODY_DOFS = _BODY_DOFS
+#: Older names of the body dofs in study files (position and rotation-vector components).
+DOF_ALIASES = dict(zip(("x", "y", "z", "rx", "ry", "rz"), _BODY_DOFS, strict=True))
 TABLE_CSV, TABLE_NC, TRENDS_PNG = "table.csv", "table.nc", "trends.png"
 #: How long to wait for a Dask scheduler to answer.
 SCHEDULER_TIMEOUT = "20s"
@@ -94,7 +98,7 @@ class Quantity:
         if self.signal in ("tension", "fairlead"):
             return "N"
         dof = self.target.rsplit(".", 1)[-1]
-        return "rad" if dof in ("rx", "ry", "rz") else "m"
+        return "rad" if DOF_ALIASES.get(dof, dof) in BODY_DOFS[3:] else "m"
 
 
 @dataclass(frozen=True)
@@ -253,10 +257,9 @@ def _value(value: Any, fail: Callable[..., CaseError], key: str) -> Any:
 
 
 def _check_fields(values: Mapping[str, Any], key: str, fail: Callable[..., CaseError]) -> None:
-    from .model import DynamicsSettings, StaticsSettings
+    from .analyses import KINDS
 
-    cls = StaticsSettings if key == "statics" else DynamicsSettings
-    names = {f.name for f in dataclasses.fields(cls)} - {"kind"}
+    names = {f.name for f in dataclasses.fields(KINDS[key].settings)} - {"kind"}
     unknown = set(values) - names
     if unknown:
         raise fail(f"unknown setting(s) {', '.join(sorted(unknown))}", key)
@@ -342,9 +345,7 @@ def _evaluate(study: Study, params: Mapping[str, Any]) -> dict[str, float]:
 
     system, static = build(study, params)
     if static is None:
-        settings = next((a for a in system.analyses if isinstance(a, StaticsSettings)),
-                        StaticsSettings())
-        settings = dataclasses.replace(settings, **study.statics)
+        settings = dataclasses.replace(system.first(StaticsSettings), **study.statics)
         static = solve_statics(system, settings)
         if not static.success:
             raise MoorlineError(f"statics did not converge: {static.message}")
@@ -354,6 +355,8 @@ def _evaluate(study: Study, params: Mapping[str, Any]) -> dict[str, float]:
         settings_d = DynamicsSettings(**fields)
         every = float(study.dynamics.get("output_every", settings_d.dt))
         result = simulate(system, settings_d, initial=static, output_every=every)
+        if not result.success:
+            raise MoorlineError(f"dynamics failed: {result.message}")
     return {q.name: gather(q, static, result, study.period, study.periods)
             for q in study.quantities}
 
@@ -484,6 +487,8 @@ def _static_value(q: Quantity, static: Any) -> float:
 
 
 def _dof(q: Quantity, dof: str, allowed: tuple[str, ...]) -> int:
+    if allowed == BODY_DOFS:
+        dof = DOF_ALIASES.get(dof, dof)
     if dof not in allowed:
         raise CaseError(f"{q.target!r}: component {dof!r} not one of {', '.join(allowed)}",
                         None, f"outputs.quantities.{q.name}")

@@ -16,26 +16,21 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from pydantic import BaseModel, ValidationError
+from pydantic import ValidationError
 
+from moorline.analyses import KINDS
 from moorline.errors import CaseError
 from moorline.model import (
     Body,
     Current,
-    DynamicsSettings,
     Environment,
-    HarmonicSettings,
     Hydrostatics,
     Line,
     LineType,
-    ModalSettings,
     Motion,
     OutputSettings,
     Point,
     Seabed,
-    StaticsSettings,
-    StochasticSettings,
-    StrummingAnalysis,
     System,
     WaveExcitation,
     Waves,
@@ -43,15 +38,11 @@ from moorline.model import (
 
 from .schema import (
     CaseSpec,
-    DynamicsSpec,
-    HarmonicSpec,
     LineSpec,
-    ModalSpec,
     MotionSpec,
     PointSpec,
     StaticsSpec,
     StochasticSpec,
-    StrummingSpec,
     describe_errors,
 )
 from .units import default_value
@@ -210,6 +201,9 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
         if env.current.headings is not None and len(env.current.headings) != n:
             fail(f"headings must have {n} entries like z_levels", "environment.current.headings")
     for k, analysis in enumerate(spec.analyses or ()):
+        if isinstance(analysis, StaticsSpec) and analysis.current_drag and spec.bodies:
+            fail("statics with the current's drag is not supported yet for systems with "
+                 "bodies (remove current_drag or the bodies)", f"analyses[{k}].current_drag")
         if isinstance(analysis, StochasticSpec):
             if env.waves.kind != "random":
                 fail("a stochastic analysis needs a random sea (environment.waves kind: "
@@ -423,9 +417,9 @@ def _build(spec: CaseSpec, source: str | None) -> System:
     lines = {name: _line(name, line) for name, line in spec.lines.items()}
     bodies = {name: _body(name, b, source) for name, b in (spec.bodies or {}).items()}
     if spec.analyses is None:
-        analyses: tuple[Any, ...] = (_statics(StaticsSpec(kind="statics"), units),)
+        analyses: tuple[Any, ...] = (_settings(StaticsSpec(kind="statics"), units),)
     else:
-        analyses = tuple(_ANALYSES[type(a)](a, units) for a in spec.analyses)
+        analyses = tuple(_settings(a, units) for a in spec.analyses)
     return System(
         name=spec.name,
         units=units,
@@ -489,25 +483,16 @@ def _line(name: str, line: LineSpec) -> Line:
     )
 
 
-def _statics(spec: StaticsSpec, units: str) -> StaticsSettings:
-    values = spec.model_dump()
-    if values["damping"] is None:
-        values["damping"] = default_value("relaxation_damping", units)  # type: ignore[arg-type]
-    if values["pseudo_dt"] is None:
-        values["pseudo_dt"] = default_value("pseudo_dt", units)  # type: ignore[arg-type]
-    return StaticsSettings(**values)
-
-
-def _dynamics(spec: DynamicsSpec, units: str) -> DynamicsSettings:
+def _settings(spec: Any, units: str) -> Any:
+    """The settings object of an ``analyses[i]`` spec (:data:`moorline.analyses.KINDS`):
+    unit-dependent defaults filled in, lists as tuples."""
+    kind = KINDS[spec.kind]
     values = spec.model_dump(warnings=False)
-    values["rayleigh_frequencies"] = tuple(values["rayleigh_frequencies"])
-    return DynamicsSettings(**values)
-
-
-def _modal(spec: ModalSpec, units: str) -> ModalSettings:
-    values = spec.model_dump()
-    values["band"] = tuple(values["band"]) if values["band"] is not None else None
-    return ModalSettings(**values)
+    for key, default in kind.unit_defaults.items():
+        if values[key] is None:
+            values[key] = default_value(default, units)  # type: ignore[arg-type]
+    return kind.settings(**{k: tuple(v) if isinstance(v, list) else v
+                            for k, v in values.items()})
 
 
 def _motion(spec: MotionSpec | None, source: str | None, field: str) -> Motion | None:
@@ -554,25 +539,3 @@ def _header_rows(path: Path) -> int:
                     return 1
                 return 0
     return 0
-
-
-def _strumming(spec: StrummingSpec, units: str) -> StrummingAnalysis:
-    values = spec.model_dump()
-    if values["viscosity"] is None:
-        values["viscosity"] = default_value("viscosity", units)
-    values["held_body_dofs"] = tuple(values["held_body_dofs"])
-    return StrummingAnalysis(**values)
-
-
-def _stochastic(spec: StochasticSpec, units: str) -> StochasticSettings:
-    return StochasticSettings(**spec.model_dump())
-
-
-def _harmonic(spec: HarmonicSpec, units: str) -> HarmonicSettings:
-    return HarmonicSettings(**spec.model_dump())
-
-
-_ANALYSES: dict[type[BaseModel], Callable[[Any, str], Any]] = {
-    StaticsSpec: _statics, DynamicsSpec: _dynamics, ModalSpec: _modal,
-    StrummingSpec: _strumming, StochasticSpec: _stochastic, HarmonicSpec: _harmonic}
-"""How each analysis spec becomes its settings object; extend with new analysis kinds."""

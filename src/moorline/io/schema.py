@@ -28,11 +28,12 @@ from pydantic import (
 )
 from pydantic_core import PydanticCustomError
 
+from ..analyses import KINDS
 from .units import UnitParseError, to_system
 
-__all__ = ["AnalysisSpec", "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "LineSpec",
-           "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec", "describe_errors",
-           "quantity"]
+__all__ = ["AnalysisSpec", "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec",
+           "LineSpec", "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
+           "StochasticSpec", "StrummingSpec", "describe_errors", "quantity"]
 
 
 def _show(value: Any) -> str:
@@ -444,9 +445,9 @@ class HarmonicSpec(_Spec):
     output_points: PositiveInt = 64
 
 
-# Add new analyses as further members of this union.
-AnalysisSpec = Annotated[Union[StaticsSpec, DynamicsSpec, ModalSpec,  # noqa: UP007
-                               StrummingSpec, StochasticSpec, HarmonicSpec],
+# ``analyses[i]``: one model per row of the table of analysis kinds (moorline.analyses.KINDS,
+# which names each kind's model in this module).
+AnalysisSpec = Annotated[Union[tuple(globals()[k.spec] for k in KINDS.values())],  # noqa: UP007
                          Field(discriminator="kind")]
 
 

@@ -5,7 +5,8 @@ of the other analyses) or into the root group of a file of their own. The group 
 unlimited ``time`` dimension; each output record is appended and the file is synced every few
 records. A record is written with SIGINT held back, so Ctrl-C never leaves a half-written
 record. :class:`HistoryWriter` is a context manager: leaving it (normally, by an exception or
-by Ctrl-C) closes the file with its final attributes: ``complete`` (1 or 0) and ``status``.
+by Ctrl-C) closes the file with its final attributes: ``success`` and ``complete`` (1 or 0),
+``status`` (``completed``, ``failed``, ``interrupted``) and ``message``.
 """
 
 from __future__ import annotations
@@ -22,22 +23,20 @@ import netCDF4
 import numpy as np
 from numpy.typing import NDArray
 
+from ..datasets import Status, dynamics_dataset, record_variables
 from ..mesh import Mesh
 
 FloatArray = NDArray[np.float64]
 
-#: Variables of a dynamic record: name -> (dimensions after time, units key)
-RECORD_VARIABLES: dict[str, tuple[tuple[str, ...], str]] = {
-    "position": (("node", "xyz"), "length"),
-    "velocity": (("node", "xyz"), "velocity"),
-    "tension": (("element",), "force"),
-    "end_force": (("line", "end", "xyz"), "force"),
-    "wave_elevation": ((), "length"),
-}
-
 
 class HistoryWriter:
     """Append dynamic records to a NetCDF file, or to a group of one.
+
+    The group is created from the same dataset builder and variable list as
+    :meth:`moorline.results.DynamicResult.to_xarray`
+    (:func:`moorline.datasets.dynamics_dataset`, :data:`~moorline.datasets.DYNAMIC_VARIABLES`):
+    the same variables, dimensions, coordinates, ``units`` and ``long_name``, with an unlimited
+    ``time`` dimension that each record extends.
 
     Parameters
     ----------
@@ -48,9 +47,11 @@ class HistoryWriter:
     mesh
         The mesh (sets the dimensions and coordinates).
     attrs
-        Attributes of the group written at creation (case, units, settings...).
+        Attributes of the group written at creation
+        (:func:`moorline.datasets.group_attrs`: case, units, settings...); ``success`` 0,
+        ``complete`` 0 and ``status`` ``running`` until :meth:`close`.
     units
-        Unit names per units key (``length``, ``velocity``, ``force``, ``time``).
+        The unit system (``SI`` or ``US``); default ``attrs["units"]``.
     sync_every
         Flush to disk every this many records.
     group
@@ -63,38 +64,34 @@ class HistoryWriter:
     """
 
     def __init__(self, path: str | Path, mesh: Mesh, attrs: dict[str, Any],
-                 units: dict[str, str], sync_every: int = 20, group: str | None = None) -> None:
+                 units: str | None = None, sync_every: int = 20,
+                 group: str | None = None) -> None:
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.group = group
         self.sync_every = sync_every
         self.count = 0
         self.last_time = float("nan")
+        self.variables = record_variables(mesh)
         append = group is not None and self.path.exists()
-        self.root = netCDF4.Dataset(self.path, "a" if append else "w", format="NETCDF4")
-        try:
-            if group is not None and group in self.root.groups:
-                raise ValueError(f"{self.path} already has a group {group!r}")
-            ds = self.root if group is None else self.root.createGroup(group)
-            _define(ds, mesh, units)
-            ds.setncatts({k: _attr(v) for k, v in attrs.items()})
-            ds.setncattr("complete", 0)
-            ds.setncattr("status", "running")
-            self.root.sync()
-        except BaseException:
-            self.root.close()
-            raise
-        self.ds = ds
+        if append:
+            with netCDF4.Dataset(self.path, "r") as existing:
+                if group in existing.groups:
+                    raise ValueError(f"{self.path} already has a group {group!r}")
+        start = {**attrs, "units": units or attrs.get("units", "SI"), "success": 0,
+                 "complete": 0, "status": str(Status.RUNNING)}
+        skeleton = dynamics_dataset(mesh, np.zeros(0), {}, start)
+        skeleton.to_netcdf(self.path, mode="a" if append else "w", group=group,
+                           engine="netcdf4", unlimited_dims=["time"])
+        self.root = netCDF4.Dataset(self.path, "a")
+        self.ds = self.root if group is None else self.root.groups[group]
 
     def append(self, t: float, record: dict[str, FloatArray]) -> None:
         """Write one output record at time ``t`` (SIGINT is held back until it is whole)."""
         i = self.count
         with _sigint_deferred():
-            for name in RECORD_VARIABLES:
-                self.ds[name][i] = record[name]
-            for name in ("body_pose", "body_velocity", "body_mooring_force"):
-                if name in self.ds.variables:
-                    self.ds[name][i] = record[name]
+            for var in self.variables:
+                self.ds[var.name][i] = var.derive(record)
             self.ds["time"][i] = t
             self.count += 1
             self.last_time = float(t)
@@ -102,9 +99,10 @@ class HistoryWriter:
                 self.root.sync()
 
     def close(self, attrs: dict[str, Any] | None = None) -> None:
-        """Write final attributes of the group (default: complete) and close the file."""
+        """Write final attributes of the group (default: completed) and close the file."""
         if self.root.isopen():
-            final = {"complete": 1, "status": f"complete: {self.count} records"}
+            final = {"complete": 1, "success": 1, "status": str(Status.COMPLETED),
+                     "message": f"{self.count} records"}
             final.update(attrs or {})
             self.ds.setncatts({k: _attr(v) for k, v in final.items()})
             self.root.close()
@@ -117,54 +115,12 @@ class HistoryWriter:
         if exc_type is None:
             self.close()
             return
-        reason = "interrupted" if issubclass(exc_type, KeyboardInterrupt) else f"failed: {exc}"
+        interrupted = issubclass(exc_type, KeyboardInterrupt)
+        reason = "interrupted" if interrupted else f"failed: {exc}"
         when = f" at t = {self.last_time:.6g} s" if self.count else ""
-        self.close({"complete": 0,
-                    "status": f"{reason}; {self.count} records kept{when}"})
-
-
-def _define(ds: netCDF4.Dataset | netCDF4.Group, mesh: Mesh, units: dict[str, str]) -> None:
-    """Dimensions, record variables and coordinates of a history group."""
-    ds.createDimension("time", None)
-    for name, size in (("node", mesh.n_nodes), ("element", mesh.n_elements), ("xyz", 3),
-                       ("line", len(mesh.line_names)), ("end", 2),
-                       ("point", len(mesh.point_names)), ("pair", 2)):
-        ds.createDimension(name, size)
-    ds.createVariable("time", "f8", ("time",)).units = units.get("time", "s")
-    for name, (dims, key) in RECORD_VARIABLES.items():
-        var = ds.createVariable(name, "f8", ("time", *dims), zlib=False)
-        var.units = units.get(key, key)
-    if mesh.body_names:
-        ds.createDimension("body", len(mesh.body_names))
-        ds.createDimension("dof", 6)
-        var = ds.createVariable("body_pose", "f8", ("time", "body", "dof"), zlib=False)
-        var.units = f"{units.get('length', 'length')} (x, y, z), rad (rotation vector)"
-        var = ds.createVariable("body_velocity", "f8", ("time", "body", "dof"), zlib=False)
-        var.units = f"{units.get('velocity', 'velocity')}, rad/s"
-        var = ds.createVariable("body_mooring_force", "f8", ("time", "body", "dof"),
-                                zlib=False)
-        var.units = f"{units.get('force', 'force')}, moment about the body origin"
-        ds.createVariable("body", str, ("body",))[:] = np.array(mesh.body_names, dtype=object)
-        ds.createVariable("dof", str, ("dof",))[:] = np.array(
-            ["x", "y", "z", "rx", "ry", "rz"], dtype=object)
-    _coordinates(ds, mesh)
-
-
-def _coordinates(ds: netCDF4.Dataset | netCDF4.Group, mesh: Mesh) -> None:
-    def strings(name: str, dim: str, values: Any) -> None:
-        ds.createVariable(name, str, (dim,))[:] = np.array(list(values), dtype=object)
-
-    strings("xyz", "xyz", ["x", "y", "z"])
-    strings("end", "end", ["a", "b"])
-    strings("line", "line", mesh.line_names)
-    strings("point", "point", mesh.point_names)
-    strings("point_kind", "point", mesh.point_kind)
-    strings("element_line", "element", [mesh.line_names[i] for i in mesh.element_line])
-    ds.createVariable("element_nodes", "i8", ("element", "pair"))[:] = mesh.elements
-    ds.createVariable("point_node", "i8", ("point",))[:] = np.asarray(mesh.point_node)
-    # point_kind and element_line are coordinates, as in DynamicResult.to_xarray (CF: xarray
-    # reads a group attribute ``coordinates`` that way)
-    ds.setncattr("coordinates", "point_kind element_line")
+        status = Status.INTERRUPTED if interrupted else Status.FAILED
+        self.close({"complete": 0, "success": 0, "status": str(status),
+                    "message": f"{reason}; {self.count} records kept{when}"})
 
 
 @contextmanager

@@ -3,9 +3,10 @@
 A run writes one NetCDF-4 file, ``results.nc``, with one group per analysis (``statics``,
 ``dynamics``; numbered when a kind repeats: ``statics1``, ``statics2``). Its root group holds
 only attributes: ``case``, ``units``, ``moorline_version``, ``analyses`` (the group names in
-order), ``complete`` (1 when every analysis ran to its end) and ``status``. Static groups are
-written whole with xarray (:func:`write_group`); time histories are streamed into their group by
-:class:`moorline.io.stream.HistoryWriter`.
+order), ``complete`` (1 when every analysis ran to its end) and ``status``. Each group is a
+dataset of :func:`moorline.datasets.build_dataset` (the same attributes in every group, units
+and long_name on every variable): written whole with xarray (:func:`write_group`), or, for
+time histories, streamed by :class:`moorline.io.stream.HistoryWriter`.
 
 The summary is a plain dict (the object ``moorline statics --json`` prints). It is written
 twice: as JSON for scripts, and as a readable table (rendered with rich) for people.
@@ -230,11 +231,18 @@ def render_summary(summary: dict) -> list[RenderableType]:
 
 
 def _render_analysis(summary: dict, units: str) -> list[RenderableType]:
-    kind = summary.get("kind", "statics")
-    if kind == "dynamics":
-        return _render_dynamics(summary, units)
-    if kind != "statics":
-        return [Text(f"{kind}: {_status(summary.get('converged'))}")]
+    """The tables of one analysis summary: statics and dynamics have their own, the other
+    kinds a line with their status and message."""
+    render = _RENDERERS.get(summary.get("kind", "statics"), _render_line)
+    return render(summary, units)
+
+
+def _render_line(summary: dict, units: str) -> list[RenderableType]:
+    text = f"{summary.get('kind', '')}: {_status(summary.get('converged'))}"
+    return [Text(f"{text}: {summary['message']}" if summary.get("message") else text)]
+
+
+def _render_statics(summary: dict, units: str) -> list[RenderableType]:
     units = summary.get("units", units)
     force, length = _unit("force", units), _unit("length", units)
     head = (f"{summary.get('case', '')} statics ({summary.get('method', '')}): "
@@ -275,6 +283,9 @@ def _render_dynamics(summary: dict, units: str) -> list[RenderableType]:
     if counters:
         out.append(Text("counters: " + ", ".join(f"{k} {v}" for k, v in counters.items())))
     return out
+
+
+_RENDERERS = {"statics": _render_statics, "dynamics": _render_dynamics}
 
 
 def _lines_table(lines: dict, force: str, length: str) -> Table:

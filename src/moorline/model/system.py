@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal, TypeVar, overload
 
 from .analysis import DynamicsSettings, OutputSettings, StaticsSettings
 from .body import Body
@@ -11,6 +11,7 @@ from .components import Line, LineType, Point
 from .environment import Environment
 
 UnitSystem = Literal["SI", "US"]
+S = TypeVar("S")
 
 
 @dataclass(frozen=True)
@@ -31,3 +32,27 @@ class System:
     analyses: tuple[StaticsSettings | DynamicsSettings, ...] = (StaticsSettings(),)
     output: OutputSettings = field(default_factory=OutputSettings)
     source: str | None = None
+
+    @overload
+    def first(self, kind: type[S]) -> S: ...
+
+    @overload
+    def first(self, kind: str) -> Any | None: ...
+
+    def first(self, kind: type[S] | str) -> S | Any | None:
+        """The first analysis of a kind in :attr:`analyses`.
+
+        Parameters
+        ----------
+        kind
+            A settings class (e.g. :class:`~moorline.model.StaticsSettings`) or a kind name
+            (``"statics"``).
+
+        Returns
+        -------
+        The first matching settings; when there is none, the class's defaults (``kind()``)
+        for a class, ``None`` for a name.
+        """
+        if isinstance(kind, str):
+            return next((a for a in self.analyses if getattr(a, "kind", None) == kind), None)
+        return next((a for a in self.analyses if isinstance(a, kind)), None) or kind()

@@ -119,7 +119,7 @@ def simulate(
         if recorder.records["time"][-1] < state.t:
             recorder.add(state)  # the last completed step
         counters = dict(stepper.counters, steps=k - 1, step_cuts=cuts)
-        logger.warning("%s: %s", system.name, failure.message())
+        logger.info("%s: %s", system.name, failure.message())
         return recorder.result(False, failure.message(), counters, system, asdict(settings))
     counters = dict(stepper.counters, steps=n_steps, step_cuts=cuts)
     return recorder.result(True, f"completed {n_steps} steps", counters, system,
@@ -168,10 +168,7 @@ def _rayleigh(settings: DynamicsSettings) -> tuple[float, float] | None:
 
 
 def _statics_settings(system: System) -> StaticsSettings:
-    for analysis in system.analyses:
-        if isinstance(analysis, StaticsSettings):
-            return analysis
-    return StaticsSettings()
+    return system.first(StaticsSettings)
 
 
 def _fluid(system: System, settings: DynamicsSettings, ramp_current: bool = True):

@@ -35,18 +35,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
-import xarray as xr
 from numpy.typing import NDArray
 
-from ..errors import ConvergenceError, MoorlineError
-from ..mesh import Mesh
+from ..errors import MoorlineError
 from ..model import HarmonicSettings, System
-from ..results import StaticResult
+from ..results import HarmonicResult, StaticResult
 from .assembly import BlockPattern, factorize, gather_free, scatter_free
 from .dynamic_model import DynamicModel
 from .excitation import Excitation
@@ -55,57 +53,6 @@ from .newton import solve as newton_solve
 from .statics import equilibrium_for
 
 FloatArray = NDArray[np.float64]
-
-
-@dataclass
-class HarmonicResult:
-    """The periodic response.
-
-    Attributes
-    ----------
-    period, omega
-        Period and fundamental circular frequency.
-    coefficients
-        Node position coefficients (2 n + 1, n_nodes, 3): the mean, then ``A_k``, ``B_k``.
-    time, positions, tension
-        One period of the response: (n_t,), (n_t, n_nodes, 3), (n_t, n_elements).
-    static_positions
-        The static state linearized from (n_nodes, 3).
-    iterations, residual_history
-        Newton iterations and the largest harmonic residual after each.
-    """
-
-    period: float
-    omega: float
-    coefficients: FloatArray
-    time: FloatArray
-    positions: FloatArray
-    tension: FloatArray
-    static_positions: FloatArray
-    iterations: int
-    residual_history: list[float]
-    mesh: Mesh
-    settings: HarmonicSettings
-    counters: dict = field(default_factory=dict)
-
-    def amplitude(self, harmonic: int = 1) -> FloatArray:
-        """Amplitude ``sqrt(A_k^2 + B_k^2)`` of harmonic ``k`` per node and axis."""
-        a, b = self.coefficients[2 * harmonic - 1], self.coefficients[2 * harmonic]
-        return np.sqrt(a * a + b * b)
-
-    def to_xarray(self) -> xr.Dataset:
-        """Coefficients (dim ``term``), one period of positions and tensions (dim ``time``)."""
-        n = self.settings.harmonics
-        terms = ["mean"] + [f"{p}{k}" for k in range(1, n + 1) for p in ("cos", "sin")]
-        return xr.Dataset(
-            {"coefficients": (("term", "node", "xyz"), self.coefficients),
-             "position": (("time", "node", "xyz"), self.positions),
-             "tension": (("time", "element"), self.tension),
-             "static_position": (("node", "xyz"), self.static_positions)},
-            coords={"term": terms, "time": self.time, "node": np.arange(self.mesh.n_nodes),
-                    "element": np.arange(self.mesh.n_elements), "xyz": ["x", "y", "z"]},
-            attrs={"analysis": "harmonic", "kind": "harmonic", "period": self.period,
-                   "harmonics": n, "iterations": self.iterations})
 
 
 def _basis(times: FloatArray, omega: float, n: int) -> tuple[FloatArray, ...]:
@@ -167,6 +114,7 @@ class HarmonicBalance:
             raise MoorlineError(f"harmonic balance: samples ({n_t}) must be >= 2 n + 1 = "
                                 f"{2 * n + 1}")
         self.system, self.settings, self.statics, self.mesh = system, settings, statics, mesh
+        self.system_name, self.units = system.name, system.units
         self.n_terms, self.n_t = 2 * n + 1, n_t
         self.period, self.omega = settings.period, 2.0 * math.pi / settings.period
         self.model = DynamicModel(mesh, fluid_field_from_environment(system.environment),
@@ -272,9 +220,10 @@ class HarmonicBalance:
         return sp.bsr_matrix((blocks.reshape(p.nnz, m, m), p.indices, p.indptr),
                              shape=(size, size))
 
-    def result(self, u: FloatArray, tension: FloatArray, history: list[float]
+    def result(self, u: FloatArray, tension: FloatArray, history: list[float],
+               counters: dict | None = None, success: bool = True, message: str = ""
                ) -> HarmonicResult:
-        """The periodic response of converged unknowns (tensions at the instants)."""
+        """The periodic response of the unknowns ``u`` (tensions at the instants)."""
         mesh, n, n_t = self.mesh, self.settings.harmonics, self.n_t
         X, dof, free = self.coefficients_of(u), mesh.dof_of_node, mesh.free_nodes
         # coefficients of every node (constrained nodes from their motion, by projection)
@@ -294,7 +243,12 @@ class HarmonicBalance:
                               static_positions=self.x_static.copy(),
                               iterations=len(history), residual_history=history, mesh=mesh,
                               settings=self.settings,
-                              counters={"samples": n_t, "unknowns": self.n_unknowns})
+                              counters={"samples": n_t, "unknowns": self.n_unknowns,
+                                        **(counters or {})},
+                              success=success, status="converged" if success else "failed",
+                              message=message or f"converged in {len(history)} Newton "
+                                                 f"iterations ({n} harmonics)",
+                              case=self.system_name, units=self.units)
 
 
 @dataclass
@@ -327,8 +281,7 @@ class _BalanceProblem:
 
 def _newton(evaluate: Callable[[FloatArray, bool], tuple[FloatArray, sp.spmatrix | None,
                                                           Any]],
-            u: FloatArray, tolerance: float, max_iterations: int, name: str
-            ) -> tuple[FloatArray, Any, list[float]]:
+            u: FloatArray, tolerance: float, max_iterations: int, name: str):
     """Newton-Raphson (a fresh Jacobian every iteration, the Newton core of
     :mod:`moorline.solvers.newton`) with backtracking on the largest residual.
 
@@ -347,26 +300,21 @@ def _newton(evaluate: Callable[[FloatArray, bool], tuple[FloatArray, sp.spmatrix
 
     Returns
     -------
-    unknowns, extra, history
-        The converged unknowns, ``extra`` of the last evaluation and the largest residual
-        after each step.
-
-    Raises
-    ------
-    ConvergenceError
-        On a singular Jacobian or without convergence.
+    outcome, counters, message
+        The Newton core's :class:`~moorline.solvers.newton.Outcome` (``trial.extra`` holds
+        the last evaluation's extra), its counters, and a message saying how it ended.
     """
     policy = NewtonPolicy(tolerance=tolerance, max_iterations=max_iterations,
                           stiffness_update=1, age_per="iteration", refresh_ratio=None,
                           stall_limit=0, max_halvings=7, merit="max")
-    out = newton_solve(_BalanceProblem(evaluate), u, policy, TangentCache(), Counters())
-    if not out.converged:
-        if out.reason.startswith("singular"):
-            raise ConvergenceError(f"{name}: {out.reason.replace('tangent', 'Jacobian')}")
-        raise ConvergenceError(f"{name}: Newton did not converge in {max_iterations} "
-                               f"iterations (residual {out.norm:.3g}, tolerance "
-                               f"{tolerance:.3g})")
-    return out.u, out.trial.extra, out.history[1:]
+    counters = Counters()
+    out = newton_solve(_BalanceProblem(evaluate), u, policy, TangentCache(), counters)
+    if out.converged:
+        return out, counters, ""
+    if out.reason.startswith("singular"):
+        return out, counters, f"{name}: {out.reason.replace('tangent', 'Jacobian')}"
+    return out, counters, (f"{name}: Newton did not converge in {max_iterations} iterations "
+                           f"(residual {out.norm:.3g}, tolerance {tolerance:.3g})")
 
 
 def solve_harmonic(system: System, settings: HarmonicSettings,
@@ -385,19 +333,23 @@ def solve_harmonic(system: System, settings: HarmonicSettings,
     Returns
     -------
     HarmonicResult
+        ``success`` False (the last iterate, the message saying why) when Newton did not
+        converge.
 
     Raises
     ------
     MoorlineError
         With bodies, viscoelastic lines or bad settings.
     ConvergenceError
-        When Newton does not converge.
+        When the static state it starts from did not converge.
     """
     balance = HarmonicBalance(system, settings, statics)
-    u, tension, history = _newton(balance.evaluate, balance.initial(),
-                                  settings.tolerance * balance.scale, settings.max_iterations,
-                                  f"harmonic balance of {system.name}")
-    return balance.result(u, tension, history)
+    out, counters, message = _newton(balance.evaluate, balance.initial(),
+                                     settings.tolerance * balance.scale,
+                                     settings.max_iterations,
+                                     f"harmonic balance of {system.name}")
+    return balance.result(out.u, out.trial.extra, out.history[1:], counters.as_dict(),
+                          out.converged, message)
 
 
 def _resample(values: FloatArray, times: FloatArray, t_out: FloatArray, omega: float,

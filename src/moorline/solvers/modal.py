@@ -41,7 +41,7 @@ from ..errors import ConvergenceError, MoorlineError
 from ..mesh import Mesh
 from ..model import ModalSettings, System
 from ..physics import element, hydro
-from ..results import ModalResult, StaticResult
+from ..results import BODY_DOFS, ModalResult, StaticResult
 from .assembly import scatter_free
 from .equilibrium import StaticModel
 from .statics import equilibrium_for
@@ -111,10 +111,7 @@ def solve_modes(
 
 
 def _default_settings(system: System) -> ModalSettings:
-    for analysis in system.analyses:
-        if isinstance(analysis, ModalSettings):
-            return analysis
-    return ModalSettings()
+    return system.first(ModalSettings)
 
 
 def modal_matrices(mesh: Mesh, x: FloatArray, settings: ModalSettings,
@@ -302,7 +299,6 @@ def _result(system: System, statics: StaticResult, settings: ModalSettings, lam:
         settings={k: v for k, v in asdict(settings).items() if k != "kind"})
 
 
-BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 def body_modal_matrices(system: System, mesh: Mesh, positions: FloatArray,

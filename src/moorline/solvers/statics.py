@@ -144,10 +144,7 @@ def _current_field(system: System):
 
 
 def _default_settings(system: System) -> StaticsSettings:
-    for analysis in system.analyses:
-        if isinstance(analysis, StaticsSettings):
-            return analysis
-    return StaticsSettings()
+    return system.first(StaticsSettings)
 
 
 def _move_supports(model: StaticModel, x: FloatArray, start: FloatArray, target: FloatArray,

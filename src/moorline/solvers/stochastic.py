@@ -62,19 +62,17 @@ have zero mean (no current), as the source assumes.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import xarray as xr
 from numpy.typing import NDArray
 
-from ..errors import ConvergenceError, MoorlineError
+from ..errors import MoorlineError
 from ..mesh import Mesh
 from ..model import ModalSettings, StochasticSettings, System
 from ..physics import element
-from ..results import StaticResult
+from ..results import StaticResult, StochasticResult
 from ..waves import random_sea, wave_number
 from ..waves.transfer import kinematics_transfer
 from .assembly import BlockPattern, solve_sparse
@@ -84,95 +82,6 @@ from .statics import equilibrium_for
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
-
-
-@dataclass
-class StochasticResult:
-    """Spectra, standard deviations and time series of the stochastic response.
-
-    Attributes
-    ----------
-    omega, wave_spectrum, wave_amplitude
-        Frequencies (n_w,), ``S(omega)`` and the realization's complex amplitudes ``A_m``.
-    displacement_transfer
-        Node displacement per unit wave amplitude (n_w, n_nodes, 3), complex.
-    tension_transfer
-        Element tension per unit wave amplitude (n_w, n_elements), complex.
-    displacement_std, tension_std
-        Standard deviations (n_nodes, 3) and (n_elements,).
-    sigma_normal, sigma_tangential
-        Converged standard deviations of the relative velocity per element.
-    iterations, history
-        Linearization iterations and the largest relative change of ``sigma`` per iteration.
-    time, elevation, displacement, tension
-        Time series over one record: (n_t,), (n_t,) at the origin, (n_t, n_nodes, 3),
-        (n_t, n_elements).
-    body_names, body_transfer, body_std, body_motion
-        Free bodies: motion (surge, sway, heave, roll, pitch, yaw about the body origin) per
-        unit wave amplitude (n_w, n_bodies, 6), standard deviations (n_bodies, 6) and time
-        series (n_t, n_bodies, 6).
-    """
-
-    omega: FloatArray
-    wave_spectrum: FloatArray
-    wave_amplitude: ComplexArray
-    displacement_transfer: ComplexArray
-    tension_transfer: ComplexArray
-    displacement_std: FloatArray
-    tension_std: FloatArray
-    sigma_normal: FloatArray
-    sigma_tangential: FloatArray
-    iterations: int
-    history: list[float]
-    time: FloatArray
-    elevation: FloatArray
-    displacement: FloatArray
-    tension: FloatArray
-    mesh: Mesh
-    settings: StochasticSettings
-    d_omega: float
-    body_names: tuple[str, ...] = ()
-    body_transfer: ComplexArray = field(default_factory=lambda: np.zeros((0, 0, 6), complex))
-    body_std: FloatArray = field(default_factory=lambda: np.zeros((0, 6)))
-    body_motion: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
-    counters: dict = field(default_factory=dict)
-
-    def response_spectrum(self, transfer: ComplexArray) -> FloatArray:
-        """``|H|^2 S(omega)`` of a transfer function (n_w, ...)."""
-        shape = (-1,) + (1,) * (np.ndim(transfer) - 1)
-        return np.abs(transfer) ** 2 * self.wave_spectrum.reshape(shape)
-
-    def to_xarray(self) -> xr.Dataset:
-        """Spectra (dim ``omega``), standard deviations and time series (dim ``time``)."""
-        n_nodes, n_el = self.mesh.n_nodes, self.mesh.n_elements
-        bodies = {}
-        if self.body_names:
-            bodies = {"body_spectrum": (("omega", "body", "dof"),
-                                        self.response_spectrum(self.body_transfer)),
-                      "body_std": (("body", "dof"), self.body_std),
-                      "body_motion": (("time", "body", "dof"), self.body_motion)}
-        ds = xr.Dataset(
-            {"wave_spectrum": (("omega",), self.wave_spectrum),
-             "displacement_spectrum": (("omega", "node", "xyz"),
-                                       self.response_spectrum(self.displacement_transfer)),
-             "tension_spectrum": (("omega", "element"),
-                                  self.response_spectrum(self.tension_transfer)),
-             "displacement_std": (("node", "xyz"), self.displacement_std),
-             "tension_std": (("element",), self.tension_std),
-             "sigma_normal": (("element",), self.sigma_normal),
-             "sigma_tangential": (("element",), self.sigma_tangential),
-             "elevation": (("time",), self.elevation),
-             "displacement": (("time", "node", "xyz"), self.displacement),
-             "tension": (("time", "element"), self.tension)},
-            coords={"omega": self.omega, "time": self.time, "node": np.arange(n_nodes),
-                    "element": np.arange(n_el), "xyz": ["x", "y", "z"]},
-            attrs={"analysis": "stochastic", "kind": "stochastic", "method": self.settings.method,
-                   "iterations": self.iterations, "d_omega": self.d_omega})
-        if bodies:
-            ds = ds.assign(bodies).assign_coords(
-                body=list(self.body_names),
-                dof=["surge", "sway", "heave", "roll", "pitch", "yaw"])
-        return ds
 
 
 def _inertia_blocks(t: FloatArray, mesh: Mesh, rho: float) -> FloatArray:
@@ -444,13 +353,15 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     Returns
     -------
     StochasticResult
+        ``success`` False (status ``failed``, the last iterate) when the drag linearization
+        does not converge in ``settings.max_iterations``.
 
     Raises
     ------
     MoorlineError
         Without a random sea or with a current.
     ConvergenceError
-        When the statics fails or the linearization does not converge.
+        When the statics fails.
     """
     settings = settings or StochasticSettings()
     env = system.environment
@@ -522,10 +433,12 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         if change <= settings.tolerance:
             converged = True
             break
+    message = (f"{len(history)} linearization iterations, {len(omega)} frequencies "
+               f"({settings.method})")
     if not converged:
-        raise ConvergenceError(f"stochastic analysis of {system.name}: the drag linearization "
-                               f"did not converge in {settings.max_iterations} iterations "
-                               f"(last change {history[-1]:.3g})")
+        message = (f"stochastic analysis of {system.name}: the drag linearization did not "
+                   f"converge in {settings.max_iterations} iterations (last change "
+                   f"{history[-1]:.3g}); the last iterate is returned")
     _, dT = element.axial_tension(length, mesh.length0, mesh.EA, mesh.slack_ratio,
                                   mesh.slack_smoothing)
     H_T = dT[None] * np.einsum("wei,ei->we", U[:, b] - U[:, a], t)
@@ -555,7 +468,8 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         body_std=np.sqrt(np.einsum("w,wbc->bc", power, np.abs(X) ** 2)),
         body_motion=series(X),
         counters={"frequencies": len(omega), "dofs": model.K.shape[0],
-                  "modes": len(response.lam) if settings.method == "foss" else 0})
+                  "modes": len(response.lam) if settings.method == "foss" else 0},
+        success=converged, message=message, case=system.name, units=system.units)
 
 
 def _relative_change(new: FloatArray, old: FloatArray) -> float:

@@ -43,104 +43,21 @@ equilibrium is the statics with ``current_drag`` (or the steady end of an in-lin
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from dataclasses import replace as dataclass_replace
 
 import numpy as np
-import xarray as xr
 from numpy.typing import NDArray
 
 from ..errors import MoorlineError
 from ..mesh import Mesh
 from ..model import ModalSettings, StrummingSettings, System
 from ..physics import hydro, wake
-from ..results import DynamicResult, StaticResult
+from ..results import DynamicResult, StaticResult, StrummingResult
 from .assembly import BlockPattern
 from .modal import BODY_DOFS, _eigen, body_modal_matrices, body_mode_shapes, modal_matrices
 
 FloatArray = NDArray[np.float64]
-
-
-@dataclass
-class StrummingResult:
-    """Histories of a strumming analysis, at the in-line steps.
-
-    Attributes
-    ----------
-    time
-        (n_t,).
-    lift_coefficient, lift_rate
-        ``C_L`` and ``C_L'`` per element (n_t, n_elements).
-    modal_amplitude, modal_velocity
-        ``z_n``, ``z_n'`` of the current modes (n_t, n_modes).
-    displacement, velocity
-        Strumming displacement and velocity of the nodes about the in-line state
-        (n_t, n_nodes, 3), eq. 3.2.b.10.
-    strouhal_frequency, normal_speed
-        ``w_s`` and ``|V_NR|`` per element (n_t, n_elements), at the start of each in-line
-        step (the last row repeats the one before).
-    lift_direction
-        Unit lift direction per element at the start (n_elements, 3).
-    omega, mode_shapes, damping_ratio
-        The last modes: frequencies (n_modes,), mass-normalized shapes (n_modes, n_nodes,
-        3), eq. 3.2.b.8 damping ratios (n_modes,).
-    omega_history, refresh_times
-        Frequencies at every refresh (n_refresh, n_modes) and when.
-    parameters
-        Wake parameters per element at the start (:class:`~moorline.physics.wake.
-        WakeParameters`).
-    mesh, settings
-        What was solved.
-    """
-
-    time: FloatArray
-    lift_coefficient: FloatArray
-    lift_rate: FloatArray
-    modal_amplitude: FloatArray
-    modal_velocity: FloatArray
-    displacement: FloatArray
-    velocity: FloatArray
-    strouhal_frequency: FloatArray
-    normal_speed: FloatArray
-    lift_direction: FloatArray
-    omega: FloatArray
-    mode_shapes: FloatArray
-    damping_ratio: FloatArray
-    omega_history: FloatArray
-    refresh_times: FloatArray
-    parameters: wake.WakeParameters
-    mesh: Mesh
-    settings: StrummingSettings
-    counters: dict = field(default_factory=dict)
-
-    def node_displacement(self, node: int) -> FloatArray:
-        """Strumming displacement history of one node (n_t, 3)."""
-        return self.displacement[:, node]
-
-    def to_xarray(self) -> xr.Dataset:
-        """The histories as an :class:`xarray.Dataset`.
-
-        Returns
-        -------
-        xarray.Dataset
-            ``lift_coefficient`` (time, element), ``modal_amplitude`` (time, mode),
-            ``displacement`` (time, node, xyz: the transverse strumming displacement),
-            ``strouhal_frequency`` and ``normal_speed`` (time, element), ``omega`` and
-            ``damping_ratio`` (mode); attribute ``CL0``.
-        """
-        return xr.Dataset(
-            {"lift_coefficient": (("time", "element"), self.lift_coefficient),
-             "modal_amplitude": (("time", "mode"), self.modal_amplitude),
-             "displacement": (("time", "node", "xyz"), self.displacement),
-             "strouhal_frequency": (("time", "element"), self.strouhal_frequency),
-             "normal_speed": (("time", "element"), self.normal_speed),
-             "omega": (("mode",), self.omega),
-             "damping_ratio": (("mode",), self.damping_ratio)},
-            coords={"time": self.time, "element": np.arange(self.mesh.n_elements),
-                    "node": np.arange(self.mesh.n_nodes),
-                    "mode": np.arange(len(self.omega)), "xyz": ["x", "y", "z"]},
-            attrs={"analysis": "strumming", "kind": "strumming", "CL0": self.settings.CL0,
-                   "strouhal": self.settings.strouhal})
 
 
 @dataclass
@@ -449,4 +366,5 @@ def solve_strumming(system: System, settings: StrummingSettings,
         omega_history=np.array(omega_history), refresh_times=np.array(refresh_times),
         parameters=first_params, mesh=mesh, settings=settings,
         counters={"in_line_steps": n_t - 1, "rk4_steps": (n_t - 1) * settings.substeps,
-                  "evaluations": evaluations, "refreshes": len(refresh_times) - 1})
+                  "evaluations": evaluations, "refreshes": len(refresh_times) - 1},
+        message=f"{n_t - 1} in-line steps", case=system.name, units=system.units)

@@ -1,0 +1,335 @@
+"""The one dataset builder of the results, its variable table and the dynamics record list.
+
+Every analysis group (in memory, ``to_xarray()``; on disk, a group of ``results.nc``) is made
+by :func:`build_dataset`: it stamps the group with the same attributes (:func:`group_attrs`:
+``analysis``, ``case``, ``units``, ``moorline_version``, ``success``, ``status``, ``message``,
+the counters and the settings as ``setting_<name>``) and gives every data variable and
+coordinate its ``units`` (in the case's unit system) and ``long_name`` from :data:`VARIABLES`;
+a variable the table does not know is an error.
+
+:data:`DYNAMIC_VARIABLES` lists the variables of a dynamics record (name, dimensions after
+``time``, how each is derived from a record): the streamed file
+(:class:`moorline.io.stream.HistoryWriter`) and the in-memory dataset
+(:meth:`moorline.results.DynamicResult.to_xarray`) are both made from it.
+
+Conventions: body dofs are labelled :data:`BODY_DOFS` (``surge, sway, heave, roll, pitch,
+yaw``: translations of the body origin along x, y, z, then the rotation vector's components);
+modes are numbered from 1 in increasing frequency (coordinate ``mode``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from enum import StrEnum
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from . import __version__
+
+FloatArray = NDArray[np.float64]
+
+#: Labels of the six rigid-body degrees of freedom, in the order of every body array.
+BODY_DOFS: tuple[str, ...] = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+class Status(StrEnum):
+    """How an analysis ended (the ``status`` of a result and of its group)."""
+
+    CONVERGED = "converged"
+    COMPLETED = "completed"
+    FAILED = "failed"
+    INTERRUPTED = "interrupted"
+    RUNNING = "running"
+
+
+_BODY = {
+    "body_pose": ("{length} (surge, sway, heave), rad (roll, pitch, yaw: rotation vector)",
+                  "pose of the body origin"),
+    "body_velocity": ("{velocity} (surge, sway, heave), rad/s (roll, pitch, yaw)",
+                      "velocity of the body"),
+    "body_mooring_force": ("{force} (surge, sway, heave), {force}*{length} (roll, pitch, "
+                           "yaw; about the body origin)",
+                           "force and moment of the lines on the body"),
+}
+
+#: ``units`` (a key of :data:`moorline.io.units.DIMENSIONS`, or a unit text in which
+#: ``{length}``, ``{force}``... stand for the case's units) and ``long_name`` of every variable
+#: and coordinate a group may hold: ``VARIABLES[kind][name]``, ``VARIABLES["*"]`` for all kinds.
+VARIABLES: dict[str, dict[str, tuple[str, str]]] = {
+    "*": {
+        "time": ("time", "time"),
+        "node": ("1", "node index"),
+        "element": ("1", "element index"),
+        "xyz": ("1", "axis"),
+        "line": ("1", "line"),
+        "end": ("1", "line end (a: end_a, b: end_b)"),
+        "point": ("1", "point"),
+        "point_kind": ("1", "kind of the point"),
+        "element_line": ("1", "line of the element"),
+        "element_nodes": ("1", "nodes of the element (end a, end b)"),
+        "point_node": ("1", "node of the point"),
+        "body": ("1", "body"),
+        "dof": ("1", "rigid-body degree of freedom"),
+        "mode": ("1", "mode number (from 1, in increasing frequency)"),
+        "position": ("length", "node position"),
+        "tension": ("force", "element tension"),
+        "point_position": ("length", "point position"),
+        **_BODY,
+    },
+    "statics": {
+        "end_force": ("force", "force of the line on its end point"),
+        "end_tension": ("force", "tension at the line end"),
+        "max_tension": ("force", "largest tension of the line, its ends included"),
+        "seabed_length": ("length", "unstretched length of the line on the seabed"),
+        "residual_history": ("force", "max-norm of the out-of-balance force per iteration"),
+        "unstretched_length": ("length", "unstretched element length"),
+    },
+    "dynamics": {
+        "velocity": ("velocity", "node velocity"),
+        "end_force": ("force", "force of the line on its end point"),
+        "end_tension": ("force", "tension at the line end"),
+        "fairlead_tension": ("force", "tension at end b of the line (the fairlead)"),
+        "wave_elevation": ("length", "free-surface elevation at x = y = 0"),
+    },
+    "modal": {
+        "omega": ("rad/s", "natural circular frequency (negative: unstable mode)"),
+        "period": ("time", "natural period"),
+        "frequency_hz": ("Hz", "natural frequency"),
+        "dominant": ("1", "direction (or body dof) with the largest share of the mode"),
+        "participation": ("1", "share of the mode on the x, y and z dofs"),
+        "effective_mass": ("mass", "effective modal mass"),
+        "mode_shape": ("{mass}^-1/2", "mass-normalized mode shape (node displacements)"),
+    },
+    "strumming": {
+        "lift_coefficient": ("1", "lift coefficient C_L"),
+        "modal_amplitude": ("{mass}^1/2*{length}", "modal amplitude z_n"),
+        "displacement": ("length", "strumming displacement about the in-line state"),
+        "strouhal_frequency": ("rad/s", "Strouhal shedding circular frequency w_s"),
+        "normal_speed": ("velocity", "normal relative flow speed |V_NR|"),
+        "omega": ("rad/s", "circular frequency of the mode (last modes)"),
+        "damping_ratio": ("1", "modal damping ratio (Tuah eq. 3.2.b.8)"),
+    },
+    "stochastic": {
+        "omega": ("rad/s", "wave circular frequency"),
+        "wave_spectrum": ("{length}**2*s", "wave spectrum S(omega)"),
+        "displacement_spectrum": ("{length}**2*s", "node displacement spectrum"),
+        "tension_spectrum": ("{force}**2*s", "element tension spectrum"),
+        "displacement_std": ("length", "standard deviation of the node displacement"),
+        "tension_std": ("force", "standard deviation of the element tension"),
+        "sigma_normal": ("velocity", "std of the normal relative velocity"),
+        "sigma_tangential": ("velocity", "std of the tangential relative velocity"),
+        "elevation": ("length", "wave elevation at x = y = 0"),
+        "displacement": ("length", "node displacement about the static state"),
+        "tension": ("force", "element tension (static plus dynamic)"),
+        "body_spectrum": ("{length}**2*s (surge, sway, heave), rad**2*s (roll, pitch, yaw)",
+                          "spectrum of the body motion"),
+        "body_std": ("{length} (surge, sway, heave), rad (roll, pitch, yaw)",
+                     "standard deviation of the body motion"),
+        "body_motion": ("{length} (surge, sway, heave), rad (roll, pitch, yaw)",
+                        "body motion about the static pose"),
+    },
+    "harmonic": {
+        "term": ("1", "Fourier term: mean, cos k, sin k"),
+        "coefficients": ("length", "Fourier coefficients of the node positions"),
+        "position": ("length", "node position over one period"),
+        "tension": ("force", "element tension over one period"),
+        "static_position": ("length", "static node position"),
+    },
+}
+
+
+def describe(kind: str, name: str, units: str) -> dict[str, str]:
+    """``{"units", "long_name"}`` of variable ``name`` of a ``kind`` group in the unit system
+    ``units`` (``SI`` or ``US``).
+
+    Raises
+    ------
+    KeyError
+        When :data:`VARIABLES` does not know the variable.
+    """
+    from .io.units import DIMENSIONS
+
+    entry = VARIABLES.get(kind, {}).get(name) or VARIABLES["*"].get(name)
+    if entry is None:
+        raise KeyError(f"{kind} group: variable {name!r} has no units and long_name in "
+                       "moorline.datasets.VARIABLES")
+    unit, long_name = entry
+    system = "US" if units == "US" else "SI"
+    if unit in DIMENSIONS:
+        unit = DIMENSIONS[unit].unit(system)
+    elif "{" in unit:
+        unit = unit.format(**{k: DIMENSIONS[k].unit(system)
+                              for k in ("length", "velocity", "force", "mass")})
+    return {"units": unit, "long_name": long_name}
+
+
+def settings_attrs(settings: Any) -> dict[str, Any]:
+    """The settings (a dataclass or a dict) as NetCDF attributes ``setting_<name>``:
+    booleans as 0/1, ``None`` as ``"none"``, number sequences as arrays, string sequences
+    comma-joined."""
+    if dataclasses.is_dataclass(settings) and not isinstance(settings, type):
+        settings = dataclasses.asdict(settings)
+    out: dict[str, Any] = {}
+    for key, value in dict(settings or {}).items():
+        if key == "kind":
+            continue
+        out[f"setting_{key}"] = _attr_value(value)
+    return out
+
+
+def _attr_value(value: Any) -> Any:
+    if isinstance(value, bool | np.bool_):
+        return int(value)
+    if value is None:
+        return "none"
+    if isinstance(value, tuple | list):
+        if all(isinstance(v, str) for v in value):
+            return ",".join(value)
+        return np.asarray(value, dtype=float)
+    return value
+
+
+def group_attrs(kind: str, *, case: str, units: str, success: bool, status: str, message: str,
+                counters: Mapping[str, Any] | None = None, settings: Any = None,
+                extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """The attributes of every analysis group: ``analysis``, ``case``, ``units``,
+    ``moorline_version``, ``success`` (0/1), ``status``, ``message``, the counters, ``extra``
+    and the settings (``setting_<name>``)."""
+    attrs: dict[str, Any] = {
+        "analysis": kind, "case": case, "units": units, "moorline_version": __version__,
+        "success": int(bool(success)), "status": str(status), "message": str(message)}
+    attrs.update({str(k): _attr_value(v) for k, v in (counters or {}).items()})
+    attrs.update({str(k): _attr_value(v) for k, v in (extra or {}).items()})
+    attrs.update(settings_attrs(settings))
+    return attrs
+
+
+def build_dataset(kind: str, data_vars: Mapping[str, Any], coords: Mapping[str, Any],
+                  attrs: Mapping[str, Any]) -> xr.Dataset:
+    """An analysis group: the variables, coordinates and :func:`group_attrs`, every variable
+    and coordinate with ``units`` and ``long_name``.
+
+    Parameters
+    ----------
+    kind
+        The analysis kind (the table of :data:`VARIABLES` to use).
+    data_vars, coords
+        As for :class:`xarray.Dataset`.
+    attrs
+        The group attributes (:func:`group_attrs`); ``attrs["units"]`` is the unit system.
+
+    Raises
+    ------
+    KeyError
+        When a variable or coordinate is not in :data:`VARIABLES`.
+    """
+    ds = xr.Dataset(dict(data_vars), coords=dict(coords), attrs=dict(attrs))
+    units = str(attrs.get("units", "SI"))
+    for name in [*ds.data_vars, *ds.coords]:
+        ds[name].attrs.update(describe(kind, str(name), units))
+    return ds
+
+
+def check_described(ds: xr.Dataset) -> list[str]:
+    """Names of the variables and coordinates of ``ds`` without ``units`` or ``long_name``."""
+    return [str(n) for n in [*ds.data_vars, *ds.coords]
+            if not ds[n].attrs.get("units") or not ds[n].attrs.get("long_name")]
+
+
+# ----------------------------------------------------------------------------- dynamics
+
+
+@dataclass(frozen=True)
+class RecordVariable:
+    """A variable of a dynamics record.
+
+    Attributes
+    ----------
+    name
+        Variable name in the dataset.
+    dims
+        Its dimensions after ``time``.
+    derive
+        The values from a record (a mapping of the solver's record arrays; with a leading
+        time axis for a stack of records).
+    bodies
+        Only written for systems with bodies.
+    """
+
+    name: str
+    dims: tuple[str, ...]
+    derive: Callable[[Mapping[str, Any]], Any]
+    bodies: bool = False
+
+
+def _field(key: str) -> Callable[[Mapping[str, Any]], Any]:
+    return lambda record: np.asarray(record[key], dtype=float)
+
+
+def _end_tension(record: Mapping[str, Any]) -> FloatArray:
+    return np.linalg.norm(np.asarray(record["end_force"], dtype=float), axis=-1)
+
+
+#: The variables of a dynamics record, in order: what the stream writes and the in-memory
+#: dataset holds.
+DYNAMIC_VARIABLES: tuple[RecordVariable, ...] = (
+    RecordVariable("position", ("node", "xyz"), _field("position")),
+    RecordVariable("velocity", ("node", "xyz"), _field("velocity")),
+    RecordVariable("tension", ("element",), _field("tension")),
+    RecordVariable("end_force", ("line", "end", "xyz"), _field("end_force")),
+    RecordVariable("end_tension", ("line", "end"), _end_tension),
+    RecordVariable("fairlead_tension", ("line",), lambda r: _end_tension(r)[..., 1]),
+    RecordVariable("wave_elevation", (), _field("wave_elevation")),
+    RecordVariable("body_pose", ("body", "dof"), _field("body_pose"), bodies=True),
+    RecordVariable("body_velocity", ("body", "dof"), _field("body_velocity"), bodies=True),
+    RecordVariable("body_mooring_force", ("body", "dof"), _field("body_mooring_force"),
+                   bodies=True),
+)
+
+
+def record_variables(mesh: Any) -> tuple[RecordVariable, ...]:
+    """The :data:`DYNAMIC_VARIABLES` of a mesh (the body ones only with bodies)."""
+    with_bodies = bool(getattr(mesh, "body_names", ()))
+    return tuple(v for v in DYNAMIC_VARIABLES if with_bodies or not v.bodies)
+
+
+def mesh_coords(mesh: Any) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The time-independent variables (``element_nodes``, ``point_node``) and coordinates
+    (``xyz``, ``end``, ``line``, ``point``, ``point_kind``, ``element_line``; ``body``,
+    ``dof`` with bodies) of a dynamics group."""
+    data = {"element_nodes": (("element", "pair"), np.asarray(mesh.elements, dtype=np.int64)),
+            "point_node": (("point",), np.asarray(mesh.point_node, dtype=np.int64))}
+    coords: dict[str, Any] = {
+        "xyz": ["x", "y", "z"], "end": ["a", "b"], "line": list(mesh.line_names),
+        "point": list(mesh.point_names), "point_kind": (("point",), list(mesh.point_kind)),
+        "element_line": (("element",), [mesh.line_names[i] for i in mesh.element_line])}
+    if getattr(mesh, "body_names", ()):
+        coords.update(body=list(mesh.body_names), dof=list(BODY_DOFS))
+    return data, coords
+
+
+def dynamics_dataset(mesh: Any, time: FloatArray, records: Mapping[str, Any],
+                     attrs: Mapping[str, Any]) -> xr.Dataset:
+    """The dynamics group from stacked records (leading axis ``time``; ``records`` may be
+    empty with ``time`` of length 0: the group a stream starts from)."""
+    data, coords = mesh_coords(mesh)
+    n_t = len(time)
+    for var in record_variables(mesh):
+        if n_t:
+            values = var.derive(records)
+        else:
+            values = np.zeros((0, *(_size(mesh, d) for d in var.dims)))
+        data[var.name] = (("time", *var.dims), values)
+    coords["time"] = np.asarray(time, dtype=float)
+    return build_dataset("dynamics", data, coords, attrs)
+
+
+def _size(mesh: Any, dim: str) -> int:
+    return {"node": mesh.n_nodes, "element": mesh.n_elements, "xyz": 3,
+            "line": len(mesh.line_names), "end": 2, "body": len(mesh.body_names),
+            "dof": 6}[dim]
