@@ -8,7 +8,7 @@ import pytest
 
 from moorline.mesh import discretize, rotation_matrix
 from moorline.model import Body, Environment, Hydrostatics, Line, LineType, Point, System
-from moorline.solvers.bodies import Poses, place_slaves
+from moorline.solvers.bodies import BodyState, place_slaves
 from moorline.solvers.coupled_statics import CoupledStatics
 from moorline.solvers.initial_shape import initial_positions
 from moorline.solvers.statics import solve_statics
@@ -62,9 +62,9 @@ def test_free_body_is_in_equilibrium_with_its_lines(floating):
 def test_coupled_tangent_matches_finite_differences(floating):
     system = box_system()
     mesh = discretize(system)
-    problem = CoupledStatics(system, mesh)
+    problem = CoupledStatics(mesh)
     rng = np.random.default_rng(2)
-    poses = Poses.initial(system, mesh)
+    poses = BodyState.initial(mesh)
     poses = poses.moved(np.array([[0.3, -0.2, 0.05]]), np.array([[0.02, -0.03, 0.05]]))
     x = place_slaves(mesh, poses, initial_positions(system, mesh))
     x[mesh.free_nodes] += rng.normal(scale=0.05, size=x[mesh.free_nodes].shape)

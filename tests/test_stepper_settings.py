@@ -184,7 +184,7 @@ def test_the_stepper_tangent_with_a_spinning_body_equals_finite_differences(sche
                                 rayleigh_frequencies=(1.0, 10.0))
     fluid = _fluid(system, settings)
     model = DynamicModel(start.mesh, fluid)
-    exc = Excitation(system, start.mesh, start.positions)
+    exc = Excitation(start.mesh, start.positions)
     state = _with_bodies(_initial_state(model, exc, start.positions, settings.dt), start)
     spin = np.array([[0.1, -0.05, 0.02, 0.3, -0.2, 0.4]])
     state = replace(state, bodies=BodyState(state.bodies.r, state.bodies.R, spin, 0.5 * spin))

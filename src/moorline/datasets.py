@@ -294,7 +294,7 @@ DYNAMIC_VARIABLES: tuple[RecordVariable, ...] = (
 
 def record_variables(mesh: Any) -> tuple[RecordVariable, ...]:
     """The :data:`DYNAMIC_VARIABLES` of a mesh (the body ones only with bodies)."""
-    with_bodies = bool(getattr(mesh, "body_names", ()))
+    with_bodies = bool(mesh.body_names)
     return tuple(v for v in DYNAMIC_VARIABLES if with_bodies or not v.bodies)
 
 
@@ -308,7 +308,7 @@ def mesh_coords(mesh: Any) -> tuple[dict[str, Any], dict[str, Any]]:
         "xyz": ["x", "y", "z"], "end": ["a", "b"], "line": list(mesh.line_names),
         "point": list(mesh.point_names), "point_kind": (("point",), list(mesh.point_kind)),
         "element_line": (("element",), [mesh.line_names[i] for i in mesh.element_line])}
-    if getattr(mesh, "body_names", ()):
+    if mesh.body_names:
         coords.update(body=list(mesh.body_names), dof=list(BODY_DOFS))
     return data, coords
 

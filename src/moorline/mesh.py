@@ -7,7 +7,7 @@ freedom; ``dof_of_node[i, k] == -1`` marks them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -72,6 +72,10 @@ class Mesh:
     slave_node, slave_body, slave_arm
         Nodes rigidly attached to bodies: node index, body index and position in the body
         frame (the master-slave transformation of Tuah 1982 eq. 3.3.6-3.3.7).
+    bodies
+        The rigid bodies (:class:`~moorline.model.Body`), in ``body_names`` order.
+    point_motion, point_force_history
+        Per point: its prescribed motion and its force history (``None`` when it has none).
     """
 
     node_position: FloatArray
@@ -116,6 +120,9 @@ class Mesh:
     slave_node: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     slave_body: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     slave_arm: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
+    bodies: tuple = ()
+    point_motion: tuple = ()
+    point_force_history: tuple = ()
 
     @property
     def n_nodes(self) -> int:
@@ -253,12 +260,35 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         **_body_arrays(system, points))
 
 
+def with_loads_of(mesh: Mesh, system: System) -> Mesh:
+    """``mesh`` (of a system with the same points, lines and bodies) carrying the bodies and
+    the point motion and force histories of ``system``: a static state solved once serves
+    systems that differ from it only in what moves them (waves, force histories, body
+    hydrodynamics).
+
+    Raises
+    ------
+    ValueError
+        When ``system`` has other points, lines or bodies than the mesh.
+    """
+    if (tuple(system.points) != mesh.point_names or tuple(system.lines) != mesh.line_names
+            or tuple(system.bodies) != mesh.body_names):
+        raise ValueError(f"{system.name}: its points, lines or bodies differ from the mesh's")
+    arrays = _body_arrays(system, list(system.points.values()))
+    return replace(mesh, bodies=arrays["bodies"], point_motion=arrays["point_motion"],
+                   point_force_history=arrays["point_force_history"])
+
+
 def _body_arrays(system: System, points: list) -> dict:
     names = tuple(system.bodies)
     slaves = [(i, names.index(p.body), p.position) for i, p in enumerate(points)
               if p.kind == "body"]
     return {
         "body_names": names,
+        "bodies": tuple(system.bodies.values()),
+        "point_motion": tuple(p.motion if p.kind == "prescribed" else None for p in points),
+        "point_force_history": tuple(p.force_history if p.kind == "free" else None
+                                     for p in points),
         "slave_node": np.array([s[0] for s in slaves], dtype=np.int64),
         "slave_body": np.array([s[1] for s in slaves], dtype=np.int64),
         "slave_arm": np.array([s[2] for s in slaves], dtype=float).reshape(-1, 3),

@@ -21,11 +21,11 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..model import Body, System
+from ..model import Body
 from ..physics import rigid_body as rb
 from ..physics.rigid_body import inverse_left_jacobian, rotation_matrix, rotation_vector, skew
 
-__all__ = ["BodyDofs", "BodyState", "Poses", "body_loads", "body_mass_matrix",
+__all__ = ["BodyDofs", "BodyState", "body_loads", "body_mass_matrix",
            "inverse_left_jacobian", "long_wave_geometry", "place_slaves", "rotation_vector",
            "skew", "transformation", "waterplane", "world_arms"]
 
@@ -34,7 +34,7 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class BodyState:
-    """Poses and motions of all bodies, world axes: origins ``r`` (nb, 3), rotation matrices
+    """BodyState and motions of all bodies, world axes: origins ``r`` (nb, 3), rotation matrices
     ``R`` (nb, 3, 3), velocities ``vel`` = (v, omega) and accelerations ``acc`` = (a, alpha),
     each (nb, 6) (zero when not given: a static pose)."""
 
@@ -51,9 +51,9 @@ class BodyState:
             object.__setattr__(self, "acc", zeros.copy())
 
     @classmethod
-    def initial(cls, system: System, mesh: Mesh) -> BodyState:
+    def initial(cls, mesh: Mesh) -> BodyState:
         """The poses the case gives, at rest."""
-        bodies = [system.bodies[n] for n in mesh.body_names]
+        bodies = mesh.bodies
         r = np.array([b.position for b in bodies], dtype=float).reshape(-1, 3)
         R = rotation_matrix(np.array([b.rotation for b in bodies], dtype=float).reshape(-1, 3))
         return cls(r, R)
@@ -80,10 +80,7 @@ class BodyState:
     pose = as_array
 
 
-Poses = BodyState  # the static poses are body states at rest
-
-
-def place_slaves(mesh: Mesh, poses: Poses, x: FloatArray) -> FloatArray:
+def place_slaves(mesh: Mesh, poses: BodyState, x: FloatArray) -> FloatArray:
     """Node positions with the attached nodes on their bodies (a new array)."""
     x = x.copy()
     if len(mesh.slave_node):
@@ -92,7 +89,7 @@ def place_slaves(mesh: Mesh, poses: Poses, x: FloatArray) -> FloatArray:
     return x
 
 
-def world_arms(mesh: Mesh, poses: Poses) -> FloatArray:
+def world_arms(mesh: Mesh, poses: BodyState) -> FloatArray:
     """Arms ``R a`` of the attached nodes in world axes (n_slaves, 3)."""
     return np.einsum("kij,kj->ki", poses.R[mesh.slave_body], mesh.slave_arm)
 

@@ -30,7 +30,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..model import System
 from ..physics import rigid_body as rb
 from .bodies import BodyDofs, BodyState, body_loads, body_mass_matrix, long_wave_geometry, skew
 from .excitation import motion_value, ramp
@@ -42,11 +41,10 @@ FloatArray = NDArray[np.float64]
 class BodyModel:
     """The bodies of a mesh (in mesh order) and their loads."""
 
-    def __init__(self, system: System | None, mesh: Mesh, fluid) -> None:
+    def __init__(self, mesh: Mesh, fluid) -> None:
         self.mesh = mesh
         self.fluid = fluid
-        names = mesh.body_names
-        self.bodies = [system.bodies[n] for n in names] if names else []
+        self.bodies = list(mesh.bodies)
         self.layout = BodyDofs.of(mesh, self.bodies)
         self.body_dof = self.layout.body_dof
         self.added = [_matrix(b.added_mass) for b in self.bodies]

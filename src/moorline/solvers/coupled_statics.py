@@ -12,9 +12,17 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..model import StaticsSettings, System
+from ..model import StaticsSettings
 from .assembly import factorize, gather_free, scatter_free
-from .bodies import BodyDofs, Poses, body_loads, place_slaves, skew, transformation, world_arms
+from .bodies import (
+    BodyDofs,
+    BodyState,
+    body_loads,
+    place_slaves,
+    skew,
+    transformation,
+    world_arms,
+)
 from .equilibrium import ForceState, StaticModel
 from .newton import Counters, NewtonPolicy, TangentCache
 from .newton import solve as newton_solve
@@ -25,16 +33,16 @@ FloatArray = NDArray[np.float64]
 class CoupledStatics:
     """Residual and exact tangent of the coupled line-body statics."""
 
-    def __init__(self, system: System, mesh: Mesh) -> None:
+    def __init__(self, mesh: Mesh) -> None:
         self.mesh = mesh
         self.model = StaticModel(mesh)
-        self.bodies = [system.bodies[n] for n in mesh.body_names]
+        self.bodies = list(mesh.bodies)
         layout = BodyDofs.of(mesh, self.bodies)
         self.n_free, self.body_dof, self.n_unknowns = (layout.n_free, layout.body_dof,
                                                        layout.n_unknowns)
         self.ext_dofs, self.pattern, self.ext_map = layout.ext_dofs, layout.pattern, layout.ext_map
 
-    def residual(self, x: FloatArray, poses: Poses) -> tuple[FloatArray, ForceState]:
+    def residual(self, x: FloatArray, poses: BodyState) -> tuple[FloatArray, ForceState]:
         """Out-of-balance forces at the free node dofs, then force and moment on every free
         body (about its origin)."""
         state = self.model.forces(x)
@@ -53,7 +61,7 @@ class CoupledStatics:
             out[self.body_dof[b]: self.body_dof[b] + 6] = generalized
         return out, state
 
-    def tangent(self, x: FloatArray, poses: Poses, state: ForceState,
+    def tangent(self, x: FloatArray, poses: BodyState, state: ForceState,
                 taut_axial: bool = False):
         """Exact tangent ``-d(residual)/d(unknowns)`` (CSC); ``taut_axial``: see
         :meth:`moorline.solvers.equilibrium.StaticModel.tangent`."""
@@ -80,7 +88,8 @@ class CoupledStatics:
             K = K + sp.csc_matrix((np.full(body.size, scale), (body, body)), shape=K.shape)
         return K
 
-    def update(self, x: FloatArray, poses: Poses, du: FloatArray) -> tuple[FloatArray, Poses]:
+    def update(self, x: FloatArray, poses: BodyState,
+               du: FloatArray) -> tuple[FloatArray, BodyState]:
         """Apply a step of the unknowns."""
         x = x + scatter_free(du[: self.n_free], self.mesh.dof_of_node)
         nb = len(self.bodies)
@@ -149,20 +158,25 @@ class _SchurStep:
         return scipy.linalg.lu_solve(self.lu, r_bodies - self.correction)
 
 
-def solve_coupled(system: System, mesh: Mesh, x: FloatArray, settings: StaticsSettings,
-                  counters, hold=None) -> tuple[bool, str, int, ForceState, FloatArray, Poses]:
-    """Newton on the bodies' six dofs with the lines kept in equilibrium (partitioned).
+def solve_coupled(mesh: Mesh, x: FloatArray, settings: StaticsSettings, counters, hold
+                  ) -> tuple[bool, str, int, ForceState, FloatArray, BodyState]:
+    """Static equilibrium of lines and bodies: Newton on the bodies' six dofs with the lines
+    kept in equilibrium (partitioned); without free bodies, the lines' own solve.
 
-    Every iteration first equilibrates the lines with the bodies held (``hold``: the robust
-    line statics, energy line search), then takes a Newton step on the bodies with the exact
-    reduced tangent (the coupled tangent with the line dofs condensed out: the Schur
-    complement ``K_bb - K_bl K_ll^-1 K_lb``), backtracking on the bodies' out-of-balance
-    force. A slack line gives a body almost no stiffness; a monolithic Newton step then
-    throws the line through the seabed, where the partitioned one cannot.
+    Every iteration first equilibrates the lines with the bodies held (``hold(x)``: the
+    line statics, energy line search; returns ``(ok, message, iterations, state, x)``), then
+    takes a Newton step on the bodies with the exact reduced tangent (the coupled tangent
+    with the line dofs condensed out: the Schur complement ``K_bb - K_bl K_ll^-1 K_lb``),
+    backtracking on the bodies' out-of-balance force. A slack line gives a body almost no
+    stiffness; a monolithic Newton step then throws the line through the seabed, where the
+    partitioned one cannot.
     """
-    problem = CoupledStatics(system, mesh)
-    poses = Poses.initial(system, mesh)
+    problem = CoupledStatics(mesh)
+    poses = BodyState.initial(mesh)
     x = place_slaves(mesh, poses, x)
+    if problem.n_unknowns == problem.n_free:  # no free body: the lines' solve is the answer
+        ok, message, iterations, state, x = hold(x)
+        return ok, message, iterations, state, x, poses
     scale = max(problem.model.load_scale(),
                 max((b.mass * mesh.gravity for b in problem.bodies), default=0.0))
     tol = max(settings.tolerance * scale, problem.model.roundoff_floor(x))
@@ -185,11 +199,11 @@ def solve_coupled(system: System, mesh: Mesh, x: FloatArray, settings: StaticsSe
             out.iterations, out.trial.state, x, poses)
 
 
-def _equilibrate(problem: CoupledStatics, x: FloatArray, poses: Poses, hold, counters):
+def _equilibrate(problem: CoupledStatics, x: FloatArray, poses: BodyState, hold, counters):
     """Lines in equilibrium with the bodies held at ``poses``; the coupled residual there."""
     x = place_slaves(problem.mesh, poses, x)
     if hold is not None:
-        x = hold(x)
+        x = hold(x)[4]
     R, state = problem.residual(x, poses)
     counters.residuals += 1
     return x, R, state

@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ConvergenceError
-from ..mesh import Mesh, discretize
+from ..mesh import Mesh, discretize, with_loads_of
 from ..model import DynamicsSettings, StaticsSettings, System
 from ..results import DynamicResult, StaticResult
 from .assembly import gather_free, scatter_free, solve_sparse
@@ -68,7 +68,8 @@ def simulate(
         Initial Maxwell-branch force of viscoelastic elements (n_elements,); default relaxed
         (zero) at the initial positions.
     """
-    mesh = initial.mesh if isinstance(initial, StaticResult) else discretize(system)
+    mesh = (with_loads_of(initial.mesh, system) if isinstance(initial, StaticResult)
+            else discretize(system))
     if initial is None:
         initial = solve_statics(system, _statics_settings(system), mesh=mesh)
         if not initial.success:
@@ -79,7 +80,7 @@ def simulate(
         system, settings, ramp_current=not getattr(initial, "current_drag", False))
     model = DynamicModel(mesh, fluid, settings.viscoelastic_update,
                          system.environment.seabed)
-    excitation = Excitation(system, mesh, x0)
+    excitation = Excitation(mesh, x0)
     state = _initial_state(model, excitation, x0, settings.dt, maxwell)
     if mesh.body_names:
         state = _with_bodies(state, initial)
@@ -142,7 +143,7 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     if reason is None and settings.fast_path:
         return FastStepper(model, coefficients, policy)
     logger.info("general stepper (compiled step not used: %s)", reason or "disabled")
-    bodies = BodyModel(system, model.mesh, fluid) if has_bodies else None
+    bodies = BodyModel(model.mesh, fluid) if has_bodies else None
     return Stepper(model, coefficients, settings.variant, policy, bodies, rayleigh)
 
 

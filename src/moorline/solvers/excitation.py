@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..model import Motion, System
+from ..model import Motion
 
 FloatArray = NDArray[np.float64]
 
@@ -50,13 +50,12 @@ class Excitation:
     time); tables one by one.
     """
 
-    def __init__(self, system: System, mesh: Mesh, base_positions: FloatArray) -> None:
-        points = list(system.points.values())
+    def __init__(self, mesh: Mesh, base_positions: FloatArray) -> None:
         self.constrained = np.flatnonzero(~mesh.free_nodes)
         self.base = base_positions[self.constrained].copy()
         row = {int(n): i for i, n in enumerate(self.constrained)}
-        moving = [(row[int(mesh.point_node[i])], p.motion) for i, p in enumerate(points)
-                  if p.kind == "prescribed" and p.motion is not None]
+        moving = [(row[int(mesh.point_node[i])], mo) for i, mo in enumerate(mesh.point_motion)
+                  if mo is not None]
         harmonic = [(r, mo) for r, mo in moving if mo.kind == "harmonic"]
         self._tables = [(r, mo) for r, mo in moving if mo.kind != "harmonic"]
         self._rows = [r for r, _ in harmonic]
@@ -64,8 +63,8 @@ class Excitation:
         self._omega = np.array([2 * np.pi / mo.period for _, mo in harmonic])
         self._phase = np.radians([mo.phase_deg for _, mo in harmonic])
         self._ramp = np.array([mo.ramp_time for _, mo in harmonic])
-        self._forces = [(int(mesh.point_node[i]), p.force_history) for i, p in enumerate(points)
-                        if p.kind == "free" and p.force_history is not None]
+        self._forces = [(int(mesh.point_node[i]), f)
+                        for i, f in enumerate(mesh.point_force_history) if f is not None]
 
     def constrained_state(self, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Positions, velocities and accelerations of all fixed and prescribed nodes at ``t``."""

@@ -101,7 +101,7 @@ class HarmonicBalance:
             raise MoorlineError("harmonic balance needs period > 0 and harmonics >= 1")
         statics = equilibrium_for(system, statics, "harmonic balance")
         mesh = statics.mesh
-        if getattr(mesh, "body_names", ()):
+        if mesh.body_names:
             raise MoorlineError(f"harmonic balance of {system.name}: systems with bodies are "
                                 "not supported")
         if any(system.line_types[line.line_type].material != "elastic"
@@ -120,7 +120,7 @@ class HarmonicBalance:
         self.model = DynamicModel(mesh, fluid_field_from_environment(system.environment),
                                   "exponential", system.environment.seabed)
         self.x_static = statics.positions
-        excitation = Excitation(system, mesh, self.x_static)
+        excitation = Excitation(mesh, self.x_static)
         # evaluate the excitation after its ramps, a whole number of periods on
         ramps = [p.motion.ramp_time for p in system.points.values() if p.motion is not None] + \
             [p.force_history.ramp_time for p in system.points.values()

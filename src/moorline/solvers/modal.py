@@ -38,7 +38,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..errors import ConvergenceError, MoorlineError
-from ..mesh import Mesh
+from ..mesh import Mesh, with_loads_of
 from ..model import ModalSettings, System
 from ..physics import element, hydro
 from ..results import BODY_DOFS, ModalResult, StaticResult
@@ -99,7 +99,7 @@ def solve_modes(
     settings = settings or _default_settings(system)
     statics = equilibrium_for(system, statics, "modal analysis")
     mesh = statics.mesh
-    if getattr(mesh, "body_names", ()):
+    if mesh.body_names:
         return _body_modes(system, statics, settings)
     if mesh.n_dofs == 0:
         raise MoorlineError(f"modal analysis of {system.name}: the model has no free node")
@@ -336,11 +336,12 @@ def body_modal_matrices(system: System, mesh: Mesh, positions: FloatArray,
     problem : CoupledStatics
         Its dof numbering (``n_free``, ``body_dof``, ``bodies``).
     """
-    from .bodies import Poses, body_mass_matrix, rotation_matrix, transformation, world_arms
+    from .bodies import BodyState, body_mass_matrix, rotation_matrix, transformation, world_arms
     from .coupled_statics import CoupledStatics
 
-    problem = problem or CoupledStatics(system, mesh)
-    poses = Poses(body_pose[:, :3].copy(), rotation_matrix(body_pose[:, 3:]))
+    mesh = with_loads_of(mesh, system)
+    problem = problem or CoupledStatics(mesh)
+    poses = BodyState(body_pose[:, :3].copy(), rotation_matrix(body_pose[:, 3:]))
     _, state = problem.residual(positions, poses)
     K = problem.tangent(positions, poses, state, taut_axial)
     K = ((K + K.T) * 0.5).tocsr()

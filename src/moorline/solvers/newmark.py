@@ -135,7 +135,7 @@ class Stepper:
         self.variant = variant
         self.policy = policy
         mesh = model.mesh
-        self.bodies = bodies if bodies is not None else BodyModel(None, mesh, model.fluid)
+        self.bodies = bodies if bodies is not None else BodyModel(mesh, model.fluid)
         layout = self.bodies.layout
         self.layout = layout
         self.pattern = layout.pattern

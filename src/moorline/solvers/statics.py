@@ -17,16 +17,17 @@ points move from their start to their target position linearly in ``lam``.
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ..mesh import Mesh, discretize
+from ..mesh import Mesh, discretize, with_loads_of
 from ..model import StaticsSettings, System
 from ..results import StaticResult
 from .assembly import BlockPattern, SparseFactor, factorize, gather_free, scatter_free, solve_sparse
+from .coupled_statics import solve_coupled
 from .equilibrium import ForceState, StaticModel
 from .initial_shape import initial_positions
 from .newton import Counters, NewtonPolicy, TangentCache
@@ -60,7 +61,7 @@ def equilibrium_for(system: System, statics: StaticResult | None,
     if not statics.success:
         raise ConvergenceError(f"{analysis} of {system.name}: no static equilibrium to "
                                f"linearize about ({statics.message})")
-    return statics
+    return replace(statics, mesh=with_loads_of(statics.mesh, system))
 
 
 def solve_statics(
@@ -100,26 +101,23 @@ def solve_statics(
     model = StaticModel(mesh, current)
     x = (initial_positions(system, mesh, settings.start) if initial is None
          else np.array(initial, dtype=float))
-    start = x[~mesh.free_nodes].copy()
     target = mesh.node_position[~mesh.free_nodes]
     solver = {"newton": _newton, "incremental": _incremental, "relaxation": _relaxation}
     counters = _Counters()
-    pose = np.zeros((0, 6))
-    if mesh.body_names:
-        from .coupled_statics import solve_coupled
+    fixed_rows = ~np.isin(np.flatnonzero(~mesh.free_nodes), mesh.slave_node)
 
-        # bodies by Newton on their six dofs, the lines re-equilibrated (robust line statics)
-        # with the bodies held at every trial pose
-        def hold(x_held: FloatArray) -> FloatArray:
-            fixed = x_held[~mesh.free_nodes]
-            return solver[settings.method](model, x_held, fixed, fixed, settings, counters)[4]
+    def hold(x_held: FloatArray):
+        """The lines in equilibrium with the body nodes held where ``x_held`` has them; the
+        fixed and prescribed points moved from where they are to their targets."""
+        held = x_held[~mesh.free_nodes]
+        goal = held.copy()
+        goal[fixed_rows] = target[fixed_rows]
+        return solver[settings.method](model, x_held, held, goal, settings, counters)
 
-        ok, message, iterations, state, x, poses = solve_coupled(system, mesh, x, settings,
-                                                                  counters, hold)
-        pose = poses.as_array()
-    else:
-        ok, message, iterations, state, x = solver[settings.method](
-            model, x, start, target, settings, counters)
+    # bodies by Newton on their six dofs, the lines re-equilibrated (robust line statics)
+    # with the bodies held at every trial pose; without bodies, the line statics alone
+    ok, message, iterations, state, x, poses = solve_coupled(mesh, x, settings, counters, hold)
+    pose = poses.as_array()
     return StaticResult(
         success=ok, message=message, method=settings.method, iterations=iterations,
         load_steps=settings.load_steps, residual_history=np.array(counters.history),

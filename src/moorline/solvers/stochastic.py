@@ -69,7 +69,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..errors import MoorlineError
-from ..mesh import Mesh
+from ..mesh import Mesh, with_loads_of
 from ..model import ModalSettings, StochasticSettings, System
 from ..physics import element
 from ..results import StaticResult, StochasticResult
@@ -124,10 +124,10 @@ class _LinearModel:
 
     def __init__(self, system: System, statics: StaticResult,
                  settings: StochasticSettings) -> None:
-        mesh = statics.mesh
+        mesh = with_loads_of(statics.mesh, system)
         self.mesh, self.rho = mesh, float(mesh.water_density)
         modal = ModalSettings(mass=settings.mass, added_mass=settings.added_mass)
-        if getattr(mesh, "body_names", ()):
+        if mesh.body_names:
             K, M, P, problem = body_modal_matrices(system, mesh, statics.positions,
                                                    statics.body_pose, modal)
             self.P, self.n_free = P, problem.n_free
@@ -376,7 +376,7 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
                             f"{settings.method!r}")
     statics = equilibrium_for(system, statics, "stochastic analysis")
     mesh = statics.mesh
-    if mesh.n_dofs == 0 and not getattr(mesh, "body_names", ()):
+    if mesh.n_dofs == 0 and not mesh.body_names:
         raise MoorlineError(f"stochastic analysis of {system.name}: no free node")
     rho = float(mesh.water_density)
     sea = random_sea(env.waves)

@@ -50,7 +50,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import MoorlineError
-from ..mesh import Mesh
+from ..mesh import Mesh, with_loads_of
 from ..model import ModalSettings, StrummingSettings, System
 from ..physics import hydro, wake
 from ..results import DynamicResult, StaticResult, StrummingResult
@@ -152,7 +152,7 @@ class _ModeSource:
         from .coupled_statics import CoupledStatics
 
         self.system, self.mesh, self.settings, self.rho = system, mesh, settings, rho
-        self.problem = CoupledStatics(system, mesh) if getattr(mesh, "body_names", ()) \
+        self.problem = CoupledStatics(mesh) if mesh.body_names \
             else None
         self.modal = ModalSettings(n_modes=max(settings.n_modes, 1), mass=settings.mass,
                                    added_mass=settings.added_mass)
@@ -266,7 +266,7 @@ def solve_strumming(system: System, settings: StrummingSettings,
     """
     from ..waves import fluid_field_from_environment
 
-    mesh = inline.mesh
+    mesh = with_loads_of(inline.mesh, system)
     rho = float(mesh.water_density)
     if rho <= 0:
         raise MoorlineError("strumming needs a fluid (water_density > 0)")

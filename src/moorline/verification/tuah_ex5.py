@@ -419,7 +419,7 @@ def _one_shot(system: System, static: StaticResult, settings: DynamicsSettings) 
     x0 = static.positions
     fluid = dyn._fluid(system, settings)
     model = DynamicModel(mesh, fluid, settings.viscoelastic_update, system.environment.seabed)
-    exc = Excitation(system, mesh, x0)
+    exc = Excitation(mesh, x0)
     state = dyn._with_bodies(dyn._initial_state(model, exc, x0, settings.dt), static)
     scale = max(float(np.abs(model.external).max(initial=0.0)),
                 float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
