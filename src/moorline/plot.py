@@ -686,35 +686,23 @@ def plot_dynamics_group(dataset: xr.Dataset, directory: str | Path,
     return files
 
 
-def plot_modal_group(dataset: xr.Dataset, directory: str | Path, prefix: str = "") -> list[Path]:
-    """``mode_shapes.png`` of a modal group."""
-    path = Path(directory) / f"{prefix}mode_shapes.png"
-    plot_mode_shapes(dataset, path)
-    return [path]
+def _single_figure(plotter, name: str, kind: str):
+    """A group plotter drawing one figure ``{prefix}{name}.png`` with ``plotter``."""
+
+    def plot_group(dataset: xr.Dataset, directory: str | Path, prefix: str = "") -> list[Path]:
+        path = Path(directory) / f"{prefix}{name}.png"
+        plotter(dataset, path)
+        return [path]
+
+    plot_group.__name__ = plot_group.__qualname__ = f"plot_{kind}_group"
+    plot_group.__doc__ = f"``{name}.png`` of a {kind} group."
+    return plot_group
 
 
-def plot_strumming_group(dataset: xr.Dataset, directory: str | Path,
-                         prefix: str = "") -> list[Path]:
-    """``strumming.png`` of a strumming group."""
-    path = Path(directory) / f"{prefix}strumming.png"
-    plot_strumming(dataset, path)
-    return [path]
-
-
-def plot_stochastic_group(dataset: xr.Dataset, directory: str | Path,
-                          prefix: str = "") -> list[Path]:
-    """``stochastic.png`` of a stochastic group."""
-    path = Path(directory) / f"{prefix}stochastic.png"
-    plot_stochastic(dataset, path)
-    return [path]
-
-
-def plot_harmonic_group(dataset: xr.Dataset, directory: str | Path,
-                        prefix: str = "") -> list[Path]:
-    """``harmonic.png`` of a harmonic group."""
-    path = Path(directory) / f"{prefix}harmonic.png"
-    plot_harmonic(dataset, path)
-    return [path]
+plot_modal_group = _single_figure(plot_mode_shapes, "mode_shapes", "modal")
+plot_strumming_group = _single_figure(plot_strumming, "strumming", "strumming")
+plot_stochastic_group = _single_figure(plot_stochastic, "stochastic", "stochastic")
+plot_harmonic_group = _single_figure(plot_harmonic, "harmonic", "harmonic")
 
 
 __all__ += ["plot_dynamics_group", "plot_harmonic_group", "plot_modal_group",

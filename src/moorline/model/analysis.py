@@ -101,8 +101,9 @@ class DynamicsSettings:
         Standard linear solid update: ``exponential`` (exact integration of the Maxwell branch
         over a step, accurate for any dt) or ``incremental`` (Tuah eq. 2.2.b.3).
     rayleigh_ratio, rayleigh_frequencies
-        Rayleigh damping ``a0 M + a1 K`` with this damping ratio at the two circular
-        frequencies [rad/s] (systems with bodies; Wang, Er and Iu use 0.03).
+        Rayleigh damping ``a0 M + a1 K`` (``M`` and ``K`` at the start of the run, over all
+        unknowns: lines, points and bodies) with this damping ratio at the two circular
+        frequencies [rad/s] (Wang, Er and Iu use 0.03).
     fast_path
         Use the compiled step (:mod:`moorline.solvers.fast_newmark`) when the model allows
         it (elastic lines, still water or uniform current, Newmark, iterative); same results.
