@@ -235,6 +235,8 @@ BAD_CASES = [
     ("random_record_length_zero", "environment.waves.record_length", "must be > 0"),
     ("stochastic_without_random_sea", "analyses[1].kind", "needs a random sea"),
     ("current_drag_with_bodies", "analyses[0].current_drag", "not supported yet"),
+    ("harmonic_with_bodies", "analyses[1].kind", "systems with bodies is not supported"),
+    ("harmonic_viscoelastic", "analyses[1].kind", "needs elastic lines"),
     ("body_point_unknown_body", "points.fairlead.body", "unknown body 'hull'"),
 ]
 
