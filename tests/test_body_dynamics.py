@@ -145,3 +145,40 @@ def test_wave_excitation_table_drives_the_linear_heave_response():
     amplitude = 0.5 * (z[late].max() - z[late].min())
     expected = 1.0 * x3 / abs(k_heave - (mass + added) * 1.0**2 + 1j * damping * 1.0)
     assert amplitude == pytest.approx(expected, rel=0.02)
+
+
+def test_exciting_force_phases_refer_to_the_static_pose():
+    """The time stepper's exciting force of a table is the wave's at the body's static
+    position (where the run starts), not at the position the case file gives."""
+    from dataclasses import replace
+
+    from moorline.model import WaveExcitation
+    from moorline.solvers.dynamic_model import DynamicModel
+    from moorline.solvers.dynamics import _fluid, _initial_state, _stepper
+    from moorline.solvers.excitation import Excitation
+    from moorline.verification import tuah_ex5
+
+    system, static = tuah_ex5.static_state(3)
+    table = WaveExcitation(omegas=(0.5, 3.0), amplitude=((1e3,) * 6, (1e3,) * 6),
+                           phase_deg=((30.0,) * 6, (30.0,) * 6))
+    body = replace(system.bodies[tuah_ex5.BODY], excitation=table, force_history=None)
+    system = replace(system, bodies={tuah_ex5.BODY: body})
+    x_static = float(static.body_pose[0, 0])
+    assert abs(x_static - body.position[0]) > 1.0  # the mooring moves the body
+    settings = DynamicsSettings(duration=1.0, dt=0.05)
+    fluid = _fluid(system, settings)
+    model = DynamicModel(static.mesh, fluid)
+    exc = Excitation(static.mesh, static.positions)
+    state = _initial_state(model, exc, static.positions, settings.dt, initial=static)
+    stepper = _stepper(model, fluid, settings, 1e-6, system, state)
+    from moorline.solvers.excitation import ramp
+
+    wave = fluid.wave if hasattr(fluid, "wave") else fluid
+    assert float(getattr(wave, "phase", 0.0)) == 0.0
+    t = 0.7
+    got = stepper.bodies._excitation(body, 0, t)
+    k, w = wave.wave_number, wave.omega
+    # eta = a cos(k x - w t): the force's phase is the wave's at the static x, plus 30 deg
+    expected = wave.amplitude * 1e3 * np.cos(w * t - k * x_static + np.radians(30.0))
+    factor = ramp(t, float(getattr(wave, "ramp_time", 0.0)))[0]
+    np.testing.assert_allclose(got, factor * expected, rtol=1e-12)

@@ -11,7 +11,6 @@ damping ``BA``.
 from __future__ import annotations
 
 import itertools
-import time
 from dataclasses import fields
 
 import numpy as np
@@ -263,53 +262,3 @@ def test_element_subset_and_functional_form():
                                atol=RTOL * np.abs(f).max())
     axial_c = np.zeros_like(dF_dv)  # BA = 0: no dashpot
     np.testing.assert_allclose(drag.C, axial_c - dF_dv, rtol=0, atol=RTOL * np.abs(dF_dv).max())
-
-
-def _best(fun, number: int, repeat: int = 7) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        for _ in range(number):
-            fun()
-        times.append((time.perf_counter() - start) / number)
-    return min(times)
-
-
-def test_speed_on_60_elements():
-    """60 elements (4 lines of 15), tangent=True, after warm-up. The element loads are the
-    part the kernel replaces: >= 10x there. The whole evaluate also holds the (unchanged)
-    fluid kinematics, seabed contact and node terms, which both kernels share: >= 5x."""
-    mesh = discretize(_system(n=15))
-    assert mesh.n_elements == 60
-    fluid = FLUIDS["current"]
-    ref = DynamicModel(mesh, fluid, kernel="numpy")
-    new = DynamicModel(mesh, fluid, kernel="numba")
-    x, v, a = _configuration(mesh, "mixed", 0)
-    material = ref.initial_material(x)
-    args = (x, v, a, 1.0, material, 0.1, True)
-    new.evaluate(*args)  # compile / load from cache
-    mid = fused.midpoints(x, mesh.elements)
-    uf, af, _ = fluid.kinematics(mid, 1.0)
-
-    def numpy_element_loads():
-        # the element part of DynamicModel.evaluate on the numpy path
-        el = mesh.elements
-        length, unit = element.element_geometry(x, el)
-        dv = v[el[:, 1]] - v[el[:, 0]]
-        T, dT_dl, _, taut = ref._axial_tension(length, unit, dv, material, 0.1)
-        forces = element.nodal_forces(T, unit).copy()
-        out = {"K": ref._axial_tangent(length, unit, dv, T, dT_dl, taut),
-               "C": np.zeros((len(T), 6, 6))}
-        forces, out = ref._morison(x, v, a, uf, af, forces, out, True)
-        hydro.sum_to_nodes(out.pop("f_am"), el, mesh.n_nodes)
-        hydro.sum_to_nodes(forces, el, mesh.n_nodes)
-
-    t_np_el = _best(numpy_element_loads, 100)
-    t_nb_el = _best(lambda: new._fused(x, v, a, uf, af, True), 1000)
-    t_np = _best(lambda: ref.evaluate(*args), 100)
-    t_nb = _best(lambda: new.evaluate(*args), 1000)
-    print(f"\nelement loads: numpy {t_np_el * 1e6:.0f} us, numba {t_nb_el * 1e6:.1f} us "
-          f"({t_np_el / t_nb_el:.0f}x); evaluate: numpy {t_np * 1e6:.0f} us, numba "
-          f"{t_nb * 1e6:.1f} us ({t_np / t_nb:.1f}x)")
-    assert t_np_el >= 10.0 * t_nb_el
-    assert t_np >= 5.0 * t_nb

@@ -8,7 +8,6 @@ error O(eps_mach |f| / h). With velocities and lengths of order 1 and h = 1e-5 b
 (the third derivative of |w|w grows like 1/|w|): the nearly tangent case uses |u_n| ~ 1e-2.
 """
 
-import time
 
 import numpy as np
 import pytest
@@ -265,32 +264,3 @@ def test_sum_to_nodes_matches_add_at():
     np.add.at(ref, elements[:, 0], f[:, 0])
     np.add.at(ref, elements[:, 1], f[:, 1])
     assert np.allclose(hydro.sum_to_nodes(f, elements, len(x)), ref, rtol=1e-14, atol=1e-14)
-
-
-def _best_time(fun, repeat=5):
-    """Best of several calls after a warm-up call (the first touch of fresh memory is slow)."""
-    fun()
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fun()
-        best = min(best, time.perf_counter() - t0)
-    return best
-
-
-def test_vectorized_speed_on_1e5_elements():
-    n_el = 100_000
-    x, elements = _chain(n_el)
-    v = RNG.normal(size=x.shape)
-    uf = RNG.normal(size=(n_el, 3))
-    L0 = np.ones(n_el)
-    calls = {
-        "drag": lambda: hydro.drag_forces(x, v, uf, elements, L0, D, CD, CT, RHO),
-        "added_mass": lambda: hydro.added_mass_blocks(x, elements, L0, D, 1.0, 0.1, RHO),
-        "added_mass_dx": lambda: hydro.added_mass_position_derivative(
-            x, v, elements, L0, D, 1.0, 0.1, RHO),
-        "inertia": lambda: hydro.fluid_inertia_forces(x, uf, elements, L0, D, 1.0, 0.1, RHO),
-        "sum": lambda: hydro.sum_to_nodes(np.zeros((n_el, 2, 3)), elements, len(x)),
-    }
-    for name, fun in calls.items():
-        assert _best_time(fun) < 0.1, name

@@ -7,8 +7,6 @@ which are themselves checked here against a numerical ODE solution.
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import pytest
 import scipy.integrate
@@ -286,26 +284,17 @@ def test_tangents_match_central_differences(slack):
     assert np.allclose(k, (Tp - Tm) / (2 * h), rtol=1e-7)
 
 
-def test_vectorized_over_1e5_elements_under_10_ms():
-    """One call for 10^5 elements, taut and slack mixed: best of 7 under 10 ms for each update
-    (measured ~5 ms exponential with slack, ~1 ms incremental), and element-wise identical to
-    single-element calls."""
+def test_vectorized_over_1e5_elements_equals_single_element_calls():
+    """One call for 10^5 elements, taut and slack mixed, element-wise identical to
+    single-element calls (its speed is measured by the benchmarks, not asserted here)."""
     n = 100_000
     s = _random_state(n)
     Q_old = s["EA1"] * RNG.uniform(-0.01, 0.01, n)
     new = s["strain_old"] + RNG.uniform(-0.02, 0.02, n)
     kw = {k: s[k] for k in ("dt", "EA", "EA1", "tau")}
-    best = {"exponential": np.inf, "incremental": np.inf}
-    for _ in range(7):
-        t0 = time.perf_counter()
-        T, Q, k = sls_update_exponential(new, s["strain_old"], Q_old, **kw, slack_ratio=1e-6)
-        t1 = time.perf_counter()
-        sls_update_incremental(new, s["strain_old"], Q_old, **kw)
-        t2 = time.perf_counter()
-        best["exponential"] = min(best["exponential"], t1 - t0)
-        best["incremental"] = min(best["incremental"], t2 - t1)
+    T, Q, k = sls_update_exponential(new, s["strain_old"], Q_old, **kw, slack_ratio=1e-6)
+    sls_update_incremental(new, s["strain_old"], Q_old, **kw)
     assert 0 < np.count_nonzero(T < 0.0) < n  # both branches exercised
-    assert max(best.values()) < 0.010, best
     for i in RNG.integers(0, n, 5):
         one = sls_update_exponential(new[i], s["strain_old"][i], Q_old[i],
                                      **{key: v[i] for key, v in kw.items()}, slack_ratio=1e-6)

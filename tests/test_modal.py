@@ -71,6 +71,26 @@ def test_modes_are_mass_orthonormal(oc3_statics, monkeypatch, mass: str, sparse:
 
 
 @needs_oc3
+def test_an_eigensolver_that_does_not_converge_is_a_returned_failure(oc3_statics,
+                                                                     monkeypatch) -> None:
+    """ARPACK giving up is a result with success False and ARPACK's reason, not an
+    exception out of the solver."""
+    import scipy.sparse.linalg as spla
+
+    system, statics = oc3_statics
+    monkeypatch.setattr(modal, "DENSE_LIMIT", 0)
+
+    def no_convergence(*args, **kwargs):
+        raise spla.ArpackNoConvergence("no convergence (maxiter)", np.zeros(0),
+                                       np.zeros((0, 0)))
+
+    monkeypatch.setattr(spla, "eigsh", no_convergence)
+    result = solve_modes(system, ModalSettings(n_modes=4), statics)
+    assert not result.success and result.status == "failed"
+    assert "ARPACK did not converge" in result.message and result.n_modes == 0
+
+
+@needs_oc3
 def test_sparse_and_dense_agree(oc3_statics, monkeypatch) -> None:
     system, statics = oc3_statics
     dense = solve_modes(system, ModalSettings(n_modes=10), statics)

@@ -170,7 +170,7 @@ def test_the_stepper_tangent_with_a_spinning_body_equals_finite_differences(sche
     of the step's residual in every unknown, node and body dofs."""
     from moorline.solvers.bodies import BodyState
     from moorline.solvers.dynamic_model import DynamicModel
-    from moorline.solvers.dynamics import _fluid, _initial_state, _stepper, _with_bodies
+    from moorline.solvers.dynamics import _fluid, _initial_state, _stepper
     from moorline.solvers.excitation import Excitation
     from moorline.solvers.newmark import _Step
 
@@ -185,7 +185,7 @@ def test_the_stepper_tangent_with_a_spinning_body_equals_finite_differences(sche
     fluid = _fluid(system, settings)
     model = DynamicModel(start.mesh, fluid)
     exc = Excitation(start.mesh, start.positions)
-    state = _with_bodies(_initial_state(model, exc, start.positions, settings.dt), start)
+    state = _initial_state(model, exc, start.positions, settings.dt, initial=start)
     spin = np.array([[0.1, -0.05, 0.02, 0.3, -0.2, 0.4]])
     state = replace(state, bodies=BodyState(state.bodies.r, state.bodies.R, spin, 0.5 * spin))
     stepper = _stepper(model, fluid, settings, 1e-6, system)

@@ -39,9 +39,13 @@ FloatArray = NDArray[np.float64]
 
 
 class BodyModel:
-    """The bodies of a mesh (in mesh order) and their loads."""
+    """The bodies of a mesh (in mesh order) and their loads.
 
-    def __init__(self, mesh: Mesh, fluid) -> None:
+    ``start``: the bodies' state at the start of the run (the static poses); the wave phases
+    of exciting-force tables refer to its positions (default: the case's body positions).
+    """
+
+    def __init__(self, mesh: Mesh, fluid, start: BodyState | None = None) -> None:
         self.mesh = mesh
         self.fluid = fluid
         self.bodies = list(mesh.bodies)
@@ -51,6 +55,8 @@ class BodyModel:
         self.damping = [_matrix(b.damping) for b in self.bodies]
         self.origin0 = [np.asarray(b.position, dtype=float) for b in self.bodies]
         self._exciting: dict[int, tuple | None] = {}
+        if start is not None:
+            self.set_origins(start)
 
     @property
     def empty(self) -> bool:

@@ -23,12 +23,12 @@ from ..errors import ConvergenceError
 from ..mesh import Mesh, discretize, with_loads_of
 from ..model import DynamicsSettings, StaticsSettings, System
 from ..results import DynamicResult, StaticResult
-from .assembly import gather_free, scatter_free, solve_sparse
+from .bodies import BodyState
 from .body_model import BodyModel
 from .dynamic_model import DynamicModel, MaterialState
 from .equilibrium import StaticModel
 from .excitation import Excitation
-from .newmark import Coefficients, Stepper, StepState
+from .newmark import Coefficients, Stepper, StepState, accelerated
 from .newton import NewtonPolicy
 from .statics import describe_dof, solve_statics
 
@@ -82,14 +82,12 @@ def simulate(
     model = DynamicModel(mesh, fluid, settings.viscoelastic_update,
                          system.environment.seabed)
     excitation = Excitation(mesh, x0)
-    state = _initial_state(model, excitation, x0, settings.dt, maxwell)
-    if mesh.body_names:
-        state = _with_bodies(state, initial)
+    state = _initial_state(model, excitation, x0, settings.dt, maxwell, initial)
     # force scale of the residual tolerance: the larger of the nodal loads and the tensions
     scale = max(float(np.abs(model.external).max(initial=0.0)),
                 float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
     tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
-    stepper = _stepper(model, fluid, settings, tolerance, system)
+    stepper = _stepper(model, fluid, settings, tolerance, system, state)
     every = max(output_every or system.output.every, settings.dt)
     recorder = _Recorder(mesh, writer, fluid)
     recorder.add(state)
@@ -129,9 +127,10 @@ def simulate(
 
 
 def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: float,
-             system: System | None = None):
+             system: System | None = None, start: StepState | None = None):
     """The time stepper of the settings: the compiled backend when the model allows it, else
-    the general one (the same algorithm; lines, points and bodies)."""
+    the general one (the same algorithm; lines, points and bodies). ``start``: the state the
+    run starts from (the bodies' exciting-force phases refer to it)."""
     from .fast_newmark import FastStepper, fast_path_reason
 
     coefficients = Coefficients.for_scheme(settings.scheme, settings.alpha)
@@ -144,7 +143,8 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     if reason is None and settings.fast_path:
         return FastStepper(model, coefficients, policy)
     logger.info("general stepper (compiled step not used: %s)", reason or "disabled")
-    bodies = BodyModel(model.mesh, fluid) if has_bodies else None
+    bodies = BodyModel(model.mesh, fluid, start.bodies if start is not None else None) \
+        if has_bodies else None
     return Stepper(model, coefficients, settings.variant, policy, bodies, rayleigh)
 
 
@@ -181,8 +181,11 @@ def _fluid(system: System, settings: DynamicsSettings, ramp_current: bool = True
 
 
 def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
-                   dt: float, maxwell: FloatArray | None = None) -> StepState:
-    """Start at rest at the static state, with the acceleration the loads give at t = 0."""
+                   dt: float, maxwell: FloatArray | None = None,
+                   initial: StaticResult | None = None) -> StepState:
+    """Start at rest at the static state (bodies at their static poses, from ``initial``),
+    with the accelerations the loads give at t = 0 (:func:`~.newmark.accelerated`; bodies
+    at rest)."""
     mesh = model.mesh
     x = x0.copy()
     x_c, v_c, a_c = excitation.constrained_state(0.0)
@@ -195,33 +198,18 @@ def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
     if maxwell is not None:
         material = MaterialState(material.strain, np.asarray(maxwell, dtype=float).copy())
     forces = excitation.point_forces(0.0, mesh.n_nodes)
-    ev = model.evaluate(x, v, a, 0.0, material, dt, True, forces)
-    mass = ev.node_M if ev.node_M is not None else np.zeros((mesh.n_nodes, 3, 3))
-    mass = mass + model.node_mass[:, None, None] * np.eye(3)
-    if mesh.n_dofs and not mesh.body_names:  # with bodies: start at rest (static state)
-        from .assembly import BlockPattern
-
-        M = BlockPattern(mesh.elements, mesh.dof_of_node).assemble(ev.Ma, mass).tocsc()
-        massive = M.diagonal() > 0  # massless nodes (weightless strings) start at a = 0
-        if np.any(massive):
-            rhs = gather_free(ev.nodal, mesh.dof_of_node)
-            a_free = np.zeros(len(rhs))
-            a_free[massive] = solve_sparse(M[massive][:, massive], rhs[massive])
-            a = a + scatter_free(a_free, mesh.dof_of_node)
-            ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
-    return StepState(0.0, x, v, a, ev.material, ev)
+    ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
+    bodies = _static_poses(initial) if mesh.body_names else None
+    state = StepState(0.0, x, v, a, ev.material, ev, bodies)
+    return accelerated(model, BodyModel(mesh, model.fluid, bodies), state, material, forces, dt)
 
 
-def _with_bodies(state: StepState, initial) -> StepState:
-    """Bodies at their static poses, at rest."""
-    from dataclasses import replace as dc_replace
-
-    from .bodies import BodyState
-
+def _static_poses(initial) -> BodyState:
+    """The bodies at their static poses, at rest."""
     pose = initial.body_pose if isinstance(initial, StaticResult) else None
     if pose is None or not len(pose):
         raise ConvergenceError("dynamics of a system with bodies needs its static state")
-    return dc_replace(state, a=np.zeros_like(state.a), bodies=BodyState.from_pose(pose))
+    return BodyState.from_pose(pose)
 
 
 class StepFailedError(Exception):

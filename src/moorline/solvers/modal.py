@@ -43,7 +43,6 @@ from ..model import ModalSettings, System
 from ..physics import element, hydro
 from ..results import BODY_DOFS, ModalResult, StaticResult
 from .assembly import scatter_free
-from .equilibrium import StaticModel
 from .statics import equilibrium_for
 
 FloatArray = NDArray[np.float64]
@@ -79,6 +78,9 @@ def solve_modes(
     ModalResult
         Modes in increasing frequency; ``phi^T M phi = I`` over the free dofs.
 
+    ``success`` is False (no modes, the message says why) when the eigensolver does not
+    converge.
+
     Raises
     ------
     ConvergenceError
@@ -99,15 +101,31 @@ def solve_modes(
     settings = settings or _default_settings(system)
     statics = equilibrium_for(system, statics, "modal analysis")
     mesh = statics.mesh
-    if mesh.body_names:
-        return _body_modes(system, statics, settings)
-    if mesh.n_dofs == 0:
+    if mesh.n_dofs == 0 and not mesh.body_names:
         raise MoorlineError(f"modal analysis of {system.name}: the model has no free node")
-    K, M = modal_matrices(mesh, statics.positions, settings)
-    lam, phi, solver = _eigen(K, M, settings)
+    K, M, P, problem = system_matrices(mesh, statics.positions, statics.body_pose, settings)
+    try:
+        if problem.n_unknowns > problem.n_free:  # modes with body dofs: labelled by body dof
+            return _body_modes(system, statics, settings, K, M, P, problem)
+        lam, phi, solver = _eigen(K, M, settings)
+    except ConvergenceError as exc:
+        return _failed(system, statics, settings, str(exc), problem.n_unknowns)
     phi = _rotate_clusters(lam, phi, M, mesh)
     phi = _fix_signs(phi)
     return _result(system, statics, settings, lam, phi, M, solver)
+
+
+def _failed(system: System, statics: StaticResult, settings: ModalSettings, message: str,
+            n_dofs: int) -> ModalResult:
+    """A modal analysis that found no modes (the eigensolver did not converge)."""
+    mesh = statics.mesh
+    none = np.zeros((0, 3))
+    return ModalResult(
+        success=False, status="failed", message=message, omega=np.zeros(0),
+        mode_shapes=np.zeros((0, mesh.n_nodes, 3)), participation=none, effective_mass=none,
+        dominant=(), positions=statics.positions, tension=statics.tension, mesh=mesh,
+        case=system.name, units=system.units, solver="shift-invert", n_dofs=n_dofs,
+        settings={k: v for k, v in asdict(settings).items() if k != "kind"})
 
 
 def _default_settings(system: System) -> ModalSettings:
@@ -116,7 +134,8 @@ def _default_settings(system: System) -> ModalSettings:
 
 def modal_matrices(mesh: Mesh, x: FloatArray, settings: ModalSettings,
                    taut_axial: bool = False) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-    """Stiffness and mass matrices over the free dofs at positions ``x``.
+    """Stiffness and mass matrices over the free dofs at positions ``x`` of a system without
+    bodies (:func:`system_matrices`).
 
     Parameters
     ----------
@@ -135,10 +154,10 @@ def modal_matrices(mesh: Mesh, x: FloatArray, settings: ModalSettings,
     K, M
         Symmetric CSR matrices (n_dofs, n_dofs).
     """
-    model = StaticModel(mesh)
-    K = model.tangent(x, taut_axial=taut_axial)
-    K = ((K + K.T) * 0.5).tocsr()
-    M = _line_mass(mesh, x, settings, model.pattern)
+    if mesh.body_names:
+        raise ValueError("modal_matrices: a system with bodies needs their poses "
+                         "(system_matrices)")
+    K, M, _, _ = system_matrices(mesh, x, np.zeros((0, 6)), settings, taut_axial=taut_axial)
     return K, M
 
 
@@ -336,10 +355,19 @@ def body_modal_matrices(system: System, mesh: Mesh, positions: FloatArray,
     problem : CoupledStatics
         Its dof numbering (``n_free``, ``body_dof``, ``bodies``).
     """
+    return system_matrices(with_loads_of(mesh, system), positions, body_pose, settings,
+                           problem, taut_axial)
+
+
+def system_matrices(mesh: Mesh, positions: FloatArray, body_pose: FloatArray,
+                    settings: ModalSettings, problem=None, taut_axial: bool = False):
+    """Stiffness ``K``, mass ``M`` over the unknowns (free node dofs, then six per free body;
+    none without bodies), the master-slave map ``P`` and the coupled statics ``problem``
+    (see :func:`body_modal_matrices` for the arguments): the one place modal, strumming and
+    stochastic analyses get their matrices."""
     from .bodies import BodyState, body_mass_matrix, rotation_matrix, transformation, world_arms
     from .coupled_statics import CoupledStatics
 
-    mesh = with_loads_of(mesh, system)
     problem = problem or CoupledStatics(mesh)
     poses = BodyState(body_pose[:, :3].copy(), rotation_matrix(body_pose[:, 3:]))
     _, state = problem.residual(positions, poses)
@@ -372,12 +400,11 @@ def body_mode_shapes(phi: FloatArray, P, problem, mesh: Mesh) -> FloatArray:
     return shapes
 
 
-def _body_modes(system: System, statics: StaticResult, settings: ModalSettings) -> ModalResult:
-    """Modes of lines and rigid bodies together (:func:`body_modal_matrices`). A mode whose
+def _body_modes(system: System, statics: StaticResult, settings: ModalSettings, K, M, P,
+                problem) -> ModalResult:
+    """Modes of lines and rigid bodies together (:func:`system_matrices`). A mode whose
     kinetic energy is mostly in a body is labelled by the body's dominant dof."""
     mesh = statics.mesh
-    K, M, P, problem = body_modal_matrices(system, mesh, statics.positions, statics.body_pose,
-                                           settings)
     lam, phi, solver = _eigen(K, M, settings)
     phi = _fix_signs(phi)
     shapes = body_mode_shapes(phi, P, problem, mesh)

@@ -36,7 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .assembly import SparseFactor, factorize, gather_free, scatter_free
+from .assembly import SparseFactor, factorize, gather_free, scatter_free, solve_sparse
 from .bodies import BodyState, transformation
 from .body_model import BodyModel
 from .dynamic_model import DynamicModel, Evaluation, MaterialState
@@ -400,3 +400,38 @@ class Stepper:
         dq = (h * state.bodies.vel + 0.5 * h * h * state.bodies.acc
               if state.bodies is not None else np.zeros((0, 6)))
         return int(np.argmax(np.abs(self.residual((x1, dq), False).r)))
+
+
+def accelerated(model: DynamicModel, bodies: BodyModel, state: StepState,
+                material: MaterialState, point_forces: FloatArray | None,
+                dt: float) -> StepState:
+    """``state`` with the accelerations its loads give: ``M a = F`` over the free node dofs
+    (Tuah (1982) eq. 4.2.1 at the start of a run; unknowns without mass, weightless strings,
+    start at ``a = 0``); ``material``: the elements' state before the start.
+
+    Systems with bodies start at rest (``a = 0``, as the source's examples, which start from
+    the static equilibrium with ramped loads): there, the static solve's residue (its
+    tolerance) would otherwise seed motions that some of the verification rows measure (the
+    round-off growth of Ex7's sway).
+    """
+    mesh = model.mesh
+    lay = bodies.layout
+    x, v, a = state.x.copy(), state.v.copy(), state.a.copy()
+    bs = state.bodies
+    if bs is not None:
+        return StepState(state.t, x, v, np.zeros_like(a), state.material, state.evaluation, bs)
+    ev = model.evaluate(x, v, a, state.t, material, dt, True, point_forces)
+    nodes_m = model.node_mass[:, None, None] * np.eye(3)
+    if ev.node_M is not None:
+        nodes_m = nodes_m + ev.node_M
+    M = sp.csc_matrix(lay.pattern.assemble(ev.Ma, nodes_m))
+    massive = M.diagonal() > 0
+    if not np.any(massive):
+        return StepState(state.t, x, v, a, ev.material, ev)
+    rhs = gather_free(ev.nodal, mesh.dof_of_node)
+    acc = np.zeros(lay.n_unknowns)
+    acc[massive] = solve_sparse(M[massive][:, massive], rhs[massive])
+    a = a + scatter_free(acc, mesh.dof_of_node)
+    ev = model.evaluate(x, v, a, state.t, material, dt, False, point_forces)
+    return StepState(state.t, x, v, a, ev.material, ev, bs)
+

@@ -75,9 +75,9 @@ from ..physics import element
 from ..results import StaticResult, StochasticResult
 from ..waves import random_sea, wave_number
 from ..waves.transfer import kinematics_transfer
-from .assembly import BlockPattern, solve_sparse
+from .assembly import solve_sparse
 from .bodies import long_wave_geometry
-from .modal import body_modal_matrices, modal_matrices
+from .modal import system_matrices
 from .statics import equilibrium_for
 
 FloatArray = NDArray[np.float64]
@@ -127,23 +127,14 @@ class _LinearModel:
         mesh = with_loads_of(statics.mesh, system)
         self.mesh, self.rho = mesh, float(mesh.water_density)
         modal = ModalSettings(mass=settings.mass, added_mass=settings.added_mass)
-        if mesh.body_names:
-            K, M, P, problem = body_modal_matrices(system, mesh, statics.positions,
-                                                   statics.body_pose, modal)
-            self.P, self.n_free = P, problem.n_free
-            self.pattern, self.ext_map = problem.pattern, problem.ext_map
-            self.bodies = [b for b, d in zip(problem.bodies, problem.body_dof, strict=True)
-                           if d >= 0]
-            self.body_dof = np.array([d for d in problem.body_dof if d >= 0], dtype=int)
-            self.origins = np.array([statics.body_pose[i, :3] for i, d
-                                     in enumerate(problem.body_dof) if d >= 0]).reshape(-1, 3)
-        else:
-            K, M = modal_matrices(mesh, statics.positions, modal)
-            self.P, self.n_free = None, mesh.n_dofs
-            self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
-            self.ext_map = mesh.dof_of_node
-            self.bodies, self.body_dof = [], np.zeros(0, dtype=int)
-            self.origins = np.zeros((0, 3))
+        K, M, P, problem = system_matrices(mesh, statics.positions, statics.body_pose, modal)
+        self.P, self.n_free = P, problem.n_free
+        self.pattern, self.ext_map = problem.pattern, problem.ext_map
+        self.bodies = [b for b, d in zip(problem.bodies, problem.body_dof, strict=True)
+                       if d >= 0]
+        self.body_dof = np.array([d for d in problem.body_dof if d >= 0], dtype=int)
+        self.origins = np.array([statics.body_pose[i, :3] for i, d
+                                 in enumerate(problem.body_dof) if d >= 0]).reshape(-1, 3)
         self.K, self.M = K, M
         self.environment = system.environment
 
@@ -156,8 +147,6 @@ class _LinearModel:
         """Linearized line (and point) drag, bodies' radiation damping and linearized body
         drag."""
         C = self.pattern.assemble(element_blocks, node_blocks)
-        if self.P is None:
-            return C
         C = (self.P.T @ C @ self.P).tolil()
         for i, (body, d) in enumerate(zip(self.bodies, self.body_dof, strict=True)):
             block = _matrix6(body.damping)
@@ -169,11 +158,8 @@ class _LinearModel:
         """Generalized forces over the unknowns (n_w, n_u) from node forces (n_w, n_nodes, 3)
         and body forces (n_w, n_bodies, 6)."""
         mask = self.ext_map >= 0
-        n_ext = self.P.shape[0] if self.P is not None else self.K.shape[0]
-        ext = np.zeros((nodal.shape[0], n_ext), dtype=complex)
+        ext = np.zeros((nodal.shape[0], self.P.shape[0]), dtype=complex)
         ext[:, self.ext_map[mask]] = nodal[:, mask]
-        if self.P is None:
-            return ext
         out = np.asarray((self.P.T @ ext.T).T)
         for i, d in enumerate(self.body_dof):
             out[:, d:d + 6] += body_forces[:, i]
@@ -182,7 +168,7 @@ class _LinearModel:
     def split(self, solution: ComplexArray) -> tuple[ComplexArray, ComplexArray]:
         """Node displacements (n_w, n_nodes, 3) and body motions (n_w, n_bodies, 6)."""
         mesh = self.mesh
-        ext = solution if self.P is None else np.asarray((self.P @ solution.T).T)
+        ext = np.asarray((self.P @ solution.T).T)
         mask = self.ext_map >= 0
         nodes = np.zeros((solution.shape[0], mesh.n_nodes, 3), dtype=complex)
         nodes[:, mask] = ext[:, self.ext_map[mask]]

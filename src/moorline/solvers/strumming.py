@@ -55,7 +55,7 @@ from ..model import ModalSettings, StrummingSettings, System
 from ..physics import hydro, wake
 from ..results import DynamicResult, StaticResult, StrummingResult
 from .assembly import BlockPattern
-from .modal import BODY_DOFS, _eigen, body_modal_matrices, body_mode_shapes, modal_matrices
+from .modal import BODY_DOFS, _eigen, body_mode_shapes, system_matrices
 
 FloatArray = NDArray[np.float64]
 
@@ -152,8 +152,7 @@ class _ModeSource:
         from .coupled_statics import CoupledStatics
 
         self.system, self.mesh, self.settings, self.rho = system, mesh, settings, rho
-        self.problem = CoupledStatics(mesh) if mesh.body_names \
-            else None
+        self.problem = CoupledStatics(mesh)
         self.modal = ModalSettings(n_modes=max(settings.n_modes, 1), mass=settings.mass,
                                    added_mass=settings.added_mass)
         # eq. 3.2.b.8 with rho D / m averaged over the elements, weighted per mode by its
@@ -168,24 +167,18 @@ class _ModeSource:
             bad = [d for d in settings.held_body_dofs if d not in unknown]
             if bad:
                 raise MoorlineError(f"strumming: held_body_dofs {bad} not among {BODY_DOFS}")
-            if self.problem is not None:
-                held = [int(d0) + unknown[d] for d0 in self.problem.body_dof if d0 >= 0
-                        for d in settings.held_body_dofs]
-                self.keep = np.setdiff1d(np.arange(self.problem.n_unknowns), held)
+            held = [int(d0) + unknown[d] for d0 in self.problem.body_dof if d0 >= 0
+                    for d in settings.held_body_dofs]
+            self.keep = np.setdiff1d(np.arange(self.problem.n_unknowns), held)
 
     def at(self, x: FloatArray, pose: FloatArray, time: float) -> _Modes:
         """Modes at node positions ``x`` and body poses ``pose`` (in-line time ``time``)."""
         mesh, settings = self.mesh, self.settings
-        if self.problem is None:
-            K, M = modal_matrices(mesh, x, self.modal, settings.taut_axial)
-            self.P = None
-        else:
-            K, M, P, _ = body_modal_matrices(self.system, mesh, x, pose, self.modal,
-                                             self.problem, settings.taut_axial)
-            if self.keep is not None:
-                K, M, P = K[self.keep][:, self.keep], M[self.keep][:, self.keep], \
-                    P[:, self.keep]
-            self.P = P
+        K, M, P, _ = system_matrices(mesh, x, pose, self.modal, self.problem,
+                                     settings.taut_axial)
+        if self.keep is not None:
+            K, M, P = K[self.keep][:, self.keep], M[self.keep][:, self.keep], P[:, self.keep]
+        self.P = P
         n = K.shape[0]
         k = n if settings.n_modes <= 0 else min(settings.n_modes, n)
         lam, phi, _ = _eigen(K, M, dataclass_replace(self.modal, n_modes=k))
@@ -196,12 +189,7 @@ class _ModeSource:
                 f"in-line state of t = {time:g} (lowest w^2 = {lam.min():.4g}: a slack line, "
                 "a mechanism or an unstable state); set nonpositive_modes: keep to integrate "
                 "such modes as they are")
-        if self.problem is None:
-            shapes = np.zeros((phi.shape[1], mesh.n_nodes, 3))
-            free = mesh.dof_of_node >= 0
-            shapes[:, free] = phi[mesh.dof_of_node[free]].T
-        else:
-            shapes = body_mode_shapes(phi, P, self.problem, mesh)
+        shapes = body_mode_shapes(phi, P, self.problem, mesh)
         w_abs = np.maximum(np.sqrt(np.abs(lam)), 1e-12)
         a, b, m = self.a, self.b, self.m
         energy = (mesh.length0 * m)[None] * ((shapes[:, a] ** 2).sum(-1)
@@ -220,10 +208,7 @@ class _ModeSource:
         mesh = self.mesh
         _, dF_dv, _ = hydro.drag_forces(x, v, fluid_mid, mesh.elements, mesh.length0,
                                         mesh.diameter, mesh.Cd, mesh.Ct, self.rho)
-        if self.problem is None:
-            C = self.pattern.assemble(-dF_dv)
-        else:
-            C = self.P.T @ (self.problem.pattern.assemble(-dF_dv) @ self.P)
+        C = self.P.T @ (self.problem.pattern.assemble(-dF_dv) @ self.P)
         return phi.T @ (C @ phi)
 
 

@@ -420,11 +420,11 @@ def _one_shot(system: System, static: StaticResult, settings: DynamicsSettings) 
     fluid = dyn._fluid(system, settings)
     model = DynamicModel(mesh, fluid, settings.viscoelastic_update, system.environment.seabed)
     exc = Excitation(mesh, x0)
-    state = dyn._with_bodies(dyn._initial_state(model, exc, x0, settings.dt), static)
+    state = dyn._initial_state(model, exc, x0, settings.dt, initial=static)
     scale = max(float(np.abs(model.external).max(initial=0.0)),
                 float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
     tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
-    stepper = dyn._stepper(model, fluid, settings, tolerance, system)
+    stepper = dyn._stepper(model, fluid, settings, tolerance, system, state)
     line = mesh.line_elements[mesh.line_index(LEG)]
     times, poses, tensions, forces, residuals = [0.0], [state.bodies.pose()[0]], \
         [state.evaluation.tension.copy()], [state.evaluation.element_forces[line[-1], 1]], [0.0]
