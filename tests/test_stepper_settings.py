@@ -206,3 +206,22 @@ def test_the_stepper_tangent_with_a_spinning_body_equals_finite_differences(sche
         minus = stepper.residual(stepper.update(u, -e), False).r
         fd[:, j] = -(plus - minus) / (2 * eps)
     assert np.allclose(K, fd, rtol=1e-5, atol=1e-6 * np.abs(K).max())
+
+
+@pytest.mark.parametrize("fast_path", [True, False])
+def test_a_state_that_turns_nan_is_a_failure_with_time_and_place_not_converged(fast_path):
+    """A prescribed motion that becomes NaN at t = 0.5 s (through the Python API, which the
+    case-file validation does not guard): the run stops there with success False and says
+    when and where, keeping the records before."""
+    system = _oscillator(across=False)
+    nan_motion = Motion("table", times=(0.0, 0.5, 1e6),
+                        values=((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (np.nan, 0.0, 0.0)))
+    top = replace(system.points["top"], kind="prescribed", motion=nan_motion)
+    system = replace(system, points={**system.points, "top": top})
+    start = solve_statics(system)
+    result = simulate(system, DynamicsSettings(duration=2.0, dt=0.1, max_step_cuts=2,
+                                               fast_path=fast_path),
+                      initial=start, output_every=0.1)
+    assert not result.success and result.status == "failed"
+    assert "did not converge at t = " in result.message and "line" in result.message
+    assert np.all(np.isfinite(result.positions)) and result.time[-1] <= 0.5 + 1e-9

@@ -157,15 +157,17 @@ def _evaluate(x, v, a, uf, af, elements, props, with_drag, with_added_mass, node
 
 @numba.njit(**_JIT)
 def _norm_inf_free(resid, band, out):
-    """Gather the free dofs of ``resid`` into ``out`` (band order); return max |r|."""
+    """Gather the free dofs of ``resid`` into ``out`` (band order); return max |r| (``inf``
+    when an entry is NaN: a NaN state never passes for converged)."""
     m = 0.0
     for n in range(resid.shape[0]):
         for c in range(3):
             k = band[n, c]
             if k >= 0:
                 out[k] = resid[n, c]
-                if abs(out[k]) > m:
-                    m = abs(out[k])
+                a = abs(out[k])
+                if not (a <= m):
+                    m = a if a == a else math.inf
     return m
 
 
