@@ -312,6 +312,12 @@ class _Response:
         Cq = np.block([[zero, eye], [eye, Cu]])
         Kq = np.block([[-eye, zero], [zero, np.diag(lam)]])
         Omega, theta = sla.eig(Kq, -Cq)  # Omega Cq theta + Kq theta = 0
+        # the closest pair of poles (relative): near a critically damped mode two poles
+        # meet, the modal terms grow as 1 / gap and cancel, and Foss's sum carries round-off
+        # of order eps / gap
+        gaps = np.abs(Omega[:, None] - Omega[None, :]) + np.diag(np.full(2 * n, np.inf))
+        self.pole_gap = float(gaps.min(initial=np.inf) / max(np.abs(Omega).max(initial=0.0),
+                                                             np.finfo(float).tiny))
         chi = theta[n:]
         c_q = np.einsum("ij,ik,kj->j", theta, Cq, theta)
         k_q = np.einsum("ij,ik,kj->j", theta, Kq, theta)
@@ -454,7 +460,9 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         body_std=np.sqrt(np.einsum("w,wbc->bc", power, np.abs(X) ** 2)),
         body_motion=series(X),
         counters={"frequencies": len(omega), "dofs": model.K.shape[0],
-                  "modes": len(response.lam) if settings.method == "foss" else 0},
+                  "modes": len(response.lam) if settings.method == "foss" else 0,
+                  **({"pole_gap": getattr(response, "pole_gap", np.inf)}
+                     if settings.method == "foss" else {})},
         success=converged, message=message, case=system.name, units=system.units)
 
 
