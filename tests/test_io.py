@@ -238,6 +238,21 @@ BAD_CASES = [
     ("harmonic_with_bodies", "analyses[1].kind", "systems with bodies is not supported"),
     ("harmonic_viscoelastic", "analyses[1].kind", "needs elastic lines"),
     ("body_point_unknown_body", "points.fairlead.body", "unknown body 'hull'"),
+    # non-finite and out-of-range numbers (MAX_MAGNITUDE, MIN_MAGNITUDE)
+    ("nan_EA", "line_types.chain.EA", "expected a number, got nan"),
+    ("inf_length", "lines.line1.length", "must be finite, got inf"),
+    ("huge_mass", "line_types.chain.mass_per_length", "at most 1e+30 in magnitude"),
+    ("denormal_EA", "line_types.chain.EA", "at least 1e-30 in magnitude"),
+    ("tiny_period", "points.fairlead.motion.period", "at least 1e-30 in magnitude"),
+    ("inf_in_inline_table", "points.fairlead.motion.values[1][0]", "must be finite, got inf"),
+    ("empty_inline_table", "points.fairlead.motion.times", "needs >= 2 rows, got 0"),
+    ("nan_in_motion_table", "points.fairlead.motion.file", "data row 2, column 2: must be a "
+                                                           "number, got nan"),
+    ("inf_in_motion_table", "points.fairlead.motion.file", "data row 2, column 2: must be "
+                                                           "finite, got inf"),
+    ("huge_in_motion_table", "points.fairlead.motion.file", "data row 2, column 4: must be at "
+                                                            "most 1e+30"),
+    ("nan_added_mass", "bodies.spar.added_mass", "entry [2][2] must be a number, got nan"),
 ]
 
 

@@ -37,6 +37,8 @@ from moorline.model import (
 )
 
 from .schema import (
+    MAX_MAGNITUDE,
+    MIN_MAGNITUDE,
     CaseSpec,
     HarmonicSpec,
     LineSpec,
@@ -44,6 +46,7 @@ from .schema import (
     PointSpec,
     StaticsSpec,
     StochasticSpec,
+    check_number,
     describe_errors,
 )
 from .units import default_value
@@ -298,6 +301,8 @@ def _check_history(history: MotionSpec, field: str, fail: Callable[[str, str], N
         if history.file is None and len(history.times) != len(history.values):
             fail(f"'times' has {len(history.times)} entries but 'values' has "
                  f"{len(history.values)}", f"{field}.values")
+        if history.file is None and len(history.times) < 2:
+            fail(f"a table history needs >= 2 rows, got {len(history.times)}", f"{field}.times")
         if history.times is not None and any(
                 b <= a for a, b in zip(history.times, history.times[1:], strict=False)):
             fail("'times' must increase strictly", f"{field}.times")
@@ -531,6 +536,14 @@ def _read_table(name: str, source: str | None, field: str) -> tuple[list, list]:
     if data.shape[1] != 4 or len(data) < 2:
         raise CaseError(f"time table {str(path)!r} must have >= 2 rows of 4 columns t, x, y, z",
                         file=source, field=f"{field}.file")
+    size = np.abs(data)
+    bad = np.argwhere(~np.isfinite(data) | (size > MAX_MAGNITUDE)
+                      | ((data != 0.0) & (size < MIN_MAGNITUDE)))
+    if len(bad):
+        row, column = bad[0]
+        raise CaseError(f"time table {str(path)!r}, data row {row + 1}, column {column + 1}: "
+                        f"{check_number(float(data[row, column]))}", file=source,
+                        field=f"{field}.file")
     if np.any(np.diff(data[:, 0]) <= 0):
         raise CaseError(f"time table {str(path)!r}: times must increase strictly", file=source,
                         field=f"{field}.file")

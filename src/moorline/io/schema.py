@@ -31,9 +31,26 @@ from pydantic_core import PydanticCustomError
 from ..analyses import KINDS
 from .units import UnitParseError, to_system
 
-__all__ = ["AnalysisSpec", "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec",
-           "LineSpec", "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
-           "StochasticSpec", "StrummingSpec", "describe_errors", "quantity"]
+__all__ = ["MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec", "CaseSpec", "DynamicsSpec",
+           "ForceHistorySpec", "HarmonicSpec", "LineSpec", "LineTypeSpec", "ModalSpec",
+           "MotionSpec", "PointSpec", "StaticsSpec",
+           "StochasticSpec", "StrummingSpec", "check_number", "describe_errors", "quantity"]
+
+MAX_MAGNITUDE = 1.0e30
+"""Largest magnitude of any number in a case file or a time table (in the case's units).
+
+Far beyond any physical value of a mooring problem in SI or US units (a chain's EA ~1e9 N, a
+hull's inertia ~1e13 kg m^2), and small enough that products and squares of such numbers in
+the solvers (stiffness times displacement, residual norms) stay finite in float64 (~1.8e308).
+"""
+
+MIN_MAGNITUDE = 1.0e-30
+"""Smallest magnitude of a nonzero number in a case file or a time table.
+
+Tinier values (down to the denormals, 1e-308) are data errors that break the solvers: an EA
+of 1e-300 makes a stiffness matrix exactly singular, a period of 1e-300 an infinite
+frequency.
+"""
 
 
 def _show(value: Any) -> str:
@@ -53,6 +70,24 @@ def _numeric(text: str) -> bool:
 
 def _fail(reason: str) -> PydanticCustomError:
     return PydanticCustomError("case_value", "{reason}", {"reason": reason})
+
+
+def check_number(x: float, allow_inf: bool = False) -> str | None:
+    """Why a number may not appear in a case file or a table, or ``None`` when it may.
+
+    NaN is refused, infinity unless ``allow_inf``, and finite numbers beyond
+    :data:`MAX_MAGNITUDE` or nonzero ones below :data:`MIN_MAGNITUDE` in magnitude.
+    """
+    if math.isnan(x):
+        return "must be a number, got nan"
+    if math.isinf(x):
+        return None if allow_inf else f"must be finite, got {x}"
+    if abs(x) > MAX_MAGNITUDE:
+        return f"must be at most {MAX_MAGNITUDE:g} in magnitude (MAX_MAGNITUDE), got {x:g}"
+    if x != 0.0 and abs(x) < MIN_MAGNITUDE:
+        return (f"a nonzero number must be at least {MIN_MAGNITUDE:g} in magnitude "
+                f"(MIN_MAGNITUDE), got {x:g}")
+    return None
 
 
 def quantity(
@@ -83,6 +118,9 @@ def quantity(
             raise _fail(str(exc)) from None
         if math.isinf(x) and not allow_inf:
             raise _fail(f"must be finite, got {_show(value)}")
+        problem = check_number(x, allow_inf)
+        if problem is not None:
+            raise _fail(problem)
         if gt is not None and not x > gt:
             raise _fail(f"must be > {gt:g}, got {_show(value)}")
         if ge is not None and not x >= ge:
@@ -125,6 +163,7 @@ Length = quantity("length")
 Vector3 = Annotated[list[Length], AfterValidator(_three)]
 Force3 = Annotated[list[quantity("force")], AfterValidator(_three)]
 Coefficient = quantity("dimensionless", ge=0.0)
+Number = quantity("dimensionless")
 
 
 def _internal_damping(value: Any, info: ValidationInfo) -> float:
@@ -133,6 +172,9 @@ def _internal_damping(value: Any, info: ValidationInfo) -> float:
     if isinstance(value, int | float) and not isinstance(value, bool) and value < 0:
         if value < -10:
             raise _fail(f"a negative BA is a damping ratio -zeta and must be >= -10, got {value}")
+        problem = check_number(float(value))
+        if problem is not None:
+            raise _fail(problem)
         return float(value)
     return quantity("force*time", ge=0.0).__metadata__[0].func(value, info)
 
@@ -253,9 +295,15 @@ def _matrix6(value: Any) -> tuple[tuple[float, ...], ...]:
     if not ok:
         raise _fail("must be a 6x6 matrix (6 rows of 6 numbers) or 6 diagonal numbers")
     try:
-        return tuple(tuple(float(x) for x in r) for r in rows)
+        matrix = tuple(tuple(float(x) for x in r) for r in rows)
     except (TypeError, ValueError):
         raise _fail("must contain numbers only") from None
+    for i, row in enumerate(matrix):
+        for j, x in enumerate(row):
+            problem = check_number(x)
+            if problem is not None:
+                raise _fail(f"entry [{i}][{j}] {problem}")
+    return matrix
 
 
 Matrix6 = Annotated[Any, PlainValidator(_matrix6)]
@@ -280,9 +328,9 @@ class ExcitationSpec(_Spec):
     frequency: ``omegas`` [rad/s], ``amplitude`` and ``phase`` [deg], one row of 6 per
     frequency (plain numbers in the case's units)."""
 
-    omegas: list[float]
-    amplitude: list[list[float]]
-    phase: list[list[float]]
+    omegas: list[Number]
+    amplitude: list[list[Number]]
+    phase: list[list[Number]]
 
 
 class BodySpec(_Spec):
