@@ -253,6 +253,17 @@ BAD_CASES = [
     ("huge_in_motion_table", "points.fairlead.motion.file", "data row 2, column 4: must be at "
                                                             "most 1e+30"),
     ("nan_added_mass", "bodies.spar.added_mass", "entry [2][2] must be a number, got nan"),
+    # sizes (moorline.io.limits)
+    ("segments_1e30", "lines.line1.segments", "more than MAX_SEGMENTS = 100000"),
+    ("segments_1e7", "lines.line1.segments", "1e+07 segments are more than MAX_SEGMENTS"),
+    ("random_record_length_huge", "environment.waves.record_length",
+     "6e+08 components, more than MAX_WAVE_COMPONENTS"),
+    ("random_n_frequencies_huge", "environment.waves.n_frequencies",
+     "1e+09 components, more than MAX_WAVE_COMPONENTS"),
+    ("stochastic_memory", "environment.waves.record_length", "more than MAX_MEMORY = 2 GiB"),
+    ("stochastic_n_points_huge", "analyses[1].n_points", "10000000000 time points"),
+    ("dynamics_duration_huge", "analyses[1].duration", "1e+10 output records"),
+    ("harmonic_harmonics_huge", "analyses[1].harmonics", "10000 harmonics"),
 ]
 
 
@@ -286,3 +297,20 @@ def test_text_errors_name_the_given_file() -> None:
     with pytest.raises(CaseError) as info:
         _mini(diameter=-1)
     assert str(info.value) == "mini.yaml: line_types.chain.diameter: must be > 0, got -1"
+
+
+def test_size_limits_match_the_solvers_counts() -> None:
+    """The component count of the limit check is the random sea's own (a 3-hour JONSWAP sea
+    to 6 omega_p: 6 x 10800 / 12 = 5400 components)."""
+    from moorline.io.limits import wave_components
+    from moorline.model import Waves
+
+    waves = Waves(kind="random", height=6.0, period=12.0, record_length=10800.0)
+    assert wave_components(waves) == 6 * 10800 // 12
+    capped = Waves(kind="random", height=6.0, period=12.0, omega_max=1.0)
+    assert wave_components(capped) == math.floor(1.0 * 1800.0 / (2 * math.pi))
+
+
+@pytest.mark.parametrize("name", [p.stem for p in sorted(CASES.glob("*.yaml"))])
+def test_example_cases_are_within_the_size_limits(name: str) -> None:
+    load_case(CASES / f"{name}.yaml")

@@ -36,6 +36,7 @@ from moorline.model import (
     Waves,
 )
 
+from .limits import MAX_MEMORY, MAX_SEGMENTS, MAX_WAVE_COMPONENTS, analysis_memory, wave_components
 from .schema import (
     MAX_MAGNITUDE,
     MIN_MAGNITUDE,
@@ -263,6 +264,37 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
     for name, point in spec.points.items():
         if point.kind == "free" and name not in attached:
             fail(f"free point {name!r} is not attached to any line", f"points.{name}")
+    _check_sizes(spec, fail)
+
+
+def _check_sizes(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
+    """Segments, random-sea components and each analysis' memory within
+    :mod:`moorline.io.limits`."""
+    total = 0
+    for name, line in spec.lines.items():
+        total += line.segments
+        if total > MAX_SEGMENTS:
+            before = " (with the lines before)" if total > line.segments else ""
+            fail(f"{line.segments:.6g} segments{before} are more than MAX_SEGMENTS = "
+                 f"{MAX_SEGMENTS} for the whole case", f"lines.{name}.segments")
+    waves = spec.environment.waves
+    components = 0
+    if waves.kind == "random":
+        components = wave_components(_waves(waves))
+        if components > MAX_WAVE_COMPONENTS:
+            key = "n_frequencies" if waves.n_frequencies is not None else "record_length"
+            fail(f"the random sea would have {components:.3g} components, more than "
+                 f"MAX_WAVE_COMPONENTS = {MAX_WAVE_COMPONENTS} (components: n_frequencies, or "
+                 f"omega_max * record_length / 2 pi)", f"environment.waves.{key}")
+    n_nodes = total + len(spec.lines)
+    every = spec.output.every or default_value("output_every", spec.units)
+    for k, analysis in enumerate(spec.analyses or ()):
+        need, what, key = analysis_memory(analysis.kind, analysis, n_nodes, components, every)
+        if need > MAX_MEMORY:
+            field = f"analyses[{k}].{key}" if key else "environment.waves.record_length"
+            fail(f"{analysis.kind} would need about {need / 1024**3:.3g} GiB ({what}, "
+                 f"{n_nodes} nodes), more than MAX_MEMORY = {MAX_MEMORY / 1024**3:g} GiB",
+                 field)
 
 
 def _check_point(
@@ -404,8 +436,7 @@ def _build(spec: CaseSpec, source: str | None) -> System:
             slip_velocity=default(env.seabed.slip_velocity, "slip_velocity"),
         ),
         current=_current(env.current),
-        waves=Waves(heading_deg=env.waves.heading, phase_deg=env.waves.phase,
-                    **env.waves.model_dump(exclude={"heading", "phase"})),
+        waves=_waves(env.waves),
     )
     line_types = {
         name: LineType(name=name, **lt.model_dump()) for name, lt in spec.line_types.items()
@@ -465,6 +496,11 @@ def _body(name: str, spec: Any, source: str | None) -> Body:
         force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"),
         drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads,
         excitation=_excitation(spec.excitation))
+
+
+def _waves(spec: Any) -> Waves:
+    return Waves(heading_deg=spec.heading, phase_deg=spec.phase,
+                 **spec.model_dump(exclude={"heading", "phase"}))
 
 
 def _excitation(spec: Any) -> WaveExcitation | None:
