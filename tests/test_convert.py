@@ -34,3 +34,17 @@ def test_case_files_survive_write_and_load(tmp_path, case):
     again = load_case(write_case(system, tmp_path / case))
     assert _comparable(again) == _comparable(system)
     assert again.analyses == system.analyses
+
+
+BAD_DECKS = ROOT / "tests" / "data" / "bad" / "moordyn"
+
+
+def test_deck_with_only_free_points_is_refused(tmp_path):
+    """Nothing holds the lines: refused when read (statics would be singular), exit 2."""
+    deck = BAD_DECKS / "only_free_points.dat"
+    out = tmp_path / "x.yaml"
+    result = CliRunner().invoke(cli, ["convert", str(deck), "--out", str(out), "--quiet"])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: {deck}: the lines joining the points 'anchor1'")
+    assert "held by no fixed or prescribed point" in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1 and not out.exists()

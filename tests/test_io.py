@@ -264,6 +264,12 @@ BAD_CASES = [
     ("stochastic_n_points_huge", "analyses[1].n_points", "10000000000 time points"),
     ("dynamics_duration_huge", "analyses[1].duration", "1e+10 output records"),
     ("harmonic_harmonics_huge", "analyses[1].harmonics", "10000 harmonics"),
+    # degenerate geometry (moorline.io.topology)
+    ("coincident_fixed_ends", "lines.line1", "both ends ('anchor', 'fairlead') are at the "
+                                             "same place"),
+    ("line_between_free_points", "points.anchor", "points 'anchor', 'fairlead' are held by "
+                                                  "no fixed or prescribed point"),
+    ("free_island", "points.b1", "points 'b1', 'b2' are held by no fixed"),
 ]
 
 

@@ -50,6 +50,7 @@ from .schema import (
     check_number,
     describe_errors,
 )
+from .topology import geometry_problem
 from .units import default_value
 
 __all__ = ["MAX_STRAIN", "SEABED_TOLERANCE", "load_case", "load_case_text"]
@@ -264,6 +265,9 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
     for name, point in spec.points.items():
         if point.kind == "free" and name not in attached:
             fail(f"free point {name!r} is not attached to any line", f"points.{name}")
+    problem = geometry_problem(spec.points, spec.lines, spec.bodies)
+    if problem is not None:
+        fail(*problem)
     _check_sizes(spec, fail)
 
 

@@ -49,6 +49,7 @@ from typing import Literal
 
 from ..errors import CaseError
 from ..model import Environment, Line, LineType, Point, Seabed, System
+from .topology import geometry_problem
 
 logger = logging.getLogger(__name__)
 
@@ -205,6 +206,9 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     raw, env_values = _parse_options(options, reader)
     environment = _environment(env_values, points, reader)
     versions = {v_types, v_points, v_lines}
+    problem = geometry_problem(points, lines)
+    if problem is not None:
+        raise CaseError(problem[0], file=str(path))
     system = System(name=path.stem, units="SI", environment=environment, line_types=types,
                     points=points, lines=lines, source=str(path))
     return MoorDynDeck(system=system, version="v1" if versions == {"v1"} else "v2",
