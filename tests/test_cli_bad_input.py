@@ -63,3 +63,42 @@ def test_missing_case_file_exits_2(tmp_path: Path) -> None:
     result = _invoke("run", case, tmp_path)
     assert result.exit_code == 2
     assert result.stderr.startswith(f"error: {case}: ")
+
+
+@pytest.mark.parametrize("kind", ["device", "fifo", "directory"])
+def test_non_regular_case_file_is_refused_at_once(kind: str, tmp_path: Path) -> None:
+    """/dev/zero would be read until the memory runs out and a FIFO blocks until a writer
+    comes: both are refused by their file type before any read."""
+    import os
+
+    if kind == "device":
+        case = Path("/dev/zero")
+    elif kind == "fifo":
+        case = tmp_path / "pipe.yaml"
+        os.mkfifo(case)
+    else:
+        case = tmp_path / "dir.yaml"
+        case.mkdir()
+    out = tmp_path / "out"
+    result = _invoke("run", case, out)
+    assert result.exit_code == 2, result.output
+    if kind != "directory":  # click refuses a directory itself
+        what = "a character device" if kind == "device" else "a named pipe"
+        assert result.stderr.strip() == (f"error: {case}: cannot read the case file: not a "
+                                         f"regular file ({what})")
+    assert not out.exists()
+
+
+def test_names_with_markup_and_mathtext_are_printed_literally(tmp_path: Path) -> None:
+    """A case, a point and a line named like rich markup or matplotlib mathtext: the run
+    succeeds and the tables show the names as written."""
+    text = (BAD / "zero_EA.yaml").read_text(encoding="utf-8")
+    text = (text.replace("name: bad-case", r"name: '[/]$\frac{$'")
+            .replace("EA: 0", "EA: 5.0e8").replace("anchor", "'[bold]a[/bold]'")
+            .replace("line1", r"'$\sqrt{$[/]'"))
+    case = tmp_path / "names.yaml"
+    case.write_text(text, encoding="utf-8")
+    result = CliRunner().invoke(cli, ["statics", str(case), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert "Traceback" not in result.stderr
+    assert "[bold]a[/bold]" in result.stdout and r"$\sqrt{$[/]" in result.stdout

@@ -571,8 +571,6 @@ def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
     from .io.case_writer import write_case
     from .io.moordyn import read_moordyn
 
-    if not deck.is_file():
-        raise CaseError("no such file", str(deck))
     system = read_moordyn(deck)
     target = out if out is not None else deck.with_suffix(".yaml")
     write_case(system, target, header=f"converted by moorline from the MoorDyn deck {deck}")

@@ -36,6 +36,7 @@ from moorline.model import (
     Waves,
 )
 
+from .files import MAX_CASE_BYTES, MAX_TABLE_BYTES, file_problem
 from .limits import MAX_MEMORY, MAX_SEGMENTS, MAX_WAVE_COMPONENTS, analysis_memory, wave_components
 from .schema import (
     MAX_MAGNITUDE,
@@ -49,11 +50,12 @@ from .schema import (
     StochasticSpec,
     check_number,
     describe_errors,
+    dotted,
 )
 from .topology import geometry_problem
 from .units import default_value
 
-__all__ = ["MAX_STRAIN", "SEABED_TOLERANCE", "load_case", "load_case_text"]
+__all__ = ["MAX_DEPTH", "MAX_STRAIN", "SEABED_TOLERANCE", "load_case", "load_case_text"]
 
 logger = logging.getLogger(__name__)
 
@@ -65,6 +67,10 @@ A line is rejected when the distance between its ends exceeds ``length * (1 + MA
 polyester ~ 10-15 % and nylon ~ 20-30 % at break), so only data errors trip it, while an
 elastic line may legitimately be a little shorter than its span (a pretensioned string).
 """
+
+MAX_DEPTH = 32
+"""Deepest nesting of mappings and lists in a case file (a case needs 6: ``bodies.hull.
+added_mass[i][j]``; 10,000 levels would exhaust Python's recursion limit)."""
 
 SEABED_TOLERANCE = 1.0e-6
 """A fixed or prescribed point may lie up to ``SEABED_TOLERANCE * depth`` below the seabed."""
@@ -91,6 +97,9 @@ def load_case(path: str | os.PathLike[str]) -> System:
         The file cannot be read or its content is invalid (names file and key path).
     """
     file = str(path)
+    problem = file_problem(path, MAX_CASE_BYTES)
+    if problem is not None:
+        raise CaseError(f"cannot read the case file: {problem}", file=file)
     try:
         text = Path(path).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
@@ -179,12 +188,34 @@ _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _constru
 
 def _parse_yaml(text: str, file: str) -> Any:
     try:
-        return yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
+        data = yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
+    except RecursionError:
+        raise CaseError(f"malformed YAML: nested too deeply for the parser (a case needs at "
+                        f"most MAX_DEPTH = {MAX_DEPTH} levels of mappings and lists)",
+                        file=file) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
         raise CaseError(f"malformed YAML{where}: {problem}", file=file) from None
+    path = _too_deep(data)
+    if path is not None:
+        raise CaseError(f"nested more than MAX_DEPTH = {MAX_DEPTH} levels of mappings and "
+                        f"lists (no case key is that deep)", file=file, field=path)
+    return data
+
+
+def _too_deep(data: Any) -> str | None:
+    """Key path of the first value nested deeper than :data:`MAX_DEPTH`, else ``None``."""
+    stack: list[tuple[Any, list[str | int]]] = [(data, [])]
+    while stack:
+        value, parts = stack.pop()
+        if len(parts) > MAX_DEPTH:
+            return dotted(parts[:MAX_DEPTH + 1])
+        items = value.items() if isinstance(value, dict) else (
+            enumerate(value) if isinstance(value, list) else ())
+        stack.extend((v, [*parts, k if isinstance(k, int) else str(k)]) for k, v in items)
+    return None
 
 
 # --------------------------------------------------------------------------------------------
@@ -567,6 +598,10 @@ def _read_table(name: str, source: str | None, field: str) -> tuple[list, list]:
 
     base = Path(source).parent if source else Path.cwd()
     path = (base / name).resolve()
+    problem = file_problem(path, MAX_TABLE_BYTES)
+    if problem is not None:
+        raise CaseError(f"cannot read time table {str(path)!r}: {problem}", file=source,
+                        field=f"{field}.file")
     try:
         data = np.loadtxt(path, delimiter=",", comments="#", ndmin=2,
                           skiprows=_header_rows(path))

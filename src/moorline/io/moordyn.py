@@ -49,6 +49,7 @@ from typing import Literal
 
 from ..errors import CaseError
 from ..model import Environment, Line, LineType, Point, Seabed, System
+from .files import MAX_CASE_BYTES, file_problem
 from .topology import geometry_problem
 
 logger = logging.getLogger(__name__)
@@ -184,6 +185,9 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     """
     path = Path(path)
     reader = _Reader(str(path))
+    problem = file_problem(path, MAX_CASE_BYTES)
+    if problem is not None:
+        raise CaseError(f"cannot read MoorDyn file: {problem}", file=str(path))
     try:
         text = path.read_text(encoding="utf-8", errors="replace")
     except OSError as exc:
