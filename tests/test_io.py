@@ -328,3 +328,35 @@ def test_size_limits_match_the_solvers_counts() -> None:
 @pytest.mark.parametrize("name", [p.stem for p in sorted(CASES.glob("*.yaml"))])
 def test_example_cases_are_within_the_size_limits(name: str) -> None:
     load_case(CASES / f"{name}.yaml")
+
+
+MERGED = """
+name: merged
+environment: {depth: 100}
+line_types:
+  chain: &chain {diameter: 0.1, mass_per_length: 50, EA: 5.0e8, Cd: 1.2}
+  heavy:
+    <<: *chain
+    mass_per_length: 80
+points:
+  anchor: {kind: fixed, position: [-300, 0, -100]}
+  fairlead: {kind: prescribed, position: [0, 0, -10]}
+lines:
+  line1: {type: heavy, length: 350, segments: 10, end_a: anchor, end_b: fairlead}
+"""
+
+
+def test_yaml_merge_key_overrides_as_yaml_defines() -> None:
+    """``<<: *base`` then one key overridden (https://yaml.org/type/merge.html): the
+    mapping's own key wins, the others come from the base."""
+    types = load_case_text(MERGED).line_types
+    assert types["heavy"].mass_per_length == 80.0
+    assert (types["heavy"].diameter, types["heavy"].EA, types["heavy"].Cd) == (0.1, 5.0e8, 1.2)
+    assert types["chain"].mass_per_length == 50.0
+
+
+def test_a_key_written_twice_beside_a_merge_key_is_still_a_duplicate() -> None:
+    text = MERGED.replace("    mass_per_length: 80",
+                          "    mass_per_length: 80\n    EA: 1\n    EA: 2")
+    with pytest.raises(CaseError, match="duplicate key 'EA'"):
+        load_case_text(text)

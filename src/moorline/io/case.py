@@ -163,13 +163,17 @@ def _load(text: str, file: str, source: str | None) -> System:
 
 
 class _Loader(yaml.SafeLoader):
-    """Safe loader that rejects duplicate keys (YAML would silently keep the last one)."""
+    """Safe loader that rejects duplicate keys (YAML would silently keep the last one).
+
+    Merge keys work as YAML defines them (https://yaml.org/type/merge.html): ``<<: *base``
+    inserts the keys of ``base`` that the mapping does not give itself; only keys written
+    twice in the mapping itself are duplicates."""
 
 
 def _construct_mapping(loader: _Loader, node: yaml.MappingNode, deep: bool = False) -> Any:
-    loader.flatten_mapping(node)
     seen: set[Any] = set()
-    for key_node, _ in node.value:
+    own = [k for k, _ in node.value if k.tag != "tag:yaml.org,2002:merge"]
+    for key_node in own:
         key = loader.construct_object(key_node, deep=deep)
         try:
             duplicate = key in seen
@@ -180,7 +184,7 @@ def _construct_mapping(loader: _Loader, node: yaml.MappingNode, deep: bool = Fal
                 None, None, f"duplicate key {key!r}", key_node.start_mark
             )
         seen.add(key)
-    return loader.construct_mapping(node, deep=deep)
+    return loader.construct_mapping(node, deep=deep)  # flattens the merge keys
 
 
 _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _construct_mapping)
