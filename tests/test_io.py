@@ -278,6 +278,7 @@ BAD_CASES = [
     ("unit_power_tower", "lines.line1.length", "'10**10**10 m': chained powers"),
     ("unit_nested_power", "lines.line1.length", "a power of an expression that holds a power"),
     ("depth_1e300", "environment.depth", "must be at most 1e+30 in magnitude"),
+    ("negative_inertia", "bodies.spar.inertia[0]", "must be >= 0, got -1.0e9"),
 ]
 
 

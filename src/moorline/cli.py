@@ -566,12 +566,20 @@ if __name__ == "__main__":  # pragma: no cover
               help="Case file to write (default: the deck's name with .yaml).")
 @_common_options
 def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
-    """Convert a MoorDyn input file DECK into a moorline case file (YAML)."""
+    """Convert a MoorDyn input file DECK into a moorline case file (YAML).
+
+    The case is validated before it is written: a deck whose values a case may not hold
+    (negative coefficients, volumes, seabed stiffness) exits 2 and writes nothing.
+    """
     _configure_logging(verbose)
     from .io.case_writer import write_case
     from .io.moordyn import read_moordyn
 
     system = read_moordyn(deck)
     target = out if out is not None else deck.with_suffix(".yaml")
-    write_case(system, target, header=f"converted by moorline from the MoorDyn deck {deck}")
+    try:
+        write_case(system, target, header=f"converted by moorline from the MoorDyn deck {deck}")
+    except CaseError as exc:
+        raise CaseError(f"cannot be converted, the case would not load (not written): {exc}",
+                        str(deck)) from None
     _note(f"wrote {target}", quiet)

@@ -342,7 +342,8 @@ class BodySpec(_Spec):
     rotation: Annotated[list[quantity("angle")], AfterValidator(_three)] = (0.0, 0.0, 0.0)
     mass: quantity("mass", ge=0.0)
     center_of_gravity: Vector3 = (0.0, 0.0, 0.0)
-    inertia: Annotated[list[quantity("mass*length^2")], AfterValidator(_three)] = (0.0,) * 3
+    inertia: Annotated[list[quantity("mass*length^2", ge=0.0)],
+                       AfterValidator(_three)] = (0.0,) * 3
     added_mass: Matrix6 | None = None
     damping: Matrix6 | None = None
     hydrostatics: HydrostaticsSpec = Field(default_factory=HydrostaticsSpec)
