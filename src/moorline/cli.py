@@ -8,9 +8,12 @@ are the table :data:`moorline.analyses.KINDS`.
 Exit codes: 0 success; 1 the analysis failed (a result with ``success`` False: no convergence,
 a time step that failed; its message is printed and what was computed is written; a
 verification row out of tolerance); 2 bad input (a case file that does not validate, a
-missing or unreadable file, an unknown name); 130 interrupted (Ctrl-C: the results file keeps
-what was computed). Expected errors print ``error: <file>: <key path>: <reason>`` on stderr,
-never a traceback; unexpected exceptions are bugs and keep their traceback.
+missing or unreadable file, an unknown name); 130 interrupted (Ctrl-C), 143 terminated
+(SIGTERM, e.g. from ``timeout`` or a batch scheduler): the results file keeps what was
+computed, with status ``interrupted`` or ``terminated``; a second signal during the clean-up
+is ignored (see :mod:`moorline.signals`). Expected errors print
+``error: <file>: <key path>: <reason>`` on stderr, never a traceback; unexpected exceptions
+are bugs and keep their traceback.
 
 With ``--json`` a command prints exactly one JSON document on stdout and nothing else; logs,
 progress and errors go to stderr. This is the only module that configures ``logging``.
@@ -41,10 +44,11 @@ from .runners import (
     _run_analyses,
     _RunInterruptedError,
 )
+from .signals import Terminated, handle_signals
 
 logger = logging.getLogger(__name__)
 
-EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_TERMINATED = 0, 1, 2, 130, 143
 F = TypeVar("F", bound=Callable[..., Any])
 
 
@@ -55,6 +59,10 @@ class _Cli(click.Group):
     """A group that turns moorline's expected errors into one-line messages and exit codes."""
 
     def invoke(self, ctx: click.Context) -> Any:
+        with handle_signals():
+            return self._invoke(ctx)
+
+    def _invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
         except CaseError as exc:
@@ -67,7 +75,11 @@ class _Cli(click.Group):
             _fail(_describe_os_error(exc), EXIT_BAD_INPUT)
         except _RunInterruptedError as exc:
             click.echo(str(exc), err=True)
-            raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
+            code = EXIT_TERMINATED if exc.terminated else EXIT_INTERRUPTED
+            raise click.exceptions.Exit(code) from None
+        except Terminated:
+            click.echo("terminated", err=True)
+            raise click.exceptions.Exit(EXIT_TERMINATED) from None
         except KeyboardInterrupt:
             click.echo("interrupted", err=True)
             raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
