@@ -66,3 +66,16 @@ def test_convert_refuses_what_would_not_load(tmp_path, deck, field, reason):
     assert result.stderr.strip() == (f"error: {path}: cannot be converted, the case would not "
                                      f"load (not written): {out}: {field}: {reason}")
     assert not out.exists()
+
+
+@pytest.mark.parametrize(("deck", "message"), [
+    ("nan_length", "line 19, LINES: UnstrLen must be a number, got nan"),
+    ("huge_segments", "lines.line1.segments: 1e+30 segments are more than MAX_SEGMENTS"),
+])
+def test_convert_refuses_bad_numbers(tmp_path, deck, message):
+    path = BAD_DECKS / f"{deck}.dat"
+    out = tmp_path / "x.yaml"
+    result = CliRunner().invoke(cli, ["convert", str(path), "--out", str(out), "--quiet"])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: {path}: ") and message in result.stderr
+    assert not out.exists()

@@ -50,6 +50,7 @@ from typing import Literal
 from ..errors import CaseError
 from ..model import Environment, Line, LineType, Point, Seabed, System
 from .files import MAX_CASE_BYTES, file_problem
+from .schema import check_number
 from .topology import geometry_problem
 
 logger = logging.getLogger(__name__)
@@ -270,8 +271,9 @@ def _number(token: str, what: str, row: _Row, section: str, reader: _Reader) -> 
         value = float(token)
     except ValueError:
         raise reader.fail(f"{what} must be a number, got {token!r}", row, section) from None
-    if not math.isfinite(value):
-        raise reader.fail(f"{what} must be finite, got {token!r}", row, section)
+    problem = check_number(value)
+    if problem is not None:
+        raise reader.fail(f"{what} {problem}", row, section)
     return value
 
 
