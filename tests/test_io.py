@@ -279,6 +279,8 @@ BAD_CASES = [
     ("unit_nested_power", "lines.line1.length", "a power of an expression that holds a power"),
     ("depth_1e300", "environment.depth", "must be at most 1e+30 in magnitude"),
     ("negative_inertia", "bodies.spar.inertia[0]", "must be >= 0, got -1.0e9"),
+    ("billion_laughs", None, "holds 4.9e+08 values once its aliases (*name) are expanded"),
+    ("recursive_alias", "a" + "[1]" * 32, "nested more than MAX_DEPTH = 32 levels"),
 ]
 
 

@@ -55,7 +55,8 @@ from .schema import (
 from .topology import geometry_problem
 from .units import default_value
 
-__all__ = ["MAX_DEPTH", "MAX_STRAIN", "SEABED_TOLERANCE", "load_case", "load_case_text"]
+__all__ = ["MAX_DEPTH", "MAX_STRAIN", "MAX_VALUES", "SEABED_TOLERANCE", "load_case",
+           "load_case_text"]
 
 logger = logging.getLogger(__name__)
 
@@ -71,6 +72,11 @@ elastic line may legitimately be a little shorter than its span (a pretensioned 
 MAX_DEPTH = 32
 """Deepest nesting of mappings and lists in a case file (a case needs 6: ``bodies.hull.
 added_mass[i][j]``; 10,000 levels would exhaust Python's recursion limit)."""
+
+MAX_VALUES = 2_000_000
+"""Most values (numbers, strings, mappings and lists) in a case file once its YAML aliases
+are expanded: a 100,000-segment initial shape has 400,000; nine aliases of nine aliases
+("billion laughs") would have 387 million numbers."""
 
 SEABED_TOLERANCE = 1.0e-6
 """A fixed or prescribed point may lie up to ``SEABED_TOLERANCE * depth`` below the seabed."""
@@ -206,20 +212,49 @@ def _parse_yaml(text: str, file: str) -> Any:
     if path is not None:
         raise CaseError(f"nested more than MAX_DEPTH = {MAX_DEPTH} levels of mappings and "
                         f"lists (no case key is that deep)", file=file, field=path)
+    count = _size(data, {})
+    if count > MAX_VALUES:
+        raise CaseError(f"holds {count:.3g} values once its aliases (*name) are expanded, more "
+                        f"than MAX_VALUES = {MAX_VALUES}", file=file)
     return data
 
 
+def _children(value: Any) -> Any:
+    if isinstance(value, dict):
+        return value.items()
+    return enumerate(value) if isinstance(value, list) else ()
+
+
 def _too_deep(data: Any) -> str | None:
-    """Key path of the first value nested deeper than :data:`MAX_DEPTH`, else ``None``."""
+    """Key path of the first value nested deeper than :data:`MAX_DEPTH`, else ``None``.
+
+    Aliases make the data a graph (even a cyclic one): a mapping or list is walked again
+    only when it is reached deeper than before, so at most ``MAX_DEPTH`` times.
+    """
     stack: list[tuple[Any, list[str | int]]] = [(data, [])]
+    reached: dict[int, int] = {}
     while stack:
         value, parts = stack.pop()
+        if not isinstance(value, dict | list):
+            continue
         if len(parts) > MAX_DEPTH:
             return dotted(parts[:MAX_DEPTH + 1])
-        items = value.items() if isinstance(value, dict) else (
-            enumerate(value) if isinstance(value, list) else ())
-        stack.extend((v, [*parts, k if isinstance(k, int) else str(k)]) for k, v in items)
+        if reached.get(id(value), -1) >= len(parts):
+            continue
+        reached[id(value)] = len(parts)
+        stack.extend((v, [*parts, k if isinstance(k, int) else str(k)])
+                     for k, v in _children(value))
     return None
+
+
+def _size(value: Any, memo: dict[int, int]) -> int:
+    """Number of values with aliases expanded (the data is acyclic and at most
+    :data:`MAX_DEPTH` deep: checked first)."""
+    if not isinstance(value, dict | list):
+        return 1
+    if id(value) not in memo:
+        memo[id(value)] = 1 + sum(_size(v, memo) for _, v in _children(value))
+    return memo[id(value)]
 
 
 # --------------------------------------------------------------------------------------------
