@@ -70,7 +70,7 @@ def test_convert_refuses_what_would_not_load(tmp_path, deck, field, reason):
 
 @pytest.mark.parametrize(("deck", "message"), [
     ("nan_length", "line 19, LINES: UnstrLen must be a number, got nan"),
-    ("huge_segments", "lines.line1.segments: 1e+30 segments are more than MAX_SEGMENTS"),
+    ("huge_segments", "lines.line1.segments: must be at most 1e+12 (MAX_COUNT)"),
 ])
 def test_convert_refuses_bad_numbers(tmp_path, deck, message):
     path = BAD_DECKS / f"{deck}.dat"

@@ -254,7 +254,7 @@ BAD_CASES = [
                                                             "most 1e+30"),
     ("nan_added_mass", "bodies.spar.added_mass", "entry [2][2] must be a number, got nan"),
     # sizes (moorline.io.limits)
-    ("segments_1e30", "lines.line1.segments", "more than MAX_SEGMENTS = 100000"),
+    ("segments_1e30", "lines.line1.segments", "must be at most 1e+12 (MAX_COUNT), got 1e+30"),
     ("segments_1e7", "lines.line1.segments", "1e+07 segments are more than MAX_SEGMENTS"),
     ("random_record_length_huge", "environment.waves.record_length",
      "6e+08 components, more than MAX_WAVE_COMPONENTS"),

@@ -31,10 +31,10 @@ from pydantic_core import PydanticCustomError
 from ..analyses import KINDS
 from .units import UnitParseError, to_system
 
-__all__ = ["MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec", "CaseSpec", "DynamicsSpec",
-           "ForceHistorySpec", "HarmonicSpec", "LineSpec", "LineTypeSpec", "ModalSpec",
-           "MotionSpec", "PointSpec", "StaticsSpec",
-           "StochasticSpec", "StrummingSpec", "check_number", "describe_errors", "quantity"]
+__all__ = ["MAX_COUNT", "MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec", "CaseSpec",
+           "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec", "LineSpec", "LineTypeSpec",
+           "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec", "StochasticSpec",
+           "StrummingSpec", "check_number", "describe_errors", "quantity"]
 
 MAX_MAGNITUDE = 1.0e30
 """Largest magnitude of any number in a case file or a time table (in the case's units).
@@ -43,6 +43,10 @@ Far beyond any physical value of a mooring problem in SI or US units (a chain's 
 hull's inertia ~1e13 kg m^2), and small enough that products and squares of such numbers in
 the solvers (stiffness times displacement, residual norms) stay finite in float64 (~1.8e308).
 """
+
+MAX_COUNT = 10**12
+"""Largest positive integer of a case file (segments, iterations, harmonics, points...);
+the sizes that cost memory have tighter limits in :mod:`moorline.io.limits`."""
 
 MIN_MAGNITUDE = 1.0e-30
 """Smallest magnitude of a nonzero number in a case file or a time table.
@@ -143,6 +147,8 @@ def _positive_int(value: Any) -> int:
         n = int(value)
     if n is None or n < 1:
         raise _fail(f"must be a positive integer, got {_show(value)}")
+    if n > MAX_COUNT:
+        raise _fail(f"must be at most {MAX_COUNT:.0e} (MAX_COUNT), got {_show(value)}")
     return n
 
 
@@ -289,14 +295,14 @@ def _matrix6(value: Any) -> tuple[tuple[float, ...], ...]:
     rows = value
     if isinstance(value, list) and len(value) == 6 and all(
             isinstance(v, int | float) for v in value):
-        rows = [[float(value[i]) if i == j else 0.0 for j in range(6)] for i in range(6)]
+        rows = [[value[i] if i == j else 0.0 for j in range(6)] for i in range(6)]
     ok = (isinstance(rows, list) and len(rows) == 6
           and all(isinstance(r, list) and len(r) == 6 for r in rows))
     if not ok:
         raise _fail("must be a 6x6 matrix (6 rows of 6 numbers) or 6 diagonal numbers")
     try:
         matrix = tuple(tuple(float(x) for x in r) for r in rows)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise _fail("must contain numbers only") from None
     for i, row in enumerate(matrix):
         for j, x in enumerate(row):

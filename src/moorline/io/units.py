@@ -190,7 +190,11 @@ def to_system(value: Any, dimension: str, system: System) -> float:
     if isinstance(value, str):
         magnitude = _parse_text(value, dimension, system)
     else:
-        magnitude = float(value)
+        try:
+            magnitude = float(value)
+        except OverflowError:
+            raise UnitParseError(f"too large a number: {str(value)[:20]}... "
+                                 f"({len(str(value))} digits)") from None
     if math.isnan(magnitude):
         raise UnitParseError(f"expected a number, got {_show(value)}")
     return magnitude
