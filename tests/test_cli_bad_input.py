@@ -160,3 +160,14 @@ def test_every_bad_input_exits_2_within_5_s_and_500_mb(tmp_path: Path) -> None:
         assert code == 2, (path, stderr)
         lines = stderr.strip().splitlines()
         assert len(lines) == 1 and lines[0].startswith(f"error: {path}: "), (path, stderr)
+
+
+@pytest.mark.parametrize("command", ["plot", "sweep", "convert", "bem"])
+def test_other_commands_refuse_a_device_at_once(command: str, tmp_path: Path) -> None:
+    args = [command, "/dev/zero", "--out", str(tmp_path / "o")]
+    if command == "bem":
+        args += ["--body", "hull", "--omega", "1"]
+    result = CliRunner().invoke(cli, args)
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith("error: /dev/zero: cannot read ")
+    assert result.stderr.strip().endswith("not a regular file (a character device)")

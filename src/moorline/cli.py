@@ -406,10 +406,12 @@ def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: b
     with the group name when a kind repeats.
     """
     _configure_logging(verbose)
+    from .io.files import file_problem
     from .io.writers import read_group, result_groups
 
-    if not results.is_file():
-        raise CaseError("no such file", str(results))
+    problem = file_problem(results, limit=1 << 62)
+    if problem is not None:
+        raise CaseError(f"cannot read the results file: {problem}", str(results))
     try:
         groups = result_groups(results)
         datasets = {name: read_group(results, name) for name, kind in groups.items()
