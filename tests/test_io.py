@@ -260,7 +260,7 @@ BAD_CASES = [
      "6e+08 components, more than MAX_WAVE_COMPONENTS"),
     ("random_n_frequencies_huge", "environment.waves.n_frequencies",
      "1e+09 components, more than MAX_WAVE_COMPONENTS"),
-    ("stochastic_memory", "environment.waves.record_length", "more than MAX_MEMORY = 2 GiB"),
+    ("stochastic_memory", "environment.waves.record_length", "more than MAX_MEMORY = 4 GiB"),
     ("stochastic_n_points_huge", "analyses[1].n_points", "10000000000 time points"),
     ("dynamics_duration_huge", "analyses[1].duration", "1e+10 output records"),
     ("harmonic_harmonics_huge", "analyses[1].harmonics", "10000 harmonics"),

@@ -21,10 +21,13 @@ MAX_WAVE_COMPONENTS = 100_000
 """Most components of a random sea (Tuah 1982, Example 5, uses 200; a 3-hour record to
 6 omega_p needs a few thousand)."""
 
-MAX_MEMORY = 2 * 1024**3
-"""Largest memory estimate of one analysis [bytes] (2 GiB)."""
+MAX_MEMORY = 4 * 1024**3
+"""Largest memory estimate of one analysis [bytes] (4 GiB; a 3-hour run of a 60-node system
+recorded at 50 Hz needs ~6 GiB)."""
 
 _FLOAT, _COMPLEX = 8, 16
+_RECORD_OVERHEAD = 4096  # bytes per dynamics record beyond its numbers (the OC3 run, 63 nodes:
+#                          11.6 kB measured per record, 11.2 kB estimated)
 
 
 def wave_components(waves: Waves) -> int:
@@ -41,13 +44,18 @@ def analysis_memory(kind: str, settings: object, n_nodes: int, n_components: int
     of its settings that sets it (``""``: the sea's size).
 
     - ``dynamics``: the output records kept in memory, ``duration / max(every, dt)`` of
-      positions, velocities (3 per node) and tensions (one per segment).
+      positions, velocities (3 per node) and tensions (one per segment), twice (the lists of
+      records and the arrays made of them at the end), plus ~4 kB per record for the array
+      objects of each and the solver's end-of-run copies.
     - ``strumming``: its time histories, ``duration / dt`` steps of 3 numbers per node.
     - ``stochastic``: transfer functions (``n_components`` complex per degree of freedom) and
       the time series of one record (``n_points``, default ~4-8 ``n_components``, per degree
       of freedom).
     - ``harmonic``: the block-sparse Jacobian, ``(2 harmonics + 1)^2`` blocks of the tangent
-      (27 entries per node row) and the sampled tangents.
+      (27 entries per node row) and the sampled tangents, four times (its assembly and LU
+      factors; measured 322 MB for 40 harmonics of a 21-node line, estimated 366 MB).
+    - ``stochastic`` measured 105 MB for 7,200 components of a 21-node line, estimated
+      116 MB.
     - other kinds: nothing beyond the mesh.
     """
     dofs = 3 * n_nodes
@@ -57,8 +65,8 @@ def analysis_memory(kind: str, settings: object, n_nodes: int, n_components: int
 
     if kind == "dynamics":
         records = get("duration") / max(output_every, get("dt"))
-        return (records * (2 * dofs + n_nodes) * _FLOAT, f"{records:.3g} output records",
-                "duration")
+        per_record = 2 * (2 * dofs + n_nodes) * _FLOAT + _RECORD_OVERHEAD
+        return records * per_record, f"{records:.3g} output records", "duration"
     if kind == "strumming":
         steps = get("duration") / get("dt")
         return steps * dofs * _FLOAT, f"{steps:.3g} time steps", "duration"
@@ -69,7 +77,7 @@ def analysis_memory(kind: str, settings: object, n_nodes: int, n_components: int
                 "n_points" if get("n_points") else "")
     if kind == "harmonic":
         terms = 2 * get("harmonics") + 1
-        samples = get("samples") or 2 * terms
-        return ((terms**2 + samples) * 27 * dofs * _FLOAT * 2,
+        samples = get("samples") or 4 * (get("harmonics") + 1)
+        return ((terms**2 + samples) * 27 * dofs * _FLOAT * 4,
                 f"{get('harmonics'):.0f} harmonics and {samples:.0f} samples", "harmonics")
     return 0.0, "", ""
