@@ -317,7 +317,7 @@ def _modes_table(result: Any) -> Table:
         table.add_column(escape(name), justify="left" if name == "dominant" else "right")
     for k in range(result.n_modes):
         table.add_row(str(k + 1), _g(result.omega[k]), _g(result.period[k]),
-                      _g(result.frequency_hz[k]), result.dominant[k],
+                      _g(result.frequency_hz[k]), escape(str(result.dominant[k])),
                       *(f"{v:.3f}" for v in result.participation[k]))
     return table
 
