@@ -37,7 +37,14 @@ from moorline.model import (
 )
 
 from .files import MAX_CASE_BYTES, MAX_TABLE_BYTES, file_problem
-from .limits import MAX_MEMORY, MAX_SEGMENTS, MAX_WAVE_COMPONENTS, analysis_memory, wave_components
+from .limits import (
+    MAX_MEMORY,
+    MAX_SEGMENTS,
+    MAX_TIME_STEPS,
+    MAX_WAVE_COMPONENTS,
+    analysis_memory,
+    wave_components,
+)
 from .schema import (
     MAX_MAGNITUDE,
     MIN_MAGNITUDE,
@@ -363,6 +370,11 @@ def _check_sizes(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
     n_nodes = total + len(spec.lines)
     every = spec.output.every or default_value("output_every", spec.units)
     for k, analysis in enumerate(spec.analyses or ()):
+        if analysis.kind in ("dynamics", "strumming"):
+            steps = analysis.duration / analysis.dt
+            if steps > MAX_TIME_STEPS:
+                fail(f"duration / dt = {steps:.3g} time steps, more than MAX_TIME_STEPS = "
+                     f"{MAX_TIME_STEPS:.0e}", f"analyses[{k}].dt")
         need, what, key = analysis_memory(analysis.kind, analysis, n_nodes, components, every)
         if need > MAX_MEMORY:
             field = f"analyses[{k}].{key}" if key else "environment.waves.record_length"

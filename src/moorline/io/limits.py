@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from ..model import Waves
 
-__all__ = ["MAX_MEMORY", "MAX_SEGMENTS", "MAX_WAVE_COMPONENTS", "analysis_memory",
+__all__ = ["MAX_MEMORY", "MAX_SEGMENTS", "MAX_TIME_STEPS", "MAX_WAVE_COMPONENTS", "analysis_memory",
            "wave_components"]
 
 MAX_SEGMENTS = 100_000
@@ -20,6 +20,10 @@ MAX_SEGMENTS = 100_000
 MAX_WAVE_COMPONENTS = 100_000
 """Most components of a random sea (Tuah 1982, Example 5, uses 200; a 3-hour record to
 6 omega_p needs a few thousand)."""
+
+MAX_TIME_STEPS = 1_000_000_000
+"""Most time steps ``duration / dt`` of a dynamics or strumming analysis (a 3-hour storm at
+dt = 1e-4 s is 1.1e8; 1e9 steps take days)."""
 
 MAX_MEMORY = 4 * 1024**3
 """Largest memory estimate of one analysis [bytes] (4 GiB; a 3-hour run of a 60-node system
