@@ -265,6 +265,8 @@ BAD_CASES = [
     ("dynamics_duration_huge", "analyses[1].duration", "1e+09 output records"),
     ("harmonic_harmonics_huge", "analyses[1].harmonics", "10000 harmonics"),
     ("dynamics_dt_tiny", "analyses[1].dt", "1e+21 time steps, more than MAX_TIME_STEPS"),
+    ("statics_iterations_huge", "analyses[0].max_iterations",
+     "must be at most 1000000 (MAX_ITERATIONS)"),
     # degenerate geometry (moorline.io.topology)
     ("coincident_fixed_ends", "lines.line1", "both ends ('anchor', 'fairlead') are at the "
                                              "same place"),

@@ -371,10 +371,10 @@ def _check_sizes(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
     every = spec.output.every or default_value("output_every", spec.units)
     for k, analysis in enumerate(spec.analyses or ()):
         if analysis.kind in ("dynamics", "strumming"):
-            steps = analysis.duration / analysis.dt
+            steps = analysis.duration / analysis.dt * getattr(analysis, "substeps", 1)
             if steps > MAX_TIME_STEPS:
-                fail(f"duration / dt = {steps:.3g} time steps, more than MAX_TIME_STEPS = "
-                     f"{MAX_TIME_STEPS:.0e}", f"analyses[{k}].dt")
+                fail(f"duration / dt (x substeps) = {steps:.3g} time steps, more than "
+                     f"MAX_TIME_STEPS = {MAX_TIME_STEPS:.0e}", f"analyses[{k}].dt")
         need, what, key = analysis_memory(analysis.kind, analysis, n_nodes, components, every)
         if need > MAX_MEMORY:
             field = f"analyses[{k}].{key}" if key else "environment.waves.record_length"

@@ -31,10 +31,10 @@ from pydantic_core import PydanticCustomError
 from ..analyses import KINDS
 from .units import UnitParseError, to_system
 
-__all__ = ["MAX_COUNT", "MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec", "CaseSpec",
-           "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec", "LineSpec", "LineTypeSpec",
-           "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec", "StochasticSpec",
-           "StrummingSpec", "check_number", "describe_errors", "quantity"]
+__all__ = ["MAX_COUNT", "MAX_ITERATIONS", "MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec",
+           "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec", "LineSpec",
+           "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
+           "StochasticSpec", "StrummingSpec", "check_number", "describe_errors", "quantity"]
 
 MAX_MAGNITUDE = 1.0e30
 """Largest magnitude of any number in a case file or a time table (in the case's units).
@@ -47,6 +47,10 @@ the solvers (stiffness times displacement, residual norms) stay finite in float6
 MAX_COUNT = 10**12
 """Largest positive integer of a case file (segments, iterations, harmonics, points...);
 the sizes that cost memory have tighter limits in :mod:`moorline.io.limits`."""
+
+MAX_ITERATIONS = 1_000_000
+"""Largest iteration or step count (``max_iterations``, ``load_steps``, ``stiffness_update``,
+``substeps``): a solver that needs more does not converge, and would run for days first."""
 
 MIN_MAGNITUDE = 1.0e-30
 """Smallest magnitude of a nonzero number in a case file or a time table.
@@ -136,8 +140,9 @@ def quantity(
     return Annotated[float, PlainValidator(validate)]
 
 
-def _positive_int(value: Any) -> int:
-    """A positive integer (``20``, ``20.0`` or ``"20"``)."""
+def _positive_int(value: Any, limit: int | None = None) -> int:
+    """A positive integer (``20``, ``20.0`` or ``"20"``), at most ``limit`` (default
+    :data:`MAX_COUNT`)."""
     n: int | None = None
     if isinstance(value, int) and not isinstance(value, bool):
         n = value
@@ -147,6 +152,8 @@ def _positive_int(value: Any) -> int:
         n = int(value)
     if n is None or n < 1:
         raise _fail(f"must be a positive integer, got {_show(value)}")
+    if limit is not None and n > limit:
+        raise _fail(f"must be at most {limit} (MAX_ITERATIONS), got {_show(value)}")
     if n > MAX_COUNT:
         raise _fail(f"must be at most {MAX_COUNT:.0e} (MAX_COUNT), got {_show(value)}")
     return n
@@ -165,6 +172,7 @@ def _three(values: list[float]) -> tuple[float, float, float]:
 
 
 PositiveInt = Annotated[int, PlainValidator(_positive_int)]
+Iterations = Annotated[int, PlainValidator(lambda v: _positive_int(v, MAX_ITERATIONS))]
 Length = quantity("length")
 Vector3 = Annotated[list[Length], AfterValidator(_three)]
 Force3 = Annotated[list[quantity("force")], AfterValidator(_three)]
@@ -399,10 +407,10 @@ class StaticsSpec(_Spec):
 
     kind: Literal["statics"]
     method: Literal["newton", "incremental", "relaxation"] = "newton"
-    load_steps: PositiveInt = 1
+    load_steps: Iterations = 1
     tolerance: quantity("dimensionless", gt=0.0) = 1.0e-8
-    max_iterations: PositiveInt = 50
-    stiffness_update: PositiveInt = 1
+    max_iterations: Iterations = 50
+    stiffness_update: Iterations = 1
     damping: quantity("force*time/length", ge=0.0) | None = None
     damping_decrement: quantity("dimensionless", gt=0.0, le=1.0) = 0.5
     pseudo_dt: quantity("time", gt=0.0) | None = None
@@ -421,8 +429,8 @@ class DynamicsSpec(_Spec):
     alpha: quantity("dimensionless", ge=-1.0 / 3.0, le=0.0) = -0.05
     variant: Literal["iterative", "residual_feedback", "incremental"] = "iterative"
     tolerance: quantity("dimensionless", gt=0.0) = 1.0e-6
-    max_iterations: PositiveInt = 20
-    stiffness_update: PositiveInt = 20
+    max_iterations: Iterations = 20
+    stiffness_update: Iterations = 20
     max_step_cuts: Annotated[int, Field(ge=0, le=20)] = 10
     ramp_time: quantity("time", ge=0.0) = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
@@ -458,7 +466,7 @@ class StrummingSpec(_Spec):
     strouhal: quantity("dimensionless", gt=0.0) = 0.2
     CL0: quantity("dimensionless", gt=0.0) = 0.2
     n_modes: Annotated[int, Field(ge=0)] = 6
-    substeps: PositiveInt = 1
+    substeps: Iterations = 1
     refresh_every: Annotated[int, Field(ge=0)] = 0
     duration: quantity("time", gt=0.0) = 10.0
     dt: quantity("time", gt=0.0) = 0.001
@@ -480,7 +488,7 @@ class StochasticSpec(_Spec):
     kind: Literal["stochastic"]
     method: Literal["foss", "direct"] = "foss"
     n_modes: Annotated[int, Field(ge=0)] = 0
-    max_iterations: PositiveInt = 30
+    max_iterations: Iterations = 30
     tolerance: quantity("dimensionless", gt=0.0) = 0.01
     mass: Literal["lumped", "consistent"] = "consistent"
     added_mass: bool = True
@@ -496,7 +504,7 @@ class HarmonicSpec(_Spec):
     harmonics: PositiveInt = 5
     samples: PositiveInt | None = None
     tolerance: quantity("dimensionless", gt=0.0) = 1e-8
-    max_iterations: PositiveInt = 50
+    max_iterations: Iterations = 50
     output_points: PositiveInt = 64
 
 
