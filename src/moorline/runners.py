@@ -146,6 +146,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
                 context.time = t
                 advance(t)
 
+            context.time = 0.0  # a simulation starts at t = 0 (its first record)
+
             result = simulate(system, settings, initial=initial, writer=writer,
                               progress=progress)
             writer.close(result.dataset_attrs())
