@@ -465,9 +465,9 @@ class StrummingSpec(_Spec):
     viscosity: quantity("area/time", gt=0.0) | None = None
     strouhal: quantity("dimensionless", gt=0.0) = 0.2
     CL0: quantity("dimensionless", gt=0.0) = 0.2
-    n_modes: Annotated[int, Field(ge=0)] = 6
+    n_modes: Annotated[int, Field(ge=0, le=MAX_COUNT)] = 6
     substeps: Iterations = 1
-    refresh_every: Annotated[int, Field(ge=0)] = 0
+    refresh_every: Annotated[int, Field(ge=0, le=MAX_COUNT)] = 0
     duration: quantity("time", gt=0.0) = 10.0
     dt: quantity("time", gt=0.0) = 0.001
     transverse_velocity: Literal["signed", "magnitude"] = "signed"
@@ -487,7 +487,7 @@ class StochasticSpec(_Spec):
 
     kind: Literal["stochastic"]
     method: Literal["foss", "direct"] = "foss"
-    n_modes: Annotated[int, Field(ge=0)] = 0
+    n_modes: Annotated[int, Field(ge=0, le=MAX_COUNT)] = 0
     max_iterations: Iterations = 30
     tolerance: quantity("dimensionless", gt=0.0) = 0.01
     mass: Literal["lumped", "consistent"] = "consistent"
