@@ -1,15 +1,9 @@
-"""``moorline run`` with a dynamics analysis: the results file, plots, ``--json``, failure and
-Ctrl-C (a real SIGINT to a real process)."""
+"""``moorline run`` with a dynamics analysis: the results file, plots, ``--json`` and failure
+(signals: test_cli_signals.py)."""
 
 from __future__ import annotations
 
 import json
-import os
-import re
-import signal
-import subprocess
-import sys
-import time
 from pathlib import Path
 from typing import Any
 
@@ -139,53 +133,3 @@ def test_dynamics_failure_exits_1_and_keeps_the_records(tmp_path: Path) -> None:
     with xr.open_dataset(path, group="dynamics") as dyn:
         assert dyn.sizes["time"] >= 1  # the initial state
         assert np.isfinite(dyn["position"].values).all()
-
-
-def _moorline_command() -> list[str]:
-    script = Path(sys.executable).parent / "moorline"
-    return [str(script)] if script.is_file() else [sys.executable, "-m", "moorline.cli"]
-
-
-@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
-@pytest.mark.skipif(not OC3_DYNAMICS.is_file(), reason="cases/oc3_dynamics.yaml missing")
-def test_sigint_keeps_a_readable_results_file(tmp_path: Path) -> None:
-    """Ctrl-C in the middle of the OC3 three-line run: exit 130, one line, readable file."""
-    results = tmp_path / "oc3-dynamics" / "results.nc"
-    long_case = tmp_path / "oc3_long.yaml"  # long enough never to finish before the signal
-    text = OC3_DYNAMICS.read_text(encoding="utf-8")
-    long_case.write_text(re.sub(r"duration: *[0-9.]+", "duration: 3000", text), encoding="utf-8")
-    proc = subprocess.Popen(
-        [*_moorline_command(), "run", str(long_case), "--out", str(tmp_path), "--quiet"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT,
-        # as in a terminal: SIGINT raises KeyboardInterrupt even if this runner ignores it
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    try:
-        deadline = time.monotonic() + 60.0
-        while not results.exists() and proc.poll() is None and time.monotonic() < deadline:
-            time.sleep(0.1)
-        time.sleep(3.5)  # the file appears as the run starts; statics takes well under 1 s
-        assert proc.poll() is None, "the run ended before it could be interrupted"
-        os.kill(proc.pid, signal.SIGINT)
-        stdout, stderr = proc.communicate(timeout=30)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.communicate()
-    assert proc.returncode == 130, stderr
-    lines = stderr.strip().splitlines()
-    assert len(lines) == 1 and "Traceback" not in stderr, stderr
-    assert lines[0].startswith("interrupted at t = ")
-    assert lines[0].endswith(f" s; results so far in {results}")
-    assert stdout == ""
-    with netCDF4.Dataset(results) as root:
-        assert root.complete == 0 and root.status.startswith("interrupted")
-        assert root["dynamics"].complete == 0
-        assert root["dynamics"].status == "interrupted"
-        assert root["dynamics"].message.startswith("interrupted")
-    with xr.open_dataset(results, group="dynamics") as dyn:
-        assert dyn.sizes["time"] > 1
-        assert dyn["time"].values[-1] < 3000.0
-        for name in ("position", "velocity", "tension", "end_force"):
-            assert np.isfinite(dyn[name].values).all(), name
-    with xr.open_dataset(results, group="statics") as statics:
-        assert statics.attrs["converged"] == 1

@@ -238,6 +238,52 @@ BAD_CASES = [
     ("harmonic_with_bodies", "analyses[1].kind", "systems with bodies is not supported"),
     ("harmonic_viscoelastic", "analyses[1].kind", "needs elastic lines"),
     ("body_point_unknown_body", "points.fairlead.body", "unknown body 'hull'"),
+    # non-finite and out-of-range numbers (MAX_MAGNITUDE, MIN_MAGNITUDE)
+    ("nan_EA", "line_types.chain.EA", "expected a number, got nan"),
+    ("inf_length", "lines.line1.length", "must be finite, got inf"),
+    ("huge_mass", "line_types.chain.mass_per_length", "at most 1e+30 in magnitude"),
+    ("denormal_EA", "line_types.chain.EA", "at least 1e-30 in magnitude"),
+    ("tiny_period", "points.fairlead.motion.period", "at least 1e-30 in magnitude"),
+    ("inf_in_inline_table", "points.fairlead.motion.values[1][0]", "must be finite, got inf"),
+    ("empty_inline_table", "points.fairlead.motion.times", "needs >= 2 rows, got 0"),
+    ("nan_in_motion_table", "points.fairlead.motion.file", "data row 2, column 2: must be a "
+                                                           "number, got nan"),
+    ("inf_in_motion_table", "points.fairlead.motion.file", "data row 2, column 2: must be "
+                                                           "finite, got inf"),
+    ("huge_in_motion_table", "points.fairlead.motion.file", "data row 2, column 4: must be at "
+                                                            "most 1e+30"),
+    ("nan_added_mass", "bodies.spar.added_mass", "entry [2][2] must be a number, got nan"),
+    # sizes (moorline.io.limits)
+    ("segments_1e30", "lines.line1.segments", "must be at most 1e+12 (MAX_COUNT), got 1e+30"),
+    ("segments_1e7", "lines.line1.segments", "1e+07 segments are more than MAX_SEGMENTS"),
+    ("random_record_length_huge", "environment.waves.record_length",
+     "6e+08 components, more than MAX_WAVE_COMPONENTS"),
+    ("random_n_frequencies_huge", "environment.waves.n_frequencies",
+     "1e+09 components, more than MAX_WAVE_COMPONENTS"),
+    ("stochastic_memory", "environment.waves.record_length", "more than MAX_MEMORY = 4 GiB"),
+    ("stochastic_n_points_huge", "analyses[1].n_points", "10000000000 time points"),
+    ("dynamics_duration_huge", "analyses[1].duration", "1e+09 output records"),
+    ("harmonic_harmonics_huge", "analyses[1].harmonics", "10000 harmonics"),
+    ("dynamics_dt_tiny", "analyses[1].dt", "1e+21 time steps, more than MAX_TIME_STEPS"),
+    ("statics_iterations_huge", "analyses[0].max_iterations",
+     "must be at most 1000000 (MAX_ITERATIONS)"),
+    # degenerate geometry (moorline.io.topology)
+    ("coincident_fixed_ends", "lines.line1", "both ends ('anchor', 'fairlead') are at the "
+                                             "same place"),
+    ("line_between_free_points", "points.anchor", "points 'anchor', 'fairlead' are held by "
+                                                  "no fixed or prescribed point"),
+    ("free_island", "points.b1", "points 'b1', 'b2' are held by no fixed"),
+    # files, nesting, unit expressions
+    ("devzero_motion_table", "points.fairlead.motion.file",
+     "'/dev/zero': not a regular file (a character device)"),
+    ("deep_nesting", None, "malformed YAML: nested too deeply for the parser"),
+    ("deep_nesting_200", "points" + ".a" * 32, "nested more than MAX_DEPTH = 32 levels"),
+    ("unit_power_tower", "lines.line1.length", "'10**10**10 m': chained powers"),
+    ("unit_nested_power", "lines.line1.length", "a power of an expression that holds a power"),
+    ("depth_1e300", "environment.depth", "must be at most 1e+30 in magnitude"),
+    ("negative_inertia", "bodies.spar.inertia[0]", "must be >= 0, got -1.0e9"),
+    ("billion_laughs", None, "holds 4.9e+08 values once its aliases (*name) are expanded"),
+    ("recursive_alias", "a" + "[1]" * 32, "nested more than MAX_DEPTH = 32 levels"),
 ]
 
 
@@ -271,3 +317,52 @@ def test_text_errors_name_the_given_file() -> None:
     with pytest.raises(CaseError) as info:
         _mini(diameter=-1)
     assert str(info.value) == "mini.yaml: line_types.chain.diameter: must be > 0, got -1"
+
+
+def test_size_limits_match_the_solvers_counts() -> None:
+    """The component count of the limit check is the random sea's own (a 3-hour JONSWAP sea
+    to 6 omega_p: 6 x 10800 / 12 = 5400 components)."""
+    from moorline.io.limits import wave_components
+    from moorline.model import Waves
+
+    waves = Waves(kind="random", height=6.0, period=12.0, record_length=10800.0)
+    assert wave_components(waves) == 6 * 10800 // 12
+    capped = Waves(kind="random", height=6.0, period=12.0, omega_max=1.0)
+    assert wave_components(capped) == math.floor(1.0 * 1800.0 / (2 * math.pi))
+
+
+@pytest.mark.parametrize("name", [p.stem for p in sorted(CASES.glob("*.yaml"))])
+def test_example_cases_are_within_the_size_limits(name: str) -> None:
+    load_case(CASES / f"{name}.yaml")
+
+
+MERGED = """
+name: merged
+environment: {depth: 100}
+line_types:
+  chain: &chain {diameter: 0.1, mass_per_length: 50, EA: 5.0e8, Cd: 1.2}
+  heavy:
+    <<: *chain
+    mass_per_length: 80
+points:
+  anchor: {kind: fixed, position: [-300, 0, -100]}
+  fairlead: {kind: prescribed, position: [0, 0, -10]}
+lines:
+  line1: {type: heavy, length: 350, segments: 10, end_a: anchor, end_b: fairlead}
+"""
+
+
+def test_yaml_merge_key_overrides_as_yaml_defines() -> None:
+    """``<<: *base`` then one key overridden (https://yaml.org/type/merge.html): the
+    mapping's own key wins, the others come from the base."""
+    types = load_case_text(MERGED).line_types
+    assert types["heavy"].mass_per_length == 80.0
+    assert (types["heavy"].diameter, types["heavy"].EA, types["heavy"].Cd) == (0.1, 5.0e8, 1.2)
+    assert types["chain"].mass_per_length == 50.0
+
+
+def test_a_key_written_twice_beside_a_merge_key_is_still_a_duplicate() -> None:
+    text = MERGED.replace("    mass_per_length: 80",
+                          "    mass_per_length: 80\n    EA: 1\n    EA: 2")
+    with pytest.raises(CaseError, match="duplicate key 'EA'"):
+        load_case_text(text)

@@ -8,9 +8,12 @@ are the table :data:`moorline.analyses.KINDS`.
 Exit codes: 0 success; 1 the analysis failed (a result with ``success`` False: no convergence,
 a time step that failed; its message is printed and what was computed is written; a
 verification row out of tolerance); 2 bad input (a case file that does not validate, a
-missing or unreadable file, an unknown name); 130 interrupted (Ctrl-C: the results file keeps
-what was computed). Expected errors print ``error: <file>: <key path>: <reason>`` on stderr,
-never a traceback; unexpected exceptions are bugs and keep their traceback.
+missing or unreadable file, an unknown name); 130 interrupted (Ctrl-C), 143 terminated
+(SIGTERM, e.g. from ``timeout`` or a batch scheduler): the results file keeps what was
+computed, with status ``interrupted`` or ``terminated``; a second signal during the clean-up
+is ignored (see :mod:`moorline.signals`). Expected errors print
+``error: <file>: <key path>: <reason>`` on stderr, never a traceback; unexpected exceptions
+are bugs and keep their traceback.
 
 With ``--json`` a command prints exactly one JSON document on stdout and nothing else; logs,
 progress and errors go to stderr. This is the only module that configures ``logging``.
@@ -41,10 +44,11 @@ from .runners import (
     _run_analyses,
     _RunInterruptedError,
 )
+from .signals import Terminated, handle_signals
 
 logger = logging.getLogger(__name__)
 
-EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_TERMINATED = 0, 1, 2, 130, 143
 F = TypeVar("F", bound=Callable[..., Any])
 
 
@@ -55,6 +59,10 @@ class _Cli(click.Group):
     """A group that turns moorline's expected errors into one-line messages and exit codes."""
 
     def invoke(self, ctx: click.Context) -> Any:
+        with handle_signals():
+            return self._invoke(ctx)
+
+    def _invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
         except CaseError as exc:
@@ -67,7 +75,11 @@ class _Cli(click.Group):
             _fail(_describe_os_error(exc), EXIT_BAD_INPUT)
         except _RunInterruptedError as exc:
             click.echo(str(exc), err=True)
-            raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
+            code = EXIT_TERMINATED if exc.terminated else EXIT_INTERRUPTED
+            raise click.exceptions.Exit(code) from None
+        except Terminated:
+            click.echo("terminated", err=True)
+            raise click.exceptions.Exit(EXIT_TERMINATED) from None
         except KeyboardInterrupt:
             click.echo("interrupted", err=True)
             raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
@@ -305,7 +317,7 @@ def _modes_table(result: Any) -> Table:
         table.add_column(escape(name), justify="left" if name == "dominant" else "right")
     for k in range(result.n_modes):
         table.add_row(str(k + 1), _g(result.omega[k]), _g(result.period[k]),
-                      _g(result.frequency_hz[k]), result.dominant[k],
+                      _g(result.frequency_hz[k]), escape(str(result.dominant[k])),
                       *(f"{v:.3f}" for v in result.participation[k]))
     return table
 
@@ -394,10 +406,12 @@ def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: b
     with the group name when a kind repeats.
     """
     _configure_logging(verbose)
+    from .io.files import file_problem
     from .io.writers import read_group, result_groups
 
-    if not results.is_file():
-        raise CaseError("no such file", str(results))
+    problem = file_problem(results, limit=1 << 62)
+    if problem is not None:
+        raise CaseError(f"cannot read the results file: {problem}", str(results))
     try:
         groups = result_groups(results)
         datasets = {name: read_group(results, name) for name, kind in groups.items()
@@ -566,14 +580,20 @@ if __name__ == "__main__":  # pragma: no cover
               help="Case file to write (default: the deck's name with .yaml).")
 @_common_options
 def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
-    """Convert a MoorDyn input file DECK into a moorline case file (YAML)."""
+    """Convert a MoorDyn input file DECK into a moorline case file (YAML).
+
+    The case is validated before it is written: a deck whose values a case may not hold
+    (negative coefficients, volumes, seabed stiffness) exits 2 and writes nothing.
+    """
     _configure_logging(verbose)
     from .io.case_writer import write_case
     from .io.moordyn import read_moordyn
 
-    if not deck.is_file():
-        raise CaseError("no such file", str(deck))
     system = read_moordyn(deck)
     target = out if out is not None else deck.with_suffix(".yaml")
-    write_case(system, target, header=f"converted by moorline from the MoorDyn deck {deck}")
+    try:
+        write_case(system, target, header=f"converted by moorline from the MoorDyn deck {deck}")
+    except CaseError as exc:
+        raise CaseError(f"cannot be converted, the case would not load (not written): {exc}",
+                        str(deck)) from None
     _note(f"wrote {target}", quiet)

@@ -8,17 +8,20 @@ from contextlib import contextmanager
 
 import click
 from rich.console import Console
+from rich.text import Text
 
 
 @contextmanager
 def _status(message: str, quiet: bool) -> Iterator[Callable[[str], None]]:
-    """A rich spinner on stderr (nothing when quiet); yields a function that updates it."""
+    """A rich spinner on stderr (nothing when quiet); yields a function that updates it.
+
+    Messages are printed literally (``Text``, not markup: a case may be named ``[/]``)."""
     if quiet:
         yield lambda _msg: None
         return
     console = Console(stderr=True)
-    with console.status(message) as status:
-        yield lambda msg: status.update(msg)
+    with console.status(Text(message)) as status:
+        yield lambda msg: status.update(Text(msg))
 
 
 def _note(message: str, quiet: bool) -> None:

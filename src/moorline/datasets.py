@@ -44,6 +44,7 @@ class Status(StrEnum):
     COMPLETED = "completed"
     FAILED = "failed"
     INTERRUPTED = "interrupted"
+    TERMINATED = "terminated"
     RUNNING = "running"
 
 

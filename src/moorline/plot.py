@@ -17,6 +17,7 @@ from matplotlib.cm import ScalarMappable
 from matplotlib.collections import LineCollection
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
+from matplotlib.text import Text
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from numpy.typing import NDArray
 
@@ -100,6 +101,8 @@ def _title(dataset: xr.Dataset, view: str) -> str:
 def _save(fig: Figure, path: Path) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     FigureCanvasAgg(fig)
+    for text in fig.findobj(Text):  # names are printed literally ("$x$" is not mathtext)
+        text.set_parse_math(False)
     fig.savefig(path, dpi=150)
 
 

@@ -24,6 +24,7 @@ from .analyses import KINDS
 from .console import _status
 from .datasets import Status
 from .errors import CaseError, ConvergenceError, MoorlineError
+from .signals import Terminated
 
 logger = logging.getLogger(__name__)
 
@@ -90,7 +91,17 @@ class RunContext:
 
 
 class _RunInterruptedError(Exception):
-    """Ctrl-C during a run, with the line to print (exit code 130)."""
+    """Ctrl-C or SIGTERM during a run, with the line to print (exit code 130 or 143).
+
+    Attributes
+    ----------
+    terminated
+        SIGTERM (:class:`~moorline.signals.Terminated`) rather than Ctrl-C.
+    """
+
+    def __init__(self, message: str, terminated: bool = False) -> None:
+        super().__init__(message)
+        self.terminated = terminated
 
 
 def _prefix(label: str, kind: str) -> str:
@@ -114,7 +125,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     solver solves statics itself). A failed result (``success`` False), or a
     :class:`~moorline.errors.ConvergenceError`, ends the analysis as failed: the group keeps
     the records computed so far (``success = 0``, ``status = failed``, the message). Ctrl-C
-    closes the group the same way (``interrupted``) and raises :class:`_RunInterruptedError`.
+    or SIGTERM closes the group the same way (``interrupted``, ``terminated``) and raises
+    :class:`_RunInterruptedError`.
     """
     from .io.writers import read_group
     from .mesh import discretize
@@ -133,6 +145,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
             def progress(t: float) -> None:
                 context.time = t
                 advance(t)
+
+            context.time = 0.0  # a simulation starts at t = 0 (its first record)
 
             result = simulate(system, settings, initial=initial, writer=writer,
                               progress=progress)
@@ -286,7 +300,8 @@ def _labels(kinds: list[str]) -> list[str]:
 
 def _run_analyses(context: RunContext, analyses: list[Any], kinds: list[str]) -> None:
     """Run the analyses in order into ``context`` (stopping after one that fails), then mark
-    the results file complete or not; Ctrl-C becomes :class:`_RunInterruptedError`."""
+    the results file complete or not; Ctrl-C or SIGTERM becomes :class:`_RunInterruptedError`
+    (the results file's status ``interrupted`` or ``terminated``)."""
     from .io.writers import start_results, update_results
 
     system = context.system
@@ -300,11 +315,13 @@ def _run_analyses(context: RunContext, analyses: list[Any], kinds: list[str]) ->
             context.outcomes.append(outcome)
             if not outcome.success:
                 break
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
+        terminated = isinstance(exc, Terminated)
+        word = str(Status.TERMINATED if terminated else Status.INTERRUPTED)
         when = f"at t = {context.time:.6g} s" if context.time is not None else f"in {label}"
-        update_results(context.results, {"complete": 0, "status": f"interrupted {when}"})
-        raise _RunInterruptedError(f"interrupted {when}; results so far in "
-                           f"{context.results}") from None
+        update_results(context.results, {"complete": 0, "status": f"{word} {when}"})
+        raise _RunInterruptedError(f"{word} {when}; results so far in {context.results}",
+                                   terminated) from None
     failed = [o for o in context.outcomes if not o.success]
     status = f"{failed[0].kind} failed: {failed[0].message}" if failed else "complete"
     update_results(context.results, {"complete": int(not failed), "status": status})

@@ -152,11 +152,18 @@ def load_study(path: str | Path) -> Study:
     CaseError
         The file cannot be read or is not a valid study (names the file and key).
     """
+    from .io.files import MAX_CASE_BYTES, file_problem
+
     file = str(path)
+    problem = file_problem(path, MAX_CASE_BYTES)
+    if problem is not None:
+        raise CaseError(f"cannot read the study file: {problem}", file)
     try:
         data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
     except OSError as exc:
         raise CaseError(f"cannot read the study file: {exc.strerror or exc}", file) from None
+    except RecursionError:
+        raise CaseError("not valid YAML: nested too deeply", file) from None
     except yaml.YAMLError as exc:
         raise CaseError(f"not valid YAML: {exc}", file) from None
     return study_from_dict(data, file=file, directory=Path(path).parent)

@@ -36,7 +36,18 @@ from moorline.model import (
     Waves,
 )
 
+from .files import MAX_CASE_BYTES, MAX_TABLE_BYTES, file_problem
+from .limits import (
+    MAX_MEMORY,
+    MAX_SEGMENTS,
+    MAX_TIME_STEPS,
+    MAX_WAVE_COMPONENTS,
+    analysis_memory,
+    wave_components,
+)
 from .schema import (
+    MAX_MAGNITUDE,
+    MIN_MAGNITUDE,
     CaseSpec,
     HarmonicSpec,
     LineSpec,
@@ -44,11 +55,15 @@ from .schema import (
     PointSpec,
     StaticsSpec,
     StochasticSpec,
+    check_number,
     describe_errors,
+    dotted,
 )
+from .topology import geometry_problem
 from .units import default_value
 
-__all__ = ["MAX_STRAIN", "SEABED_TOLERANCE", "load_case", "load_case_text"]
+__all__ = ["MAX_DEPTH", "MAX_STRAIN", "MAX_VALUES", "SEABED_TOLERANCE", "load_case",
+           "load_case_text"]
 
 logger = logging.getLogger(__name__)
 
@@ -60,6 +75,15 @@ A line is rejected when the distance between its ends exceeds ``length * (1 + MA
 polyester ~ 10-15 % and nylon ~ 20-30 % at break), so only data errors trip it, while an
 elastic line may legitimately be a little shorter than its span (a pretensioned string).
 """
+
+MAX_DEPTH = 32
+"""Deepest nesting of mappings and lists in a case file (a case needs 6: ``bodies.hull.
+added_mass[i][j]``; 10,000 levels would exhaust Python's recursion limit)."""
+
+MAX_VALUES = 2_000_000
+"""Most values (numbers, strings, mappings and lists) in a case file once its YAML aliases
+are expanded: a 100,000-segment initial shape has 400,000; nine aliases of nine aliases
+("billion laughs") would have 387 million numbers."""
 
 SEABED_TOLERANCE = 1.0e-6
 """A fixed or prescribed point may lie up to ``SEABED_TOLERANCE * depth`` below the seabed."""
@@ -86,6 +110,9 @@ def load_case(path: str | os.PathLike[str]) -> System:
         The file cannot be read or its content is invalid (names file and key path).
     """
     file = str(path)
+    problem = file_problem(path, MAX_CASE_BYTES)
+    if problem is not None:
+        raise CaseError(f"cannot read the case file: {problem}", file=file)
     try:
         text = Path(path).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
@@ -149,13 +176,17 @@ def _load(text: str, file: str, source: str | None) -> System:
 
 
 class _Loader(yaml.SafeLoader):
-    """Safe loader that rejects duplicate keys (YAML would silently keep the last one)."""
+    """Safe loader that rejects duplicate keys (YAML would silently keep the last one).
+
+    Merge keys work as YAML defines them (https://yaml.org/type/merge.html): ``<<: *base``
+    inserts the keys of ``base`` that the mapping does not give itself; only keys written
+    twice in the mapping itself are duplicates."""
 
 
 def _construct_mapping(loader: _Loader, node: yaml.MappingNode, deep: bool = False) -> Any:
-    loader.flatten_mapping(node)
     seen: set[Any] = set()
-    for key_node, _ in node.value:
+    own = [k for k, _ in node.value if k.tag != "tag:yaml.org,2002:merge"]
+    for key_node in own:
         key = loader.construct_object(key_node, deep=deep)
         try:
             duplicate = key in seen
@@ -166,7 +197,7 @@ def _construct_mapping(loader: _Loader, node: yaml.MappingNode, deep: bool = Fal
                 None, None, f"duplicate key {key!r}", key_node.start_mark
             )
         seen.add(key)
-    return loader.construct_mapping(node, deep=deep)
+    return loader.construct_mapping(node, deep=deep)  # flattens the merge keys
 
 
 _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _construct_mapping)
@@ -174,12 +205,63 @@ _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _constru
 
 def _parse_yaml(text: str, file: str) -> Any:
     try:
-        return yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
+        data = yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
+    except RecursionError:
+        raise CaseError(f"malformed YAML: nested too deeply for the parser (a case needs at "
+                        f"most MAX_DEPTH = {MAX_DEPTH} levels of mappings and lists)",
+                        file=file) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
         raise CaseError(f"malformed YAML{where}: {problem}", file=file) from None
+    path = _too_deep(data)
+    if path is not None:
+        raise CaseError(f"nested more than MAX_DEPTH = {MAX_DEPTH} levels of mappings and "
+                        f"lists (no case key is that deep)", file=file, field=path)
+    count = _size(data, {})
+    if count > MAX_VALUES:
+        raise CaseError(f"holds {count:.3g} values once its aliases (*name) are expanded, more "
+                        f"than MAX_VALUES = {MAX_VALUES}", file=file)
+    return data
+
+
+def _children(value: Any) -> Any:
+    if isinstance(value, dict):
+        return value.items()
+    return enumerate(value) if isinstance(value, list) else ()
+
+
+def _too_deep(data: Any) -> str | None:
+    """Key path of the first value nested deeper than :data:`MAX_DEPTH`, else ``None``.
+
+    Aliases make the data a graph (even a cyclic one): a mapping or list is walked again
+    only when it is reached deeper than before, so at most ``MAX_DEPTH`` times.
+    """
+    stack: list[tuple[Any, list[str | int]]] = [(data, [])]
+    reached: dict[int, int] = {}
+    while stack:
+        value, parts = stack.pop()
+        if not isinstance(value, dict | list):
+            continue
+        if len(parts) > MAX_DEPTH:
+            return dotted(parts[:MAX_DEPTH + 1])
+        if reached.get(id(value), -1) >= len(parts):
+            continue
+        reached[id(value)] = len(parts)
+        stack.extend((v, [*parts, k if isinstance(k, int) else str(k)])
+                     for k, v in _children(value))
+    return None
+
+
+def _size(value: Any, memo: dict[int, int]) -> int:
+    """Number of values with aliases expanded (the data is acyclic and at most
+    :data:`MAX_DEPTH` deep: checked first)."""
+    if not isinstance(value, dict | list):
+        return 1
+    if id(value) not in memo:
+        memo[id(value)] = 1 + sum(_size(v, memo) for _, v in _children(value))
+    return memo[id(value)]
 
 
 # --------------------------------------------------------------------------------------------
@@ -260,6 +342,45 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
     for name, point in spec.points.items():
         if point.kind == "free" and name not in attached:
             fail(f"free point {name!r} is not attached to any line", f"points.{name}")
+    problem = geometry_problem(spec.points, spec.lines, spec.bodies)
+    if problem is not None:
+        fail(*problem)
+    _check_sizes(spec, fail)
+
+
+def _check_sizes(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
+    """Segments, random-sea components and each analysis' memory within
+    :mod:`moorline.io.limits`."""
+    total = 0
+    for name, line in spec.lines.items():
+        total += line.segments
+        if total > MAX_SEGMENTS:
+            before = " (with the lines before)" if total > line.segments else ""
+            fail(f"{line.segments:.6g} segments{before} are more than MAX_SEGMENTS = "
+                 f"{MAX_SEGMENTS} for the whole case", f"lines.{name}.segments")
+    waves = spec.environment.waves
+    components = 0
+    if waves.kind == "random":
+        components = wave_components(_waves(waves))
+        if components > MAX_WAVE_COMPONENTS:
+            key = "n_frequencies" if waves.n_frequencies is not None else "record_length"
+            fail(f"the random sea would have {components:.3g} components, more than "
+                 f"MAX_WAVE_COMPONENTS = {MAX_WAVE_COMPONENTS} (components: n_frequencies, or "
+                 f"omega_max * record_length / 2 pi)", f"environment.waves.{key}")
+    n_nodes = total + len(spec.lines)
+    every = spec.output.every or default_value("output_every", spec.units)
+    for k, analysis in enumerate(spec.analyses or ()):
+        if analysis.kind in ("dynamics", "strumming"):
+            steps = analysis.duration / analysis.dt * getattr(analysis, "substeps", 1)
+            if steps > MAX_TIME_STEPS:
+                fail(f"duration / dt (x substeps) = {steps:.3g} time steps, more than "
+                     f"MAX_TIME_STEPS = {MAX_TIME_STEPS:.0e}", f"analyses[{k}].dt")
+        need, what, key = analysis_memory(analysis.kind, analysis, n_nodes, components, every)
+        if need > MAX_MEMORY:
+            field = f"analyses[{k}].{key}" if key else "environment.waves.record_length"
+            fail(f"{analysis.kind} would need about {need / 1024**3:.3g} GiB ({what}, "
+                 f"{n_nodes} nodes), more than MAX_MEMORY = {MAX_MEMORY / 1024**3:g} GiB",
+                 field)
 
 
 def _check_point(
@@ -298,6 +419,8 @@ def _check_history(history: MotionSpec, field: str, fail: Callable[[str, str], N
         if history.file is None and len(history.times) != len(history.values):
             fail(f"'times' has {len(history.times)} entries but 'values' has "
                  f"{len(history.values)}", f"{field}.values")
+        if history.file is None and len(history.times) < 2:
+            fail(f"a table history needs >= 2 rows, got {len(history.times)}", f"{field}.times")
         if history.times is not None and any(
                 b <= a for a, b in zip(history.times, history.times[1:], strict=False)):
             fail("'times' must increase strictly", f"{field}.times")
@@ -399,8 +522,7 @@ def _build(spec: CaseSpec, source: str | None) -> System:
             slip_velocity=default(env.seabed.slip_velocity, "slip_velocity"),
         ),
         current=_current(env.current),
-        waves=Waves(heading_deg=env.waves.heading, phase_deg=env.waves.phase,
-                    **env.waves.model_dump(exclude={"heading", "phase"})),
+        waves=_waves(env.waves),
     )
     line_types = {
         name: LineType(name=name, **lt.model_dump()) for name, lt in spec.line_types.items()
@@ -460,6 +582,11 @@ def _body(name: str, spec: Any, source: str | None) -> Body:
         force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"),
         drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads,
         excitation=_excitation(spec.excitation))
+
+
+def _waves(spec: Any) -> Waves:
+    return Waves(heading_deg=spec.heading, phase_deg=spec.phase,
+                 **spec.model_dump(exclude={"heading", "phase"}))
 
 
 def _excitation(spec: Any) -> WaveExcitation | None:
@@ -522,6 +649,10 @@ def _read_table(name: str, source: str | None, field: str) -> tuple[list, list]:
 
     base = Path(source).parent if source else Path.cwd()
     path = (base / name).resolve()
+    problem = file_problem(path, MAX_TABLE_BYTES)
+    if problem is not None:
+        raise CaseError(f"cannot read time table {str(path)!r}: {problem}", file=source,
+                        field=f"{field}.file")
     try:
         data = np.loadtxt(path, delimiter=",", comments="#", ndmin=2,
                           skiprows=_header_rows(path))
@@ -531,6 +662,14 @@ def _read_table(name: str, source: str | None, field: str) -> tuple[list, list]:
     if data.shape[1] != 4 or len(data) < 2:
         raise CaseError(f"time table {str(path)!r} must have >= 2 rows of 4 columns t, x, y, z",
                         file=source, field=f"{field}.file")
+    size = np.abs(data)
+    bad = np.argwhere(~np.isfinite(data) | (size > MAX_MAGNITUDE)
+                      | ((data != 0.0) & (size < MIN_MAGNITUDE)))
+    if len(bad):
+        row, column = bad[0]
+        raise CaseError(f"time table {str(path)!r}, data row {row + 1}, column {column + 1}: "
+                        f"{check_number(float(data[row, column]))}", file=source,
+                        field=f"{field}.file")
     if np.any(np.diff(data[:, 0]) <= 0):
         raise CaseError(f"time table {str(path)!r}: times must increase strictly", file=source,
                         field=f"{field}.file")

@@ -52,11 +52,24 @@ def system_to_dict(system: System) -> dict[str, Any]:
 
 
 def write_case(system: System, path: str | Path, header: str = "") -> Path:
-    """Write ``system`` as a YAML case file, with an optional comment ``header``."""
+    """Write ``system`` as a YAML case file, with an optional comment ``header``.
+
+    The text is loaded back (:func:`moorline.io.load_case_text`) before it is written: a
+    system that would not make a valid case (a negative drag coefficient or seabed
+    stiffness from a MoorDyn deck) raises and nothing is written.
+
+    Raises
+    ------
+    CaseError
+        The case would not load (names ``path``, the key and the reason).
+    """
+    from .case import load_case_text
+
     path = Path(path)
     text = yaml.safe_dump(_plain(system_to_dict(system)), sort_keys=False,
                           default_flow_style=None, width=100)
     comment = "".join(f"# {line}\n" for line in header.splitlines())
+    load_case_text(comment + text, file=str(path))
     path.write_text(comment + text, encoding="utf-8")
     return path
 

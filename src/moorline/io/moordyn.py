@@ -49,6 +49,9 @@ from typing import Literal
 
 from ..errors import CaseError
 from ..model import Environment, Line, LineType, Point, Seabed, System
+from .files import MAX_CASE_BYTES, file_problem
+from .schema import check_number
+from .topology import geometry_problem
 
 logger = logging.getLogger(__name__)
 
@@ -183,6 +186,9 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     """
     path = Path(path)
     reader = _Reader(str(path))
+    problem = file_problem(path, MAX_CASE_BYTES)
+    if problem is not None:
+        raise CaseError(f"cannot read MoorDyn file: {problem}", file=str(path))
     try:
         text = path.read_text(encoding="utf-8", errors="replace")
     except OSError as exc:
@@ -205,6 +211,9 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     raw, env_values = _parse_options(options, reader)
     environment = _environment(env_values, points, reader)
     versions = {v_types, v_points, v_lines}
+    problem = geometry_problem(points, lines)
+    if problem is not None:
+        raise CaseError(problem[0], file=str(path))
     system = System(name=path.stem, units="SI", environment=environment, line_types=types,
                     points=points, lines=lines, source=str(path))
     return MoorDynDeck(system=system, version="v1" if versions == {"v1"} else "v2",
@@ -262,8 +271,9 @@ def _number(token: str, what: str, row: _Row, section: str, reader: _Reader) -> 
         value = float(token)
     except ValueError:
         raise reader.fail(f"{what} must be a number, got {token!r}", row, section) from None
-    if not math.isfinite(value):
-        raise reader.fail(f"{what} must be finite, got {token!r}", row, section)
+    problem = check_number(value)
+    if problem is not None:
+        raise reader.fail(f"{what} {problem}", row, section)
     return value
 
 

@@ -31,9 +31,34 @@ from pydantic_core import PydanticCustomError
 from ..analyses import KINDS
 from .units import UnitParseError, to_system
 
-__all__ = ["AnalysisSpec", "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec",
-           "LineSpec", "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
-           "StochasticSpec", "StrummingSpec", "describe_errors", "quantity"]
+__all__ = ["MAX_COUNT", "MAX_ITERATIONS", "MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec",
+           "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec", "LineSpec",
+           "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
+           "StochasticSpec", "StrummingSpec", "check_number", "describe_errors", "quantity"]
+
+MAX_MAGNITUDE = 1.0e30
+"""Largest magnitude of any number in a case file or a time table (in the case's units).
+
+Far beyond any physical value of a mooring problem in SI or US units (a chain's EA ~1e9 N, a
+hull's inertia ~1e13 kg m^2), and small enough that products and squares of such numbers in
+the solvers (stiffness times displacement, residual norms) stay finite in float64 (~1.8e308).
+"""
+
+MAX_COUNT = 10**12
+"""Largest positive integer of a case file (segments, iterations, harmonics, points...);
+the sizes that cost memory have tighter limits in :mod:`moorline.io.limits`."""
+
+MAX_ITERATIONS = 1_000_000
+"""Largest iteration or step count (``max_iterations``, ``load_steps``, ``stiffness_update``,
+``substeps``): a solver that needs more does not converge, and would run for days first."""
+
+MIN_MAGNITUDE = 1.0e-30
+"""Smallest magnitude of a nonzero number in a case file or a time table.
+
+Tinier values (down to the denormals, 1e-308) are data errors that break the solvers: an EA
+of 1e-300 makes a stiffness matrix exactly singular, a period of 1e-300 an infinite
+frequency.
+"""
 
 
 def _show(value: Any) -> str:
@@ -53,6 +78,24 @@ def _numeric(text: str) -> bool:
 
 def _fail(reason: str) -> PydanticCustomError:
     return PydanticCustomError("case_value", "{reason}", {"reason": reason})
+
+
+def check_number(x: float, allow_inf: bool = False) -> str | None:
+    """Why a number may not appear in a case file or a table, or ``None`` when it may.
+
+    NaN is refused, infinity unless ``allow_inf``, and finite numbers beyond
+    :data:`MAX_MAGNITUDE` or nonzero ones below :data:`MIN_MAGNITUDE` in magnitude.
+    """
+    if math.isnan(x):
+        return "must be a number, got nan"
+    if math.isinf(x):
+        return None if allow_inf else f"must be finite, got {x}"
+    if abs(x) > MAX_MAGNITUDE:
+        return f"must be at most {MAX_MAGNITUDE:g} in magnitude (MAX_MAGNITUDE), got {x:g}"
+    if x != 0.0 and abs(x) < MIN_MAGNITUDE:
+        return (f"a nonzero number must be at least {MIN_MAGNITUDE:g} in magnitude "
+                f"(MIN_MAGNITUDE), got {x:g}")
+    return None
 
 
 def quantity(
@@ -83,6 +126,9 @@ def quantity(
             raise _fail(str(exc)) from None
         if math.isinf(x) and not allow_inf:
             raise _fail(f"must be finite, got {_show(value)}")
+        problem = check_number(x, allow_inf)
+        if problem is not None:
+            raise _fail(problem)
         if gt is not None and not x > gt:
             raise _fail(f"must be > {gt:g}, got {_show(value)}")
         if ge is not None and not x >= ge:
@@ -94,8 +140,9 @@ def quantity(
     return Annotated[float, PlainValidator(validate)]
 
 
-def _positive_int(value: Any) -> int:
-    """A positive integer (``20``, ``20.0`` or ``"20"``)."""
+def _positive_int(value: Any, limit: int | None = None) -> int:
+    """A positive integer (``20``, ``20.0`` or ``"20"``), at most ``limit`` (default
+    :data:`MAX_COUNT`)."""
     n: int | None = None
     if isinstance(value, int) and not isinstance(value, bool):
         n = value
@@ -105,6 +152,10 @@ def _positive_int(value: Any) -> int:
         n = int(value)
     if n is None or n < 1:
         raise _fail(f"must be a positive integer, got {_show(value)}")
+    if limit is not None and n > limit:
+        raise _fail(f"must be at most {limit} (MAX_ITERATIONS), got {_show(value)}")
+    if n > MAX_COUNT:
+        raise _fail(f"must be at most {MAX_COUNT:.0e} (MAX_COUNT), got {_show(value)}")
     return n
 
 
@@ -121,10 +172,12 @@ def _three(values: list[float]) -> tuple[float, float, float]:
 
 
 PositiveInt = Annotated[int, PlainValidator(_positive_int)]
+Iterations = Annotated[int, PlainValidator(lambda v: _positive_int(v, MAX_ITERATIONS))]
 Length = quantity("length")
 Vector3 = Annotated[list[Length], AfterValidator(_three)]
 Force3 = Annotated[list[quantity("force")], AfterValidator(_three)]
 Coefficient = quantity("dimensionless", ge=0.0)
+Number = quantity("dimensionless")
 
 
 def _internal_damping(value: Any, info: ValidationInfo) -> float:
@@ -133,6 +186,9 @@ def _internal_damping(value: Any, info: ValidationInfo) -> float:
     if isinstance(value, int | float) and not isinstance(value, bool) and value < 0:
         if value < -10:
             raise _fail(f"a negative BA is a damping ratio -zeta and must be >= -10, got {value}")
+        problem = check_number(float(value))
+        if problem is not None:
+            raise _fail(problem)
         return float(value)
     return quantity("force*time", ge=0.0).__metadata__[0].func(value, info)
 
@@ -247,15 +303,21 @@ def _matrix6(value: Any) -> tuple[tuple[float, ...], ...]:
     rows = value
     if isinstance(value, list) and len(value) == 6 and all(
             isinstance(v, int | float) for v in value):
-        rows = [[float(value[i]) if i == j else 0.0 for j in range(6)] for i in range(6)]
+        rows = [[value[i] if i == j else 0.0 for j in range(6)] for i in range(6)]
     ok = (isinstance(rows, list) and len(rows) == 6
           and all(isinstance(r, list) and len(r) == 6 for r in rows))
     if not ok:
         raise _fail("must be a 6x6 matrix (6 rows of 6 numbers) or 6 diagonal numbers")
     try:
-        return tuple(tuple(float(x) for x in r) for r in rows)
-    except (TypeError, ValueError):
+        matrix = tuple(tuple(float(x) for x in r) for r in rows)
+    except (TypeError, ValueError, OverflowError):
         raise _fail("must contain numbers only") from None
+    for i, row in enumerate(matrix):
+        for j, x in enumerate(row):
+            problem = check_number(x)
+            if problem is not None:
+                raise _fail(f"entry [{i}][{j}] {problem}")
+    return matrix
 
 
 Matrix6 = Annotated[Any, PlainValidator(_matrix6)]
@@ -280,9 +342,9 @@ class ExcitationSpec(_Spec):
     frequency: ``omegas`` [rad/s], ``amplitude`` and ``phase`` [deg], one row of 6 per
     frequency (plain numbers in the case's units)."""
 
-    omegas: list[float]
-    amplitude: list[list[float]]
-    phase: list[list[float]]
+    omegas: list[Number]
+    amplitude: list[list[Number]]
+    phase: list[list[Number]]
 
 
 class BodySpec(_Spec):
@@ -294,7 +356,8 @@ class BodySpec(_Spec):
     rotation: Annotated[list[quantity("angle")], AfterValidator(_three)] = (0.0, 0.0, 0.0)
     mass: quantity("mass", ge=0.0)
     center_of_gravity: Vector3 = (0.0, 0.0, 0.0)
-    inertia: Annotated[list[quantity("mass*length^2")], AfterValidator(_three)] = (0.0,) * 3
+    inertia: Annotated[list[quantity("mass*length^2", ge=0.0)],
+                       AfterValidator(_three)] = (0.0,) * 3
     added_mass: Matrix6 | None = None
     damping: Matrix6 | None = None
     hydrostatics: HydrostaticsSpec = Field(default_factory=HydrostaticsSpec)
@@ -344,10 +407,10 @@ class StaticsSpec(_Spec):
 
     kind: Literal["statics"]
     method: Literal["newton", "incremental", "relaxation"] = "newton"
-    load_steps: PositiveInt = 1
+    load_steps: Iterations = 1
     tolerance: quantity("dimensionless", gt=0.0) = 1.0e-8
-    max_iterations: PositiveInt = 50
-    stiffness_update: PositiveInt = 1
+    max_iterations: Iterations = 50
+    stiffness_update: Iterations = 1
     damping: quantity("force*time/length", ge=0.0) | None = None
     damping_decrement: quantity("dimensionless", gt=0.0, le=1.0) = 0.5
     pseudo_dt: quantity("time", gt=0.0) | None = None
@@ -366,8 +429,8 @@ class DynamicsSpec(_Spec):
     alpha: quantity("dimensionless", ge=-1.0 / 3.0, le=0.0) = -0.05
     variant: Literal["iterative", "residual_feedback", "incremental"] = "iterative"
     tolerance: quantity("dimensionless", gt=0.0) = 1.0e-6
-    max_iterations: PositiveInt = 20
-    stiffness_update: PositiveInt = 20
+    max_iterations: Iterations = 20
+    stiffness_update: Iterations = 20
     max_step_cuts: Annotated[int, Field(ge=0, le=20)] = 10
     ramp_time: quantity("time", ge=0.0) = 0.0
     viscoelastic_update: Literal["exponential", "incremental"] = "exponential"
@@ -402,9 +465,9 @@ class StrummingSpec(_Spec):
     viscosity: quantity("area/time", gt=0.0) | None = None
     strouhal: quantity("dimensionless", gt=0.0) = 0.2
     CL0: quantity("dimensionless", gt=0.0) = 0.2
-    n_modes: Annotated[int, Field(ge=0)] = 6
-    substeps: PositiveInt = 1
-    refresh_every: Annotated[int, Field(ge=0)] = 0
+    n_modes: Annotated[int, Field(ge=0, le=MAX_COUNT)] = 6
+    substeps: Iterations = 1
+    refresh_every: Annotated[int, Field(ge=0, le=MAX_COUNT)] = 0
     duration: quantity("time", gt=0.0) = 10.0
     dt: quantity("time", gt=0.0) = 0.001
     transverse_velocity: Literal["signed", "magnitude"] = "signed"
@@ -424,8 +487,8 @@ class StochasticSpec(_Spec):
 
     kind: Literal["stochastic"]
     method: Literal["foss", "direct"] = "foss"
-    n_modes: Annotated[int, Field(ge=0)] = 0
-    max_iterations: PositiveInt = 30
+    n_modes: Annotated[int, Field(ge=0, le=MAX_COUNT)] = 0
+    max_iterations: Iterations = 30
     tolerance: quantity("dimensionless", gt=0.0) = 0.01
     mass: Literal["lumped", "consistent"] = "consistent"
     added_mass: bool = True
@@ -441,7 +504,7 @@ class HarmonicSpec(_Spec):
     harmonics: PositiveInt = 5
     samples: PositiveInt | None = None
     tolerance: quantity("dimensionless", gt=0.0) = 1e-8
-    max_iterations: PositiveInt = 50
+    max_iterations: Iterations = 50
     output_points: PositiveInt = 64
 
 

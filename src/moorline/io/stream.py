@@ -2,21 +2,21 @@
 
 The histories go into a group of a NetCDF-4 file (the run's ``results.nc``, next to the groups
 of the other analyses) or into the root group of a file of their own. The group has an
-unlimited ``time`` dimension; each output record is appended and the file is synced every few
-records. A record is written with SIGINT held back, so Ctrl-C never leaves a half-written
-record. :class:`HistoryWriter` is a context manager: leaving it (normally, by an exception or
-by Ctrl-C) closes the file with its final attributes: ``success`` and ``complete`` (1 or 0),
-``status`` (``completed``, ``failed``, ``interrupted``) and ``message``.
+unlimited ``time`` dimension; each output record is appended, and the file is synced to disk
+as soon as :data:`SYNC_SIMULATED` of simulated time or :data:`SYNC_WALL` of wall time has
+passed since the last sync, so a run killed outright (SIGKILL, a power cut) loses at most
+that. A record is written with SIGINT and SIGTERM held back, so a signal never leaves a
+half-written record. :class:`HistoryWriter` is a context manager: leaving it (normally, by
+an exception, by Ctrl-C or SIGTERM) closes the file with its final attributes: ``success``
+and ``complete`` (1 or 0), ``status`` (``completed``, ``failed``, ``interrupted``,
+``terminated``) and ``message``.
 """
 
 from __future__ import annotations
 
-import signal
-import threading
-from collections.abc import Iterator
-from contextlib import contextmanager
+import time
 from pathlib import Path
-from types import FrameType, TracebackType
+from types import TracebackType
 from typing import Any
 
 import netCDF4
@@ -25,8 +25,15 @@ from numpy.typing import NDArray
 
 from ..datasets import Status, dynamics_dataset, record_variables
 from ..mesh import Mesh
+from ..signals import Terminated, signals_deferred
 
 FloatArray = NDArray[np.float64]
+
+SYNC_SIMULATED = 1.0
+"""Simulated time [s] after which the written records are synced to disk."""
+
+SYNC_WALL = 2.0
+"""Wall-clock time [s] after which the written records are synced to disk."""
 
 
 class HistoryWriter:
@@ -53,7 +60,7 @@ class HistoryWriter:
     units
         The unit system (``SI`` or ``US``); default ``attrs["units"]``.
     sync_every
-        Flush to disk every this many records.
+        Also sync every this many records.
     group
         Name of the group to write (e.g. ``"dynamics"``); ``None``: the root group.
 
@@ -72,6 +79,7 @@ class HistoryWriter:
         self.sync_every = sync_every
         self.count = 0
         self.last_time = float("nan")
+        self._synced = (-np.inf, time.monotonic())
         self.variables = record_variables(mesh)
         append = group is not None and self.path.exists()
         if append:
@@ -87,16 +95,21 @@ class HistoryWriter:
         self.ds = self.root if group is None else self.root.groups[group]
 
     def append(self, t: float, record: dict[str, FloatArray]) -> None:
-        """Write one output record at time ``t`` (SIGINT is held back until it is whole)."""
+        """Write one output record at time ``t`` (SIGINT and SIGTERM are held back until it
+        is whole); sync when :data:`SYNC_SIMULATED`, :data:`SYNC_WALL` or ``sync_every``
+        records have passed since the last sync (the first record is synced at once)."""
         i = self.count
-        with _sigint_deferred():
+        with signals_deferred():
             for var in self.variables:
                 self.ds[var.name][i] = var.derive(record)
             self.ds["time"][i] = t
             self.count += 1
             self.last_time = float(t)
-            if self.count % self.sync_every == 0:
+            now = time.monotonic()
+            if (float(t) - self._synced[0] >= SYNC_SIMULATED
+                    or now - self._synced[1] >= SYNC_WALL or self.count % self.sync_every == 0):
                 self.root.sync()
+                self._synced = (float(t), now)
 
     def close(self, attrs: dict[str, Any] | None = None) -> None:
         """Write final attributes of the group (default: completed) and close the file."""
@@ -115,35 +128,16 @@ class HistoryWriter:
         if exc_type is None:
             self.close()
             return
-        interrupted = issubclass(exc_type, KeyboardInterrupt)
-        reason = "interrupted" if interrupted else f"failed: {exc}"
+        if issubclass(exc_type, Terminated):
+            status = Status.TERMINATED
+        elif issubclass(exc_type, KeyboardInterrupt):
+            status = Status.INTERRUPTED
+        else:
+            status = Status.FAILED
+        reason = f"failed: {exc}" if status == Status.FAILED else str(status)
         when = f" at t = {self.last_time:.6g} s" if self.count else ""
-        status = Status.INTERRUPTED if interrupted else Status.FAILED
         self.close({"complete": 0, "success": 0, "status": str(status),
                     "message": f"{reason}; {self.count} records kept{when}"})
-
-
-@contextmanager
-def _sigint_deferred() -> Iterator[None]:
-    """Hold back SIGINT in the block and deliver it (KeyboardInterrupt) right after.
-
-    Only in the main thread and when Python handles SIGINT; otherwise a no-op.
-    """
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.getsignal(signal.SIGINT)
-    if not callable(previous):
-        yield
-        return
-    received: list[tuple[int, FrameType | None]] = []
-    signal.signal(signal.SIGINT, lambda signum, frame: received.append((signum, frame)))
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-        if received:
-            previous(*received[0])
 
 
 def _attr(value: Any) -> Any:

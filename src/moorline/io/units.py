@@ -14,8 +14,10 @@ is declared next to the field, in :mod:`moorline.io.schema`, by naming a key of
 
 from __future__ import annotations
 
+import io
 import math
 import re
+import tokenize
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -24,6 +26,8 @@ import pint
 __all__ = [
     "DEFAULTS",
     "DIMENSIONS",
+    "MAX_EXPONENT",
+    "MAX_TEXT",
     "UREG",
     "Dimension",
     "UnitParseError",
@@ -100,6 +104,17 @@ DEFAULTS: dict[str, tuple[float, str]] = {
 
 _NUMBER_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
 
+MAX_TEXT = 200
+"""Longest string with a unit a case file may hold (characters)."""
+
+MAX_EXPONENT = 30
+"""Largest exponent magnitude in a string with a unit (``"m**2"``, ``"s^-1"``, ``"10**6 N"``).
+
+An exponent must be a plain number at most this large, and powers may be neither chained
+(``10**10**10``) nor applied to an expression holding a power (``(10**99)**99``): pint
+evaluates integer powers exactly, and such towers would run for hours.
+"""
+
 
 class UnitParseError(ValueError):
     """A value could not be read as a quantity of the expected dimension."""
@@ -175,10 +190,55 @@ def to_system(value: Any, dimension: str, system: System) -> float:
     if isinstance(value, str):
         magnitude = _parse_text(value, dimension, system)
     else:
-        magnitude = float(value)
+        try:
+            magnitude = float(value)
+        except OverflowError:
+            raise UnitParseError(f"too large a number: {str(value)[:20]}... "
+                                 f"({len(str(value))} digits)") from None
     if math.isnan(magnitude):
         raise UnitParseError(f"expected a number, got {_show(value)}")
     return magnitude
+
+
+def _short(text: str) -> str:
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _power_problem(text: str) -> str | None:
+    """Why the powers of a unit expression cannot be evaluated quickly, or ``None``
+    (:data:`MAX_EXPONENT`)."""
+    try:
+        tokens = [t for t in tokenize.generate_tokens(io.StringIO(text).readline)
+                  if t.type in (tokenize.OP, tokenize.NUMBER, tokenize.NAME)]
+    except (tokenize.TokenError, SyntaxError):
+        return None  # pint reports malformed text
+    opened: list[int] = []  # indices of the open parentheses
+    powered: list[bool] = [False]  # whether each open group holds a power
+    for i, tok in enumerate(tokens):
+        if tok.string == "(":
+            opened.append(i)
+            powered.append(False)
+        elif tok.string == ")" and opened:
+            opened.pop()
+            inner = powered.pop()
+            powered[-1] = powered[-1] or inner
+            if inner and i + 1 < len(tokens) and tokens[i + 1].string in ("**", "^"):
+                return "a power of an expression that holds a power (too slow to evaluate)"
+        elif tok.string in ("**", "^"):
+            powered[-1] = True
+            rest = [t.string for t in tokens[i + 1:i + 5]]
+            while rest and rest[0] in ("(", "-", "+"):
+                rest.pop(0)
+            try:
+                exponent = float(rest[0]) if rest else math.nan
+            except ValueError:
+                exponent = math.nan
+            if not abs(exponent) <= MAX_EXPONENT:
+                return (f"an exponent must be a number of magnitude at most {MAX_EXPONENT} "
+                        f"(MAX_EXPONENT)")
+            if rest[1:2] in (["**"], ["^"]):
+                return "chained powers (a ** b ** c) are too slow to evaluate"
+    return None
 
 
 def _parse_text(text: str, dimension: str, system: System) -> float:
@@ -189,6 +249,12 @@ def _parse_text(text: str, dimension: str, system: System) -> float:
         pass
     if not _NUMBER_START.match(text):
         raise UnitParseError(f"expected a number, got {text!r}")
+    if len(text) > MAX_TEXT:
+        raise UnitParseError(f"a number with a unit must be at most {MAX_TEXT} characters "
+                             f"(MAX_TEXT), got {len(text)}")
+    problem = _power_problem(text)
+    if problem is not None:
+        raise UnitParseError(f"cannot read {_short(text)!r}: {problem}")
     try:
         quantity = UREG.Quantity(text)
     except pint.UndefinedUnitError as exc:

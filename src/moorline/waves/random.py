@@ -93,14 +93,16 @@ class RandomSea:
         """Frequency step ``2 pi / T_L`` [rad/time] (eq. 5.1.2.b)."""
         return 2.0 * math.pi / self.record_length
 
+    def n_components(self) -> int:
+        """Number of components: ``n_frequencies``, or every ``m d_omega <= omega_max``."""
+        if self.n_frequencies is not None:
+            return self.n_frequencies
+        top = self.omega_max if self.omega_max is not None else 6.0 * self.spectrum.omega_p
+        return max(int(math.floor(top / self.d_omega + 1e-9)), 1)
+
     def frequencies(self) -> FloatArray:
         """Component frequencies ``omega_m = m d_omega``, ``m = 1, 2, ...`` [rad/time]."""
-        if self.n_frequencies is not None:
-            n = self.n_frequencies
-        else:
-            top = self.omega_max if self.omega_max is not None else 6.0 * self.spectrum.omega_p
-            n = max(int(math.floor(top / self.d_omega + 1e-9)), 1)
-        return self.d_omega * np.arange(1, n + 1)
+        return self.d_omega * np.arange(1, self.n_components() + 1)
 
     def complex_amplitudes(self) -> tuple[FloatArray, NDArray[np.complex128]]:
         """Frequencies and complex amplitudes ``A_m = |A_m| exp(-i theta_m)`` (eq. 5.1.3,
