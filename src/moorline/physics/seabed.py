@@ -71,6 +71,16 @@ def contact_energy(height: FloatArray, k: FloatArray, ramp: FloatArray) -> float
     return float(np.sum(energy))
 
 
+def resting_penetration(load: FloatArray, k: FloatArray, ramp: FloatArray) -> FloatArray:
+    """Penetration at which the spring of :func:`contact_force` carries ``load`` (the inverse
+    of ``k p^2 / (2 ramp)`` below ``ramp``, of ``k (p - ramp / 2)`` beyond); 0 where ``k`` or
+    the load is not positive."""
+    load = np.maximum(load, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = np.where(load <= 0.5 * k * ramp, np.sqrt(2.0 * load * ramp / k), load / k + 0.5 * ramp)
+    return np.where(k > 0, p, 0.0)
+
+
 def contact_ramp(weight_per_node: FloatArray, k: FloatArray, diameter: float) -> FloatArray:
     """Blend-in penetration per node: the static penetration of a lying line (its weight over
     its contact stiffness), at least a thousandth of the diameter."""

@@ -120,6 +120,12 @@ class StaticModel:
         return seabed.contact_force(x[:, 2] - self.mesh.seabed_z, zero,
                                     self.node_seabed_stiffness, zero, self.seabed_ramp)
 
+    def resting_penetration(self) -> FloatArray:
+        """Per node, the seabed penetration at which the contact carries the node's own load
+        (n_nodes,): where a node lying on a flat seabed rests."""
+        return seabed.resting_penetration(-self.external[:, 2], self.node_seabed_stiffness,
+                                          self.seabed_ramp)
+
     def potential_energy(self, x: FloatArray, lam: float = 1.0,
                          frozen: FloatArray | None = None) -> float:
         """Total potential energy: strain and seabed energy minus the work of the loads.

@@ -23,9 +23,17 @@ def initial_positions(system: System, mesh: Mesh,
     line starts on the closed-form elastic catenary between its end positions (for a free end,
     the point's initial guess), with seabed contact when an end lies on the seabed; where no
     catenary exists (or with ``start='straight'``) the line starts on its straight chord, as in
-    Tuah (1982) Ex. 2.
+    Tuah (1982) Ex. 2. Free nodes the start puts on (or under) the seabed are lowered to the
+    penetration at which the penalty seabed carries them
+    (:meth:`~moorline.solvers.equilibrium.StaticModel.resting_penetration`), so that a lying
+    line starts in vertical balance, not on the contact's kink.
     """
     x = mesh.node_prescribed_start.copy()
+    sink = np.zeros(mesh.n_nodes)
+    if np.isfinite(mesh.seabed_z):
+        from .equilibrium import StaticModel
+
+        sink = StaticModel(mesh).resting_penetration()
     for k, line in enumerate(system.lines.values()):
         nodes = mesh.line_nodes[k]
         a, b = x[nodes[0]], x[nodes[-1]]
@@ -33,17 +41,24 @@ def initial_positions(system: System, mesh: Mesh,
             x[nodes[1:-1]] = np.asarray(line.initial_shape, dtype=float)[1:-1]
             continue
         s = np.linspace(0.0, line.length, line.segments + 1)
-        shape = (_catenary_shape(system, line.line_type, line.length, a, b, s, mesh.seabed_z)
-                 if start == "catenary" else None)
+        depth = float(sink[nodes[1:-1]].max(initial=0.0))
+        shape = (_catenary_shape(system, line.line_type, line.length, a, b, s, mesh.seabed_z,
+                                 depth) if start == "catenary" else None)
         if shape is not None:
             x[nodes[1:-1]] = shape[1:-1]
         else:
             x[nodes[1:-1]] = a + (s[1:-1, None] / line.length) * (b - a)
+    lying = mesh.free_nodes & (x[:, 2] <= mesh.seabed_z + 1e-9 * max(1.0, abs(mesh.seabed_z)))
+    x[lying, 2] = mesh.seabed_z - sink[lying]
     return x
 
 
 def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray,
-                    b: FloatArray, s: FloatArray, seabed_z: float) -> FloatArray | None:
+                    b: FloatArray, s: FloatArray, seabed_z: float,
+                    sink: float = 0.0) -> FloatArray | None:
+    """The closed-form profile at arc lengths ``s``; with an end on the seabed, solved with
+    that end and the seabed ``sink`` lower (the penetration at which the lying nodes rest),
+    so that lying and hanging nodes start in balance with each other."""
     from ..catenary import CatenaryError, catenary_3d, profile_3d
 
     lt = system.line_types[type_name]
@@ -53,6 +68,8 @@ def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray
     flip = bool(np.isfinite(seabed_z) and b[2] <= seabed_z + tol < a[2])
     pa, pb = (b, a) if flip else (a, b)
     on_seabed = bool(np.isfinite(seabed_z) and pa[2] <= seabed_z + tol)
+    if on_seabed:
+        pa = pa - np.array([0.0, 0.0, sink])
     try:
         _, _, sol = catenary_3d(pa, pb, length, lt.EA, w, seabed_contact=on_seabed,
                                 seabed_friction=0.0)
