@@ -39,10 +39,23 @@ class ForceState:
 
 
 class StaticModel:
-    """Residual and tangent of a mesh's static balance, with a cached sparse pattern."""
+    """Residual and tangent of a mesh's static balance, with a cached sparse pattern.
 
-    def __init__(self, mesh: Mesh, current=None) -> None:
+    With ``exact_cable`` the elements follow the cable law itself, ``T = EA max(eps, 0)``: no
+    compression and no smoothing band (:func:`moorline.physics.element.axial_tension` with
+    ``slack_ratio = smoothing = 0``). The static balance is then solved as a semismooth
+    problem with an active set of taut elements: the tangent is the law's generalized
+    Jacobian, ``EA / L0`` on taut elements, and keeps ``slack_ratio EA / L0`` on slack ones
+    (Tuah sec. 6.2: "the modulus E for the slack element is set to a very small value") so
+    that the Newton matrix stays usable, while the residual, and so the equilibrium, has
+    neither the compression nor the band's tension of the regularized law: a slack pile on
+    the seabed ends with no end force, as the closed form's, and a line lying just taut
+    carries ``EA eps``, not ``EA s / 4``. The energy stays C1 (the line search's merit).
+    """
+
+    def __init__(self, mesh: Mesh, current=None, exact_cable: bool = False) -> None:
         self.mesh = mesh
+        self.exact_cable = exact_cable
         self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
         self.current = current if current is not None and mesh.water_density > 0 else None
         g, rho = mesh.gravity, mesh.water_density
@@ -58,8 +71,7 @@ class StaticModel:
         """All nodal forces at positions ``x`` (n_nodes, 3) with the loads scaled by ``lam``."""
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
-        tension, _ = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
-                                                m.slack_smoothing)
+        tension, _ = element.axial_tension(length, m.length0, m.EA, *self._law())
         el_forces = element.nodal_forces(tension, unit)
         nodal = lam * self.external
         nodal = nodal + hydro.sum_to_nodes(el_forces, m.elements, m.n_nodes)
@@ -92,18 +104,30 @@ class StaticModel:
         state = self.forces(x, lam)
         return gather_free(state.nodal, self.mesh.dof_of_node), state
 
+    def _law(self) -> tuple[FloatArray, FloatArray]:
+        """``(slack_ratio, smoothing)`` of the element law in the residual and the energy."""
+        m = self.mesh
+        if self.exact_cable:
+            return np.zeros_like(m.EA), np.zeros_like(m.EA)
+        return m.slack_ratio, m.slack_smoothing
+
     def tangent(self, x: FloatArray, pattern: BlockPattern | None = None,
-                taut_axial: bool = False) -> sp.csr_matrix:
+                taut_axial: bool = False, shift: float = 0.0) -> sp.csr_matrix:
         """Exact tangent ``-dR/dx`` assembled over ``pattern`` (default: the free dofs).
 
         With ``taut_axial`` every element gets the taut axial stiffness ``EA / L0`` and the
         geometric stiffness of ``max(T, 0)``, slack ones included: the stiffness against
-        perturbations that do not change which elements are slack (strumming modes).
+        perturbations that do not change which elements are slack (strumming modes). Without
+        ``exact_cable`` the generalized Jacobian of the cable law, a slack element keeping
+        ``slack_ratio EA / L0`` axially and no geometric stiffness.
+        ``shift`` is added to the diagonal (a Levenberg-Marquardt shift).
         """
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
         tension, dT = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
-                                                m.slack_smoothing)
+                                            0.0 if self.exact_cable else m.slack_smoothing)
+        if self.exact_cable:
+            tension = np.maximum(tension, 0.0)
         if taut_axial:
             tension, dT = np.maximum(tension, 0.0), m.EA / m.length0
         blocks = element.tangent_blocks(length, unit, tension, dT)
@@ -113,7 +137,9 @@ class StaticModel:
         if np.isfinite(m.seabed_z):
             node_blocks = np.zeros((m.n_nodes, 3, 3))
             node_blocks[:, 2, 2] = -self._seabed(x)[1]
-        return (pattern or self.pattern).assemble(blocks, node_blocks)
+        pattern = pattern or self.pattern
+        diagonal = np.full(pattern.n, shift) if shift else None
+        return pattern.assemble(blocks, node_blocks, diagonal)
 
     def _seabed(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         zero = np.zeros(self.mesh.n_nodes)
@@ -136,8 +162,7 @@ class StaticModel:
         """
         m = self.mesh
         length, _ = element.element_geometry(x, m.elements)
-        energy = float(element.strain_energy(length, m.length0, m.EA, m.slack_ratio,
-                                                      m.slack_smoothing).sum())
+        energy = float(element.strain_energy(length, m.length0, m.EA, *self._law()).sum())
         if np.isfinite(m.seabed_z):
             energy += seabed.contact_energy(x[:, 2] - m.seabed_z, self.node_seabed_stiffness,
                                             self.seabed_ramp)

@@ -73,8 +73,40 @@ def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray
     try:
         _, _, sol = catenary_3d(pa, pb, length, lt.EA, w, seabed_contact=on_seabed,
                                 seabed_friction=0.0)
-        shape = profile_3d(sol, pa, pb, length - s[::-1] if flip else s)
+        sigma = length - s[::-1] if flip else s
+        shape = profile_3d(sol, pa, pb, sigma)
+        if sol.H == 0.0 and sol.seabed_length > 0.0:
+            shape = _coil_pile(shape, sol, pa, sigma)
     except CatenaryError as err:
         logger.info("catenary start not available (%s); starting straight", err)
         return None
     return shape[::-1] if flip else shape
+
+
+def _coil_pile(shape: FloatArray, sol, pa: FloatArray, sigma: FloatArray) -> FloatArray:
+    """A slack pile laid out on the seabed so that none of its elements has zero length.
+
+    The closed form draws the surplus length ``L_B`` of a slack line (``H = 0``) compressed
+    uniformly over the horizontal span ``X``; when ``X < 0.4 L_B`` (a line hanging vertically
+    over its anchor has ``X = 0``) the finite elements would start with (nearly) zero-length
+    elements. Here the lying part ``0 <= sigma <= L_B`` goes once around a loop from the
+    anchor to the touchdown, ``p(t) = A + t X e + rho (sin(2 pi t) e + (1 - cos(2 pi t)) n)``
+    with ``t = sigma / L_B`` and ``2 pi rho = L_B / 2``: every element between 0.1 and 0.9 of
+    its unstretched length, so slack, and all of them carry no force, as in the closed form.
+    """
+    lb, X = sol.seabed_length, sol.horizontal_span
+    if X >= 0.4 * lb:
+        return shape
+    touchdown = shape[np.argmin(np.abs(sigma - lb))]
+    d = touchdown[:2] - pa[:2]
+    e = d / np.hypot(*d) if np.hypot(*d) > 0 else np.array([1.0, 0.0])
+    n = np.array([-e[1], e[0]])
+    lying = sigma <= lb
+    t = sigma[lying] / lb
+    rho = lb / (4.0 * np.pi)
+    h = (t * X)[:, None] * e + rho * (np.sin(2 * np.pi * t)[:, None] * e
+                                      + (1.0 - np.cos(2 * np.pi * t))[:, None] * n)
+    out = shape.copy()
+    out[lying, :2] = pa[:2] + h
+    out[lying, 2] = pa[2]
+    return out

@@ -98,7 +98,7 @@ def solve_statics(
 
         raise MoorlineError(f"statics of {system.name}: current_drag with bodies is not "
                             "supported yet")
-    model = StaticModel(mesh, current)
+    model = StaticModel(mesh, current, exact_cable=True)
     x = (initial_positions(system, mesh, settings.start) if initial is None
          else np.array(initial, dtype=float))
     target = mesh.node_position[~mesh.free_nodes]
@@ -112,7 +112,9 @@ def solve_statics(
         held = x_held[~mesh.free_nodes]
         goal = held.copy()
         goal[fixed_rows] = target[fixed_rows]
-        return solver[settings.method](model, x_held, held, goal, settings, counters)
+        tol = _tolerance(model, x_held, settings)
+        return _checked(model, tol, counters,
+                        *solver[settings.method](model, x_held, held, goal, settings, counters))
 
     # bodies by Newton on their six dofs, the lines re-equilibrated (robust line statics)
     # with the bodies held at every trial pose; without bodies, the line statics alone
@@ -145,6 +147,26 @@ def _default_settings(system: System) -> StaticsSettings:
     return system.first(StaticsSettings)
 
 
+def _tolerance(model: StaticModel, x: FloatArray, settings: StaticsSettings) -> float:
+    """The out-of-balance force every method must end below: ``tolerance`` times the load
+    scale, at least the round-off floor at ``x``."""
+    return max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
+
+
+def _checked(model: StaticModel, tol: float, counters: _Counters, ok: bool, message: str,
+             iterations: int, state: ForceState, x: FloatArray):
+    """The one residual check every method ends with: the full loads, the supports at their
+    targets, the largest out-of-balance force finite and at most the tolerance the methods
+    use (:func:`_tolerance` at the start, or at the end if larger)."""
+    R, state = _residual(model, x, 1.0, counters)
+    norm = float(np.abs(R).max(initial=0.0))
+    if ok and not norm <= max(tol, model.roundoff_floor(x)):
+        where = describe_dof(model.mesh, int(np.nanargmax(np.abs(R)))) if R.size else "-"
+        ok, message = False, (f"{message}, but the final out-of-balance force {norm:.3e} at "
+                              f"{where} is above the tolerance")
+    return ok, message, iterations, state, x
+
+
 def _move_supports(model: StaticModel, x: FloatArray, start: FloatArray, target: FloatArray,
                    lam: float) -> None:
     x[~model.mesh.free_nodes] = start + lam * (target - start)
@@ -172,12 +194,13 @@ class _NewtonStatics:
         self.model, self.lam, self.max_step = model, lam, max_step
         self.dof = model.mesh.dof_of_node
         self.factorizer = SparseFactor(model.pattern)
+        self.shift = _shift(model)
 
     def residual(self, x: FloatArray, tangent: bool) -> _StaticTrial:
         return _StaticTrial(*self.model.residual(x, self.lam))
 
     def factorize(self, x: FloatArray, trial: _StaticTrial) -> SparseFactor:
-        return self.factorizer.factor(self.model.tangent(x).data)
+        return self.factorizer.factor(self.model.tangent(x, shift=self.shift).data)
 
     def update(self, x: FloatArray, du: FloatArray) -> FloatArray:
         return x + scatter_free(du, self.dof)
@@ -196,6 +219,19 @@ class _NewtonStatics:
                               <= energy0 + 1e-4 * alpha * slope)
 
 
+#: Levenberg-Marquardt shift of the static Newton matrix, relative to the stiffest element.
+SHIFT = 1e-9
+
+
+def _shift(model: StaticModel) -> float:
+    """A vanishing diagonal shift of the Newton matrix: a slack pile on the seabed (no force
+    in its elements, none across the seabed) is free to move horizontally, which leaves the
+    tangent singular; the shift makes those modes stand still (their residual is zero) and
+    changes the step elsewhere by a relative ``SHIFT``, not the equilibrium."""
+    m = model.mesh
+    return SHIFT * float(np.max(m.EA / m.length0, initial=0.0))
+
+
 def _longest_line(mesh: Mesh) -> float:
     return max((float(mesh.length0[e].sum()) for e in mesh.line_elements), default=1.0)
 
@@ -209,7 +245,7 @@ def _limit_step(dx: FloatArray, max_step: float) -> FloatArray:
 def _newton(model, x, start, target, settings, counters):
     """Residual feedback with equilibrium iterations per load increment (Tuah eq. 4.1.2),
     each increment solved by the Newton core."""
-    tol = max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
+    tol = _tolerance(model, x, settings)
     max_step = settings.max_step * _longest_line(model.mesh)
     policy = NewtonPolicy(tolerance=tol, max_iterations=settings.max_iterations,
                           stiffness_update=settings.stiffness_update, age_per="iteration",
@@ -245,7 +281,7 @@ def _incremental(model, x, start, target, settings, counters):
         x = x + d_prescribed + scatter_free(du, mesh.dof_of_node)
         R, state = _residual(model, x, step / n, counters)
         counters.history.append(float(np.abs(R).max(initial=0.0)))
-    ok = counters.history[-1] <= settings.tolerance * model.load_scale()
+    ok = counters.history[-1] <= _tolerance(model, x, settings)
     msg = (f"{n} load increments; final out-of-balance force {counters.history[-1]:.3e} "
            "(purely incremental: no equilibrium correction)")
     return ok, msg, n, state, x
@@ -260,7 +296,7 @@ def _relaxation(model, x, start, target, settings, counters):
     otherwise the damping decays by ``mu`` each step and the stiffness is refreshed every
     ``stiffness_update`` steps.
     """
-    tol = max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
+    tol = _tolerance(model, x, settings)
     dof = model.mesh.dof_of_node
     damping, K, K_age = settings.damping, None, 0
     lam = min(1.0, 1.0 / settings.load_steps)
@@ -273,7 +309,12 @@ def _relaxation(model, x, start, target, settings, counters):
             counters.tangents += 1
         shift = sp.identity(K.shape[0], format="csr") * (damping / settings.pseudo_dt)
         counters.factorizations += 1
-        x_trial = x + scatter_free(factorize(K + shift).solve(R), dof)
+        try:
+            step = factorize(K + shift).solve(R)
+        except (np.linalg.LinAlgError, RuntimeError) as exc:
+            return False, _failure(model, R, state, None, settings, f"singular matrix: {exc}"), \
+                it, state, x
+        x_trial = x + scatter_free(step, dof)
         K_age += 1
         lam = min(1.0, (it + 1) / settings.load_steps)
         _move_supports(model, x_trial, start, target, lam)
