@@ -35,9 +35,17 @@ def _failures(n: int, seed: int, category: str) -> list[str]:
     return out
 
 
-def _params(marks=()):
-    return [pytest.param(c, marks=[*marks, *([pytest.mark.xfail(strict=True, reason=OPEN[c])]
-                                             if c in OPEN else [])]) for c in CATEGORIES]
+#: Open in the 2,000-line run only.
+OPEN_SLOW = {
+    "lying": "the penalty seabed lets a lying line sink by its resting penetration p while "
+             "its ends are held at the surface: a line lying flat and almost unstretched "
+             "(strain ~ 1e-7) gains the strain p^2 / (h L) (one of 250: 1.6 % of 164 N)",
+}
+
+
+def _params(marks=(), open_=OPEN):
+    return [pytest.param(c, marks=[*marks, *([pytest.mark.xfail(strict=True, reason=open_[c])]
+                                             if c in open_ else [])]) for c in CATEGORIES]
 
 
 @pytest.mark.parametrize("category", _params())
@@ -47,7 +55,7 @@ def test_random_lines_converge_to_the_closed_form(category: str) -> None:
     assert not failures, f"{len(failures)} of 40 {category} lines: " + "; ".join(failures[:5])
 
 
-@pytest.mark.parametrize("category", _params([pytest.mark.slow]))
+@pytest.mark.parametrize("category", _params([pytest.mark.slow], {**OPEN, **OPEN_SLOW}))
 def test_random_lines_converge_to_the_closed_form_2000(category: str) -> None:
     """2,000 random lines (250 per category), seeded."""
     failures = _failures(2000, 7, category)
