@@ -200,7 +200,10 @@ class _NewtonStatics:
         return _StaticTrial(*self.model.residual(x, self.lam))
 
     def factorize(self, x: FloatArray, trial: _StaticTrial) -> SparseFactor:
-        return self.factorizer.factor(self.model.tangent(x, shift=self.shift).data)
+        try:
+            return self.factorizer.factor(self.model.tangent(x).data)
+        except np.linalg.LinAlgError:  # a pile free to slide: the shifted matrix
+            return self.factorizer.factor(self.model.tangent(x, shift=self.shift).data)
 
     def update(self, x: FloatArray, du: FloatArray) -> FloatArray:
         return x + scatter_free(du, self.dof)
@@ -219,15 +222,17 @@ class _NewtonStatics:
                               <= energy0 + 1e-4 * alpha * slope)
 
 
-#: Levenberg-Marquardt shift of the static Newton matrix, relative to the stiffest element.
+#: Levenberg-Marquardt shift of a singular static Newton matrix, relative to the stiffest
+#: element.
 SHIFT = 1e-9
 
 
 def _shift(model: StaticModel) -> float:
-    """A vanishing diagonal shift of the Newton matrix: a slack pile on the seabed (no force
-    in its elements, none across the seabed) is free to move horizontally, which leaves the
-    tangent singular; the shift makes those modes stand still (their residual is zero) and
-    changes the step elsewhere by a relative ``SHIFT``, not the equilibrium."""
+    """A vanishing diagonal shift for a singular Newton matrix: a straight slack pile on the
+    seabed (no force in its elements, none across the seabed) is free to move sideways,
+    which leaves the tangent singular; the shift makes those modes stand still (their
+    residual is zero) and changes the step elsewhere by a relative ``SHIFT``, not the
+    equilibrium. Used only when the unshifted matrix does not factorize."""
     m = model.mesh
     return SHIFT * float(np.max(m.EA / m.length0, initial=0.0))
 
@@ -311,7 +316,7 @@ def _relaxation(model, x, start, target, settings, counters):
         counters.factorizations += 1
         try:
             step = factorize(K + shift).solve(R)
-        except (np.linalg.LinAlgError, RuntimeError) as exc:
+        except np.linalg.LinAlgError as exc:
             return False, _failure(model, R, state, None, settings, f"singular matrix: {exc}"), \
                 it, state, x
         x_trial = x + scatter_free(step, dof)
