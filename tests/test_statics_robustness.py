@@ -13,10 +13,7 @@ from moorline.verification.random_lines import CATEGORIES, end_force_error, geom
 
 TOLERANCE = 5e-3
 #: Categories finite-element statics does not yet solve (issue 10, left open).
-OPEN = {
-    "friction": "finite-element statics has no seabed friction yet: the anchor force misses "
-                "the friction the closed form takes up on the lying part",
-}
+OPEN: dict[str, str] = {}
 
 
 def _failures(n: int, seed: int, category: str) -> list[str]:
@@ -95,17 +92,20 @@ def test_an_exactly_vertical_slack_line_hangs_its_weight_on_the_fairlead(method:
 
 
 def test_the_exact_cable_tangent_matches_central_differences() -> None:
-    """StaticModel(exact_cable=True): on a taut line the tangent is the exact derivative of
-    the residual; on a slack pile it adds only ``slack_ratio EA / L0`` along slack elements,
-    whose residual derivative is zero."""
+    """StaticModel(exact_cable=True): on a taut line, and on a line with seabed friction
+    (its start: friction fully mobilized on the lying part), the tangent is the exact
+    derivative of the residual; on a slack pile it adds only ``slack_ratio EA / L0`` along
+    slack elements, whose residual derivative is zero."""
     from moorline.mesh import discretize
     from moorline.solvers.equilibrium import StaticModel
     from moorline.solvers.initial_shape import initial_positions
 
+    friction = next(g.system for g in geometries(8, seed=4) if g.category == "friction")
     for system, taut in ((next(g.system for g in geometries(8, seed=4)
-                               if g.category == "taut"), True), (_pile(5.0), False)):
+                               if g.category == "taut"), True), (_pile(5.0), False),
+                         (friction, True)):
         mesh = discretize(system)
-        model = StaticModel(mesh, exact_cable=True)
+        model = StaticModel(mesh, exact_cable=True, friction=system.environment.seabed.friction)
         x = initial_positions(system, mesh)
         K = model.tangent(x).toarray()
         free = np.argwhere(mesh.dof_of_node >= 0)

@@ -72,7 +72,7 @@ def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray
         pa = pa - np.array([0.0, 0.0, sink])
     try:
         _, _, sol = catenary_3d(pa, pb, length, lt.EA, w, seabed_contact=on_seabed,
-                                seabed_friction=0.0)
+                                seabed_friction=env.seabed.friction)
         sigma = length - s[::-1] if flip else s
         shape = profile_3d(sol, pa, pb, sigma)
         if sol.H == 0.0 and sol.seabed_length > 0.0:

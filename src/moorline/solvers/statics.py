@@ -98,7 +98,8 @@ def solve_statics(
 
         raise MoorlineError(f"statics of {system.name}: current_drag with bodies is not "
                             "supported yet")
-    model = StaticModel(mesh, current, exact_cable=True)
+    model = StaticModel(mesh, current, exact_cable=True,
+                        friction=system.environment.seabed.friction)
     x = (initial_positions(system, mesh, settings.start) if initial is None
          else np.array(initial, dtype=float))
     target = mesh.node_position[~mesh.free_nodes]
@@ -113,8 +114,10 @@ def solve_statics(
         goal = held.copy()
         goal[fixed_rows] = target[fixed_rows]
         tol = _tolerance(model, x_held, settings)
-        return _checked(model, tol, counters,
-                        *solver[settings.method](model, x_held, held, goal, settings, counters))
+        out = solver[settings.method](model, x_held.copy(), held, goal, settings, counters)
+        if not out[0] and settings.method == "newton":
+            out = _relaxation_fallback(model, x_held, held, goal, settings, counters, out)
+        return _checked(model, tol, counters, *out)
 
     # bodies by Newton on their six dofs, the lines re-equilibrated (robust line statics)
     # with the bodies held at every trial pose; without bodies, the line statics alone
@@ -126,7 +129,8 @@ def solve_statics(
         n_residual=counters.residuals, n_tangent=counters.tangents,
         n_factorizations=counters.factorizations, positions=x, tension=state.tension,
         element_forces=state.element_forces, mesh=mesh, case=system.name, units=system.units,
-        body_pose=pose, current_drag=current is not None)
+        body_pose=pose, current_drag=current is not None,
+        extras={"seabed_friction": model.friction} if model.friction > 0 else {})
 
 
 def _current_field(system: System):
@@ -200,10 +204,12 @@ class _NewtonStatics:
         return _StaticTrial(*self.model.residual(x, self.lam))
 
     def factorize(self, x: FloatArray, trial: _StaticTrial) -> SparseFactor:
-        try:
-            return self.factorizer.factor(self.model.tangent(x).data)
-        except np.linalg.LinAlgError:  # a pile free to slide: the shifted matrix
-            return self.factorizer.factor(self.model.tangent(x, shift=self.shift).data)
+        if not self.model.friction:  # friction's stuck zone is near-singular: always shift
+            try:
+                return self.factorizer.factor(self.model.tangent(x).data)
+            except np.linalg.LinAlgError:  # a pile free to slide: the shifted matrix
+                pass
+        return self.factorizer.factor(self.model.tangent(x, shift=self.shift).data)
 
     def update(self, x: FloatArray, du: FloatArray) -> FloatArray:
         return x + scatter_free(du, self.dof)
@@ -335,6 +341,21 @@ def _relaxation(model, x, start, target, settings, counters):
             return True, f"converged in {it} relaxation steps", it, state, x
         damping *= settings.damping_decrement
     return False, _failure(model, R, state, None, settings), settings.max_iterations, state, x
+
+
+def _relaxation_fallback(model, x, start, target, settings, counters, failed):
+    """Newton's failure retried by viscous relaxation (Tuah eq. 4.1.5-4.1.8) from the same
+    start, with 20 times the iterations (at least 1,000): its damping steadies what a Newton
+    step cannot, such as a long lying stretch that seabed friction leaves without tension.
+    Its result when it converges (the same residual check follows), else Newton's failure."""
+    relax = replace(settings, method="relaxation",
+                    max_iterations=max(20 * settings.max_iterations, 1000))
+    ok, message, iterations, state, x = _relaxation(model, x.copy(), start, target, relax,
+                                                    counters)
+    if not ok:
+        return failed
+    return (True, f"relaxation {message} after Newton did not ({failed[1]})",
+            failed[2] + iterations, state, x)
 
 
 def _failure(model: StaticModel, R: FloatArray, state: ForceState, step: int | None,

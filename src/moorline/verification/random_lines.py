@@ -116,7 +116,9 @@ def segments_needed(solution: CatenarySolution) -> int:
     reaches 0.5 % of the end force with about 10 on a sagging line), element length at most a
     tenth of the catenary parameter ``H / |w|`` (when ``H > 0``) and a hundredth of the
     suspended length (when part of the line lies on the seabed: the lumped-node contact
-    misplaces up to half an element's weight at the touchdown)."""
+    misplaces up to half an element's weight at the touchdown), and with seabed friction at
+    most ``0.01 max(H_a, 0.05 T_b) / (mu w)`` (the touchdown's misplacement moves the anchor
+    tension by up to about ``mu w h / 2``)."""
     L, h = solution.length, math.inf
     hanging = L - solution.seabed_length
     if hanging <= 0.0:  # flat on the seabed: nothing to resolve
@@ -125,6 +127,9 @@ def segments_needed(solution: CatenarySolution) -> int:
         h = 0.1 * solution.H / abs(solution.weight)
     if solution.seabed_length > 0.0:
         h = min(h, 0.01 * hanging)
+    mu_w = solution.seabed_friction * solution.weight
+    if mu_w > 0.0 and solution.seabed_length > 0.0:  # friction
+        h = min(h, 0.01 * max(solution.H_a, 0.05 * solution.tension_b) / mu_w)
     return max(20, int(math.ceil(L / h)))
 
 
