@@ -39,12 +39,13 @@ def main() -> None:
         if result.success:
             converged[g.category] += 1
             accurate[g.category] += end_force_error(g, result) <= TOLERANCE
-    print(f"{'category':>14} {'lines':>6} {'converged':>10} {'within 0.5 %':>13} {'errors':>7}")
+    print(f"{'category':>14} {'lines':>6} {'converged':>16} {'within 0.5 %':>16} {'errors':>7}")
     for c in (*CATEGORIES, "all"):
         pick = (lambda d, c=c: sum(d.values())) if c == "all" else (lambda d, c=c: d[c])
         n = pick(total)
-        print(f"{c:>14} {n:6d} {100 * pick(converged) / n:9.1f}% "
-              f"{100 * pick(accurate) / n:12.1f}% {pick(crashed):7d}")
+        ok, good = pick(converged), pick(accurate)
+        print(f"{c:>14} {n:6d} {ok:7d} ({100 * ok / n:6.2f}%) {good:7d} ({100 * good / n:6.2f}%) "
+              f"{pick(crashed):7d}")
     print(f"{args.n} lines in {time.perf_counter() - start:.1f} s (seed {args.seed}); reference: "
           "moorline.catenary.solve_catenary (closed form)")
 
