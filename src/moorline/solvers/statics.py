@@ -116,6 +116,8 @@ def solve_statics(
         tol = _tolerance(model, x_held, settings)
         out = solver[settings.method](model, x_held.copy(), held, goal, settings, counters)
         if not out[0] and settings.method == "newton":
+            out = _regularized_fallback(model, x_held, held, goal, settings, counters, out)
+        if not out[0] and settings.method == "newton" and model.friction:
             out = _relaxation_fallback(model, x_held, held, goal, settings, counters, out)
         return _checked(model, tol, counters, *out)
 
@@ -343,13 +345,31 @@ def _relaxation(model, x, start, target, settings, counters):
     return False, _failure(model, R, state, None, settings), settings.max_iterations, state, x
 
 
+def _regularized_fallback(model, x, start, target, settings, counters, failed):
+    """Newton's failure on the exact cable law retried as a continuation: Newton on the
+    regularized law (slack elements with ``slack_ratio EA``, the smoothing band; its tangent
+    is the exact derivative of its residual, which guides a step that throws elements slack
+    better), then Newton on the exact law from there. The exact law's result when it
+    converges, else the first failure."""
+    regularized = StaticModel(model.mesh, model.current, friction=model.friction)
+    ok, _, iterations, _, x = _newton(regularized, x.copy(), start, target, settings, counters)
+    if not ok:
+        return failed
+    polish = replace(settings, load_steps=1)
+    ok, message, more, state, x = _newton(model, x, target, target, polish, counters)
+    if not ok:
+        return failed
+    return (True, f"{message} on the exact cable law from the regularized law's equilibrium "
+            f"after Newton did not ({failed[1]})", failed[2] + iterations + more, state, x)
+
+
 def _relaxation_fallback(model, x, start, target, settings, counters, failed):
-    """Newton's failure retried by viscous relaxation (Tuah eq. 4.1.5-4.1.8) from the same
-    start, with 20 times the iterations (at least 1,000): its damping steadies what a Newton
-    step cannot, such as a long lying stretch that seabed friction leaves without tension.
+    """Newton's failure on a line with seabed friction retried by viscous relaxation (Tuah
+    eq. 4.1.5-4.1.8) from the same start, with 20 times Newton's iteration limit: its damping
+    steadies what a Newton step cannot, a long lying stretch that friction leaves without
+    tension (no stiffness, and a friction force with no potential for the line search).
     Its result when it converges (the same residual check follows), else Newton's failure."""
-    relax = replace(settings, method="relaxation",
-                    max_iterations=max(20 * settings.max_iterations, 1000))
+    relax = replace(settings, method="relaxation", max_iterations=20 * settings.max_iterations)
     ok, message, iterations, state, x = _relaxation(model, x.copy(), start, target, relax,
                                                     counters)
     if not ok:
