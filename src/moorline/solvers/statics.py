@@ -117,7 +117,7 @@ def solve_statics(
         out = solver[settings.method](model, x_held.copy(), held, goal, settings, counters)
         if not out[0] and settings.method == "newton":
             out = _regularized_fallback(model, x_held, held, goal, settings, counters, out)
-        if not out[0] and settings.method == "newton" and model.friction:
+        if not out[0] and settings.method == "newton":
             out = _relaxation_fallback(model, x_held, held, goal, settings, counters, out)
         return _checked(model, tol, counters, *out)
 
@@ -364,11 +364,12 @@ def _regularized_fallback(model, x, start, target, settings, counters, failed):
 
 
 def _relaxation_fallback(model, x, start, target, settings, counters, failed):
-    """Newton's failure on a line with seabed friction retried by viscous relaxation (Tuah
-    eq. 4.1.5-4.1.8) from the same start, with 20 times Newton's iteration limit: its damping
-    steadies what a Newton step cannot, a long lying stretch that friction leaves without
-    tension (no stiffness, and a friction force with no potential for the line search).
-    Its result when it converges (the same residual check follows), else Newton's failure."""
+    """Newton's failure retried by viscous relaxation (Tuah eq. 4.1.5-4.1.8) from the same
+    start, with 20 times Newton's iteration limit: its damping steadies what a Newton step
+    cannot, such as a long lying stretch that seabed friction leaves without tension (no
+    stiffness, and a friction force with no potential for the line search) or a buoyant
+    line folded over its fairlead with almost no horizontal tension. Its result when it
+    converges (the same residual check follows), else Newton's failure."""
     relax = replace(settings, method="relaxation", max_iterations=20 * settings.max_iterations)
     ok, message, iterations, state, x = _relaxation(model, x.copy(), start, target, relax,
                                                     counters)
