@@ -167,7 +167,8 @@ def _checked(model: StaticModel, tol: float, counters: _Counters, ok: bool, mess
     R, state = _residual(model, x, 1.0, counters)
     norm = float(np.abs(R).max(initial=0.0))
     if ok and not norm <= max(tol, model.roundoff_floor(x)):
-        where = describe_dof(model.mesh, int(np.nanargmax(np.abs(R)))) if R.size else "-"
+        where = describe_dof(model.mesh, int(np.argmax(np.nan_to_num(np.abs(R), nan=np.inf)))) \
+            if R.size else "-"
         ok, message = False, (f"{message}, but the final out-of-balance force {norm:.3e} at "
                               f"{where} is above the tolerance")
     return ok, message, iterations, state, x
