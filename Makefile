@@ -34,6 +34,7 @@ verify: $(COMPARE)
 # pass --refresh to search again); BENCH_ARGS=--quick gives a shorter run.
 bench: $(COMPARE)
 	$(BIN)/python benchmarks/bench_statics.py
+	$(BIN)/python benchmarks/bench_statics_robustness.py
 	$(BIN)/python benchmarks/bench_frequency.py
 	$(BIN)/python benchmarks/bench_dynamics.py $(BENCH_ARGS)
 

@@ -178,7 +178,7 @@ def test_plot_rejects_netcdf_without_results(tmp_path: Path) -> None:
 @needs_oc3
 def test_failed_solve_exits_1_with_message(tmp_path: Path) -> None:
     case = yaml.safe_load(OC3.read_text())
-    case["analyses"] = [{"kind": "statics", "method": "newton", "max_iterations": 1,
+    case["analyses"] = [{"kind": "statics", "method": "relaxation", "max_iterations": 1,
                          "tolerance": 1.0e-12}]
     path = tmp_path / "hopeless.yaml"
     path.write_text(yaml.safe_dump(case))

@@ -116,9 +116,17 @@ class StaticResult:
         """Force the line exerts on its end point ``end`` (``"a"`` or ``"b"``), shape (3,).
 
         The end element's axial force plus the share of the line's distributed loads lumped at
-        the end node (half the end element's submerged weight, less the seabed's support of
-        that half when the node rests on the seabed): the nodal reaction of the finite element
-        model, which converges as O(h^2) to the continuous line's end force.
+        the end node (half the end element's submerged weight): the nodal reaction of the
+        finite element model, which converges as O(h^2) to the continuous line's end force.
+        An end resting on the seabed (at or below its surface) where the line lies (pulls it
+        down, not up) has the vertical part of that force carried by the seabed, as the
+        closed-form catenary's end on the seabed
+        (:class:`moorline.catenary.CatenarySolution`: ``V_a = 0`` where the line lies): the
+        half element's weight and the pull of the neighbouring lying nodes, which rest a
+        penalty penetration lower than an end held at the surface. With seabed friction
+        (``extras["seabed_friction"]``, set by the statics) the seabed also takes up, from the
+        line's horizontal pull, ``mu`` times that normal load (at most the pull), as the
+        closed form's tension falls by ``mu w`` per length to the anchor.
         """
         m = self.mesh
         elements = m.line_elements[m.line_index(line)]
@@ -127,10 +135,13 @@ class StaticResult:
         e, side = (elements[0], 0) if end == "a" else (elements[-1], 1)
         force = self.element_forces[e, side].copy()
         force[2] -= 0.5 * m.weight_per_length[e] * m.length0[e]
-        penetration = m.seabed_z - self.positions[m.elements[e, side], 2]
-        if np.isfinite(m.seabed_z) and penetration > 0:
-            area = 0.5 * m.length0[e] * m.diameter[e]
-            force[2] += m.seabed_stiffness_per_area * area * penetration
+        if (np.isfinite(m.seabed_z) and self.positions[m.elements[e, side], 2] <= m.seabed_z
+                and force[2] <= 0.0):  # resting on the seabed, the line lying at it
+            normal, force[2] = -force[2], 0.0
+            pull = float(np.hypot(force[0], force[1]))
+            friction = float(self.extras.get("seabed_friction", 0.0)) * normal
+            if pull > 0.0 and friction > 0.0:
+                force[:2] *= max(pull - friction, 0.0) / pull
         return force
 
     def point_position(self, point: str) -> FloatArray:

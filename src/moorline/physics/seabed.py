@@ -71,6 +71,16 @@ def contact_energy(height: FloatArray, k: FloatArray, ramp: FloatArray) -> float
     return float(np.sum(energy))
 
 
+def resting_penetration(load: FloatArray, k: FloatArray, ramp: FloatArray) -> FloatArray:
+    """Penetration at which the spring of :func:`contact_force` carries ``load`` (the inverse
+    of ``k p^2 / (2 ramp)`` below ``ramp``, of ``k (p - ramp / 2)`` beyond); 0 where ``k`` or
+    the load is not positive."""
+    load = np.maximum(load, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = np.where(load <= 0.5 * k * ramp, np.sqrt(2.0 * load * ramp / k), load / k + 0.5 * ramp)
+    return np.where(k > 0, p, 0.0)
+
+
 def contact_ramp(weight_per_node: FloatArray, k: FloatArray, diameter: float) -> FloatArray:
     """Blend-in penetration per node: the static penetration of a lying line (its weight over
     its contact stiffness), at least a thousandth of the diameter."""
@@ -149,3 +159,55 @@ def _isotropic_friction(horizontal: FloatArray, normal: FloatArray, mu: float,
                                             + ((1 - th**2) / slip_velocity)[:, None, None] * uu)
     d_dn = (-mu * ratio)[:, None] * horizontal
     return force, d_dv, d_dn
+
+
+def static_friction(
+    normal: FloatArray, dnormal_dz: FloatArray, tension: FloatArray, dtension_dl: FloatArray,
+    direction: FloatArray, length: FloatArray, mu: float,
+) -> tuple[FloatArray, FloatArray]:
+    """Coulomb friction of a lying line in statics, fully mobilized towards its anchor.
+
+    The closed-form convention (Jonkman 2007, MAP manual): on the lying part the tension
+    falls towards the anchor by ``mu w`` per unit length and stays at zero once it is taken
+    up. On a node resting on the seabed with the normal force ``N`` and the element on its
+    fairlead side (tension ``T``, unit vector ``direction`` from the node towards the
+    fairlead, chord ``length``) the friction is ``-min(mu N, T) P direction`` with
+    ``P = diag(1, 1, 0)``: it takes up ``mu N`` of the tension, or all of it.
+
+    Parameters
+    ----------
+    normal, dnormal_dz
+        Seabed normal force on each node and its derivative with respect to the node's z (n,).
+    tension, dtension_dl
+        Tension of each node's fairlead-side element and its derivative with respect to the
+        chord length (n,).
+    direction
+        Unit vector of that element from the node towards the fairlead (n, 3).
+    length
+        Its chord length (n,).
+    mu
+        Friction coefficient.
+
+    Returns
+    -------
+    force, dforce
+        Friction force on each node (n, 3) and its derivative (n, 3, 6) with respect to the
+        node's position (columns 0-2) and the far node of the element (columns 3-5).
+    """
+    n = len(normal)
+    flat = direction * np.array([1.0, 1.0, 0.0])
+    capped = mu * normal < tension  # friction mu N; else it takes up all of T
+    phi = np.where(capped, mu * normal, np.maximum(tension, 0.0))
+    force = -phi[:, None] * flat
+    dphi = np.zeros((n, 6))
+    dphi[:, 2] = np.where(capped, mu * dnormal_dz, 0.0)
+    dT = np.where(capped, 0.0, dtension_dl)[:, None] * direction  # dT/d(far node)
+    dphi[:, 3:] += dT
+    dphi[:, :3] -= dT
+    dunit = (np.eye(3) - direction[:, :, None] * direction[:, None, :]) \
+        / np.maximum(length, np.finfo(float).tiny)[:, None, None]  # d direction / d(far)
+    dforce = -flat[:, :, None] * dphi[:, None, :]
+    dflat = dunit * np.array([1.0, 1.0, 0.0])[None, :, None]
+    dforce[:, :, 3:] -= phi[:, None, None] * dflat
+    dforce[:, :, :3] += phi[:, None, None] * dflat
+    return force, dforce

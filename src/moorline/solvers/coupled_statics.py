@@ -31,11 +31,12 @@ FloatArray = NDArray[np.float64]
 
 
 class CoupledStatics:
-    """Residual and exact tangent of the coupled line-body statics."""
+    """Residual and exact tangent of the coupled line-body statics (``exact_cable``: see
+    :class:`~moorline.solvers.equilibrium.StaticModel`)."""
 
-    def __init__(self, mesh: Mesh) -> None:
+    def __init__(self, mesh: Mesh, exact_cable: bool = False) -> None:
         self.mesh = mesh
-        self.model = StaticModel(mesh)
+        self.model = StaticModel(mesh, exact_cable=exact_cable)
         self.bodies = list(mesh.bodies)
         layout = BodyDofs.of(mesh, self.bodies)
         self.n_free, self.body_dof, self.n_unknowns = (layout.n_free, layout.body_dof,
@@ -171,7 +172,7 @@ def solve_coupled(mesh: Mesh, x: FloatArray, settings: StaticsSettings, counters
     stiffness; a monolithic Newton step then throws the line through the seabed, where the
     partitioned one cannot.
     """
-    problem = CoupledStatics(mesh)
+    problem = CoupledStatics(mesh, exact_cable=True)  # the law the lines' statics solve
     poses = BodyState.initial(mesh)
     x = place_slaves(mesh, poses, x)
     if problem.n_unknowns == problem.n_free:  # no free body: the lines' solve is the answer

@@ -39,10 +39,26 @@ class ForceState:
 
 
 class StaticModel:
-    """Residual and tangent of a mesh's static balance, with a cached sparse pattern."""
+    """Residual and tangent of a mesh's static balance, with a cached sparse pattern.
 
-    def __init__(self, mesh: Mesh, current=None) -> None:
+    With ``exact_cable`` the elements follow the cable law itself, ``T = EA max(eps, 0)``: no
+    compression and no smoothing band (:func:`moorline.physics.element.axial_tension` with
+    ``slack_ratio = smoothing = 0``). The static balance is then solved as a semismooth
+    problem with an active set of taut elements: the tangent is the law's generalized
+    Jacobian, ``EA / L0`` on taut elements, and keeps ``slack_ratio EA / L0`` on slack ones
+    (Tuah sec. 6.2: "the modulus E for the slack element is set to a very small value") so
+    that the Newton matrix stays usable, while the residual, and so the equilibrium, has
+    neither the compression nor the band's tension of the regularized law: a slack pile on
+    the seabed ends with no end force, as the closed form's, and a line lying just taut
+    carries ``EA eps``, not ``EA s / 4``. The energy stays C1 (the line search's merit).
+    """
+
+    def __init__(self, mesh: Mesh, current=None, exact_cable: bool = False,
+                 friction: float = 0.0) -> None:
         self.mesh = mesh
+        self.exact_cable = exact_cable
+        self.friction = float(friction) if np.isfinite(mesh.seabed_z) else 0.0
+        self._friction_map = _friction_map(mesh) if self.friction > 0 else None
         self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
         self.current = current if current is not None and mesh.water_density > 0 else None
         g, rho = mesh.gravity, mesh.water_density
@@ -58,8 +74,7 @@ class StaticModel:
         """All nodal forces at positions ``x`` (n_nodes, 3) with the loads scaled by ``lam``."""
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
-        tension, _ = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
-                                                m.slack_smoothing)
+        tension, _ = element.axial_tension(length, m.length0, m.EA, *self._law())
         el_forces = element.nodal_forces(tension, unit)
         nodal = lam * self.external
         nodal = nodal + hydro.sum_to_nodes(el_forces, m.elements, m.n_nodes)
@@ -67,7 +82,31 @@ class StaticModel:
             nodal[:, 2] += self._seabed(x)[0]
         if self.current is not None:
             nodal = nodal + lam * self._current_drag(x)[0]
+        if self._friction_map is not None:
+            nodal = nodal + self._friction(x, length, unit)[0]
         return ForceState(tension, el_forces, nodal, length)
+
+    def _friction(self, x: FloatArray, length: FloatArray, unit: FloatArray
+                  ) -> tuple[FloatArray, FloatArray]:
+        """Seabed friction of the lying lines (:func:`moorline.physics.seabed.static_friction`)
+        as node forces (n_nodes, 3), and the element blocks of its derivative (n_el, 6, 6)."""
+        m = self.mesh
+        nodes, elems, first = self._friction_map
+        normal, d_normal, _ = self._seabed(x)
+        tension, dT = element.axial_tension(length[elems], m.length0[elems], m.EA[elems],
+                                            *[a[elems] for a in self._law()])
+        sign = np.where(first, 1.0, -1.0)[:, None]
+        f, df = seabed.static_friction(normal[nodes], d_normal[nodes], tension, dT,
+                                       sign * unit[elems], length[elems], self.friction)
+        nodal = np.zeros((m.n_nodes, 3))
+        nodal[nodes] = f
+        blocks = np.zeros((m.n_elements, 6, 6))
+        own, far = np.where(first[:, None], np.arange(3), np.arange(3, 6)), \
+            np.where(first[:, None], np.arange(3, 6), np.arange(3))
+        rows = own[:, :, None]
+        blocks[elems[:, None, None], rows, own[:, None, :]] = df[:, :, :3]
+        blocks[elems[:, None, None], rows, far[:, None, :]] = df[:, :, 3:]
+        return nodal, blocks
 
     def _current_drag(self, x: FloatArray) -> tuple[FloatArray, FloatArray | None]:
         """Node forces of the current's drag on the structure at rest (n_nodes, 3) and the
@@ -92,33 +131,55 @@ class StaticModel:
         state = self.forces(x, lam)
         return gather_free(state.nodal, self.mesh.dof_of_node), state
 
+    def _law(self) -> tuple[FloatArray, FloatArray]:
+        """``(slack_ratio, smoothing)`` of the element law in the residual and the energy."""
+        m = self.mesh
+        if self.exact_cable:
+            return np.zeros_like(m.EA), np.zeros_like(m.EA)
+        return m.slack_ratio, m.slack_smoothing
+
     def tangent(self, x: FloatArray, pattern: BlockPattern | None = None,
-                taut_axial: bool = False) -> sp.csr_matrix:
+                taut_axial: bool = False, shift: float = 0.0) -> sp.csr_matrix:
         """Exact tangent ``-dR/dx`` assembled over ``pattern`` (default: the free dofs).
 
         With ``taut_axial`` every element gets the taut axial stiffness ``EA / L0`` and the
         geometric stiffness of ``max(T, 0)``, slack ones included: the stiffness against
-        perturbations that do not change which elements are slack (strumming modes).
+        perturbations that do not change which elements are slack (strumming modes). Without
+        ``exact_cable`` the generalized Jacobian of the cable law, a slack element keeping
+        ``slack_ratio EA / L0`` axially and no geometric stiffness.
+        ``shift`` is added to the diagonal (a Levenberg-Marquardt shift).
         """
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
         tension, dT = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
-                                                m.slack_smoothing)
+                                            0.0 if self.exact_cable else m.slack_smoothing)
+        if self.exact_cable:
+            tension = np.maximum(tension, 0.0)
         if taut_axial:
             tension, dT = np.maximum(tension, 0.0), m.EA / m.length0
         blocks = element.tangent_blocks(length, unit, tension, dT)
         if self.current is not None:
             blocks = blocks - self._current_drag(x)[1]
+        if self._friction_map is not None:
+            blocks = blocks - self._friction(x, length, unit)[1]
         node_blocks = None
         if np.isfinite(m.seabed_z):
             node_blocks = np.zeros((m.n_nodes, 3, 3))
             node_blocks[:, 2, 2] = -self._seabed(x)[1]
-        return (pattern or self.pattern).assemble(blocks, node_blocks)
+        pattern = pattern or self.pattern
+        diagonal = np.full(pattern.n, shift) if shift else None
+        return pattern.assemble(blocks, node_blocks, diagonal)
 
     def _seabed(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         zero = np.zeros(self.mesh.n_nodes)
         return seabed.contact_force(x[:, 2] - self.mesh.seabed_z, zero,
                                     self.node_seabed_stiffness, zero, self.seabed_ramp)
+
+    def resting_penetration(self) -> FloatArray:
+        """Per node, the seabed penetration at which the contact carries the node's own load
+        (n_nodes,): where a node lying on a flat seabed rests."""
+        return seabed.resting_penetration(-self.external[:, 2], self.node_seabed_stiffness,
+                                          self.seabed_ramp)
 
     def potential_energy(self, x: FloatArray, lam: float = 1.0,
                          frozen: FloatArray | None = None) -> float:
@@ -130,8 +191,7 @@ class StaticModel:
         """
         m = self.mesh
         length, _ = element.element_geometry(x, m.elements)
-        energy = float(element.strain_energy(length, m.length0, m.EA, m.slack_ratio,
-                                                      m.slack_smoothing).sum())
+        energy = float(element.strain_energy(length, m.length0, m.EA, *self._law()).sum())
         if np.isfinite(m.seabed_z):
             energy += seabed.contact_energy(x[:, 2] - m.seabed_z, self.node_seabed_stiffness,
                                             self.seabed_ramp)
@@ -141,11 +201,16 @@ class StaticModel:
         return energy
 
     def drag_loads(self, x: FloatArray, lam: float = 1.0) -> FloatArray | None:
-        """The current's drag on the nodes at ``x`` with its load factor (``None`` without a
-        current)."""
-        if self.current is None:
-            return None
-        return lam * self._current_drag(x)[0]
+        """The loads without a potential at ``x``: the current's drag with its load factor
+        and the seabed friction (``None`` without either)."""
+        loads = None
+        if self.current is not None:
+            loads = lam * self._current_drag(x)[0]
+        if self._friction_map is not None:
+            length, unit = element.element_geometry(x, self.mesh.elements)
+            f = self._friction(x, length, unit)[0]
+            loads = f if loads is None else loads + f
+        return loads
 
     def load_scale(self) -> float:
         """Force scale for relative tolerances: the largest nodal load (or a tension scale)."""
@@ -160,3 +225,23 @@ class StaticModel:
             return 0.0
         reach = float(np.abs(x).max(initial=1.0))
         return 64 * np.finfo(float).eps * float(np.max(m.EA / m.length0)) * reach
+
+
+def _friction_map(mesh: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]]:
+    """For seabed friction: the interior nodes of every line with an end on the seabed (that
+    end is its anchor), the element on each node's fairlead side, and whether the node is
+    that element's first node. Lines with no end on the seabed get no friction (which way a
+    line lying only in its middle would slide is not defined by the statics)."""
+    tol = 1e-6 * max(1.0, abs(mesh.seabed_z))
+    nodes, elems, first = [], [], []
+    for line_nodes, els in zip(mesh.line_nodes, mesh.line_elements, strict=True):
+        interior = np.arange(1, len(line_nodes) - 1)
+        for end, side, forward in ((0, interior, True), (-1, interior - 1, False)):
+            if mesh.node_position[line_nodes[end], 2] <= mesh.seabed_z + tol:
+                nodes.append(line_nodes[interior])
+                elems.append(els[side])
+                first.append(np.full(len(interior), forward))
+                break
+    if not nodes:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0, bool)
+    return np.concatenate(nodes), np.concatenate(elems), np.concatenate(first)

@@ -23,9 +23,17 @@ def initial_positions(system: System, mesh: Mesh,
     line starts on the closed-form elastic catenary between its end positions (for a free end,
     the point's initial guess), with seabed contact when an end lies on the seabed; where no
     catenary exists (or with ``start='straight'``) the line starts on its straight chord, as in
-    Tuah (1982) Ex. 2.
+    Tuah (1982) Ex. 2. Free nodes the start puts on (or under) the seabed are lowered to the
+    penetration at which the penalty seabed carries them
+    (:meth:`~moorline.solvers.equilibrium.StaticModel.resting_penetration`), so that a lying
+    line starts in vertical balance, not on the contact's kink.
     """
     x = mesh.node_prescribed_start.copy()
+    sink = np.zeros(mesh.n_nodes)
+    if np.isfinite(mesh.seabed_z):
+        from .equilibrium import StaticModel
+
+        sink = StaticModel(mesh).resting_penetration()
     for k, line in enumerate(system.lines.values()):
         nodes = mesh.line_nodes[k]
         a, b = x[nodes[0]], x[nodes[-1]]
@@ -33,17 +41,24 @@ def initial_positions(system: System, mesh: Mesh,
             x[nodes[1:-1]] = np.asarray(line.initial_shape, dtype=float)[1:-1]
             continue
         s = np.linspace(0.0, line.length, line.segments + 1)
-        shape = (_catenary_shape(system, line.line_type, line.length, a, b, s, mesh.seabed_z)
-                 if start == "catenary" else None)
+        depth = float(sink[nodes[1:-1]].max(initial=0.0))
+        shape = (_catenary_shape(system, line.line_type, line.length, a, b, s, mesh.seabed_z,
+                                 depth) if start == "catenary" else None)
         if shape is not None:
             x[nodes[1:-1]] = shape[1:-1]
         else:
             x[nodes[1:-1]] = a + (s[1:-1, None] / line.length) * (b - a)
+    lying = mesh.free_nodes & (x[:, 2] <= mesh.seabed_z + 1e-9 * max(1.0, abs(mesh.seabed_z)))
+    x[lying, 2] = mesh.seabed_z - sink[lying]
     return x
 
 
 def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray,
-                    b: FloatArray, s: FloatArray, seabed_z: float) -> FloatArray | None:
+                    b: FloatArray, s: FloatArray, seabed_z: float,
+                    sink: float = 0.0) -> FloatArray | None:
+    """The closed-form profile at arc lengths ``s``; with an end on the seabed, solved with
+    that end and the seabed ``sink`` lower (the penetration at which the lying nodes rest),
+    so that lying and hanging nodes start in balance with each other."""
     from ..catenary import CatenaryError, catenary_3d, profile_3d
 
     lt = system.line_types[type_name]
@@ -53,11 +68,45 @@ def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray
     flip = bool(np.isfinite(seabed_z) and b[2] <= seabed_z + tol < a[2])
     pa, pb = (b, a) if flip else (a, b)
     on_seabed = bool(np.isfinite(seabed_z) and pa[2] <= seabed_z + tol)
+    if on_seabed:
+        pa = pa - np.array([0.0, 0.0, sink])
     try:
         _, _, sol = catenary_3d(pa, pb, length, lt.EA, w, seabed_contact=on_seabed,
-                                seabed_friction=0.0)
-        shape = profile_3d(sol, pa, pb, length - s[::-1] if flip else s)
+                                seabed_friction=env.seabed.friction)
+        sigma = length - s[::-1] if flip else s
+        shape = profile_3d(sol, pa, pb, sigma)
+        if sol.H == 0.0 and sol.seabed_length > 0.0:
+            shape = _coil_pile(shape, sol, pa, sigma)
     except CatenaryError as err:
         logger.info("catenary start not available (%s); starting straight", err)
         return None
     return shape[::-1] if flip else shape
+
+
+def _coil_pile(shape: FloatArray, sol, pa: FloatArray, sigma: FloatArray) -> FloatArray:
+    """A slack pile laid out on the seabed so that none of its elements has zero length.
+
+    The closed form draws the surplus length ``L_B`` of a slack line (``H = 0``) compressed
+    uniformly over the horizontal span ``X``; when ``X < 0.4 L_B`` (a line hanging vertically
+    over its anchor has ``X = 0``) the finite elements would start with (nearly) zero-length
+    elements. Here the lying part ``0 <= sigma <= L_B`` goes once around a loop from the
+    anchor to the touchdown, ``p(t) = A + t X e + rho (sin(2 pi t) e + (1 - cos(2 pi t)) n)``
+    with ``t = sigma / L_B`` and ``2 pi rho = L_B / 2``: every element between 0.1 and 0.9 of
+    its unstretched length, so slack, and all of them carry no force, as in the closed form.
+    """
+    lb, X = sol.seabed_length, sol.horizontal_span
+    if X >= 0.4 * lb:
+        return shape
+    touchdown = shape[np.argmin(np.abs(sigma - lb))]
+    d = touchdown[:2] - pa[:2]
+    e = d / np.hypot(*d) if np.hypot(*d) > 0 else np.array([1.0, 0.0])
+    n = np.array([-e[1], e[0]])
+    lying = sigma <= lb
+    t = sigma[lying] / lb
+    rho = lb / (4.0 * np.pi)
+    h = (t * X)[:, None] * e + rho * (np.sin(2 * np.pi * t)[:, None] * e
+                                      + (1.0 - np.cos(2 * np.pi * t))[:, None] * n)
+    out = shape.copy()
+    out[lying, :2] = pa[:2] + h
+    out[lying, 2] = pa[2]
+    return out

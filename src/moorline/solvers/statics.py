@@ -98,7 +98,8 @@ def solve_statics(
 
         raise MoorlineError(f"statics of {system.name}: current_drag with bodies is not "
                             "supported yet")
-    model = StaticModel(mesh, current)
+    model = StaticModel(mesh, current, exact_cable=True,
+                        friction=system.environment.seabed.friction)
     x = (initial_positions(system, mesh, settings.start) if initial is None
          else np.array(initial, dtype=float))
     target = mesh.node_position[~mesh.free_nodes]
@@ -112,7 +113,13 @@ def solve_statics(
         held = x_held[~mesh.free_nodes]
         goal = held.copy()
         goal[fixed_rows] = target[fixed_rows]
-        return solver[settings.method](model, x_held, held, goal, settings, counters)
+        tol = _tolerance(model, x_held, settings)
+        out = solver[settings.method](model, x_held.copy(), held, goal, settings, counters)
+        if not out[0] and settings.method == "newton":
+            out = _regularized_fallback(model, x_held, held, goal, settings, counters, out)
+        if not out[0] and settings.method == "newton":
+            out = _relaxation_fallback(model, x_held, held, goal, settings, counters, out)
+        return _checked(model, tol, counters, *out)
 
     # bodies by Newton on their six dofs, the lines re-equilibrated (robust line statics)
     # with the bodies held at every trial pose; without bodies, the line statics alone
@@ -124,7 +131,8 @@ def solve_statics(
         n_residual=counters.residuals, n_tangent=counters.tangents,
         n_factorizations=counters.factorizations, positions=x, tension=state.tension,
         element_forces=state.element_forces, mesh=mesh, case=system.name, units=system.units,
-        body_pose=pose, current_drag=current is not None)
+        body_pose=pose, current_drag=current is not None,
+        extras={"seabed_friction": model.friction} if model.friction > 0 else {})
 
 
 def _current_field(system: System):
@@ -143,6 +151,27 @@ def _current_field(system: System):
 
 def _default_settings(system: System) -> StaticsSettings:
     return system.first(StaticsSettings)
+
+
+def _tolerance(model: StaticModel, x: FloatArray, settings: StaticsSettings) -> float:
+    """The out-of-balance force every method must end below: ``tolerance`` times the load
+    scale, at least the round-off floor at ``x``."""
+    return max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
+
+
+def _checked(model: StaticModel, tol: float, counters: _Counters, ok: bool, message: str,
+             iterations: int, state: ForceState, x: FloatArray):
+    """The one residual check every method ends with: the full loads, the supports at their
+    targets, the largest out-of-balance force finite and at most the tolerance the methods
+    use (:func:`_tolerance` at the start, or at the end if larger)."""
+    R, state = _residual(model, x, 1.0, counters)
+    norm = float(np.abs(R).max(initial=0.0))
+    if ok and not norm <= max(tol, model.roundoff_floor(x)):
+        where = describe_dof(model.mesh, int(np.argmax(np.nan_to_num(np.abs(R), nan=np.inf)))) \
+            if R.size else "-"
+        ok, message = False, (f"{message}, but the final out-of-balance force {norm:.3e} at "
+                              f"{where} is above the tolerance")
+    return ok, message, iterations, state, x
 
 
 def _move_supports(model: StaticModel, x: FloatArray, start: FloatArray, target: FloatArray,
@@ -172,12 +201,18 @@ class _NewtonStatics:
         self.model, self.lam, self.max_step = model, lam, max_step
         self.dof = model.mesh.dof_of_node
         self.factorizer = SparseFactor(model.pattern)
+        self.shift = _shift(model)
 
     def residual(self, x: FloatArray, tangent: bool) -> _StaticTrial:
         return _StaticTrial(*self.model.residual(x, self.lam))
 
     def factorize(self, x: FloatArray, trial: _StaticTrial) -> SparseFactor:
-        return self.factorizer.factor(self.model.tangent(x).data)
+        if not self.model.friction:  # friction's stuck zone is near-singular: always shift
+            try:
+                return self.factorizer.factor(self.model.tangent(x).data)
+            except np.linalg.LinAlgError:  # a pile free to slide: the shifted matrix
+                pass
+        return self.factorizer.factor(self.model.tangent(x, shift=self.shift).data)
 
     def update(self, x: FloatArray, du: FloatArray) -> FloatArray:
         return x + scatter_free(du, self.dof)
@@ -196,6 +231,21 @@ class _NewtonStatics:
                               <= energy0 + 1e-4 * alpha * slope)
 
 
+#: Levenberg-Marquardt shift of a singular static Newton matrix, relative to the stiffest
+#: element.
+SHIFT = 1e-9
+
+
+def _shift(model: StaticModel) -> float:
+    """A vanishing diagonal shift for a singular Newton matrix: a straight slack pile on the
+    seabed (no force in its elements, none across the seabed) is free to move sideways,
+    which leaves the tangent singular; the shift makes those modes stand still (their
+    residual is zero) and changes the step elsewhere by a relative ``SHIFT``, not the
+    equilibrium. Used only when the unshifted matrix does not factorize."""
+    m = model.mesh
+    return SHIFT * float(np.max(m.EA / m.length0, initial=0.0))
+
+
 def _longest_line(mesh: Mesh) -> float:
     return max((float(mesh.length0[e].sum()) for e in mesh.line_elements), default=1.0)
 
@@ -209,7 +259,7 @@ def _limit_step(dx: FloatArray, max_step: float) -> FloatArray:
 def _newton(model, x, start, target, settings, counters):
     """Residual feedback with equilibrium iterations per load increment (Tuah eq. 4.1.2),
     each increment solved by the Newton core."""
-    tol = max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
+    tol = _tolerance(model, x, settings)
     max_step = settings.max_step * _longest_line(model.mesh)
     policy = NewtonPolicy(tolerance=tol, max_iterations=settings.max_iterations,
                           stiffness_update=settings.stiffness_update, age_per="iteration",
@@ -245,7 +295,7 @@ def _incremental(model, x, start, target, settings, counters):
         x = x + d_prescribed + scatter_free(du, mesh.dof_of_node)
         R, state = _residual(model, x, step / n, counters)
         counters.history.append(float(np.abs(R).max(initial=0.0)))
-    ok = counters.history[-1] <= settings.tolerance * model.load_scale()
+    ok = counters.history[-1] <= _tolerance(model, x, settings)
     msg = (f"{n} load increments; final out-of-balance force {counters.history[-1]:.3e} "
            "(purely incremental: no equilibrium correction)")
     return ok, msg, n, state, x
@@ -260,7 +310,7 @@ def _relaxation(model, x, start, target, settings, counters):
     otherwise the damping decays by ``mu`` each step and the stiffness is refreshed every
     ``stiffness_update`` steps.
     """
-    tol = max(settings.tolerance * model.load_scale(), model.roundoff_floor(x))
+    tol = _tolerance(model, x, settings)
     dof = model.mesh.dof_of_node
     damping, K, K_age = settings.damping, None, 0
     lam = min(1.0, 1.0 / settings.load_steps)
@@ -273,7 +323,12 @@ def _relaxation(model, x, start, target, settings, counters):
             counters.tangents += 1
         shift = sp.identity(K.shape[0], format="csr") * (damping / settings.pseudo_dt)
         counters.factorizations += 1
-        x_trial = x + scatter_free(factorize(K + shift).solve(R), dof)
+        try:
+            step = factorize(K + shift).solve(R)
+        except np.linalg.LinAlgError as exc:
+            return False, _failure(model, R, state, None, settings, f"singular matrix: {exc}"), \
+                it, state, x
+        x_trial = x + scatter_free(step, dof)
         K_age += 1
         lam = min(1.0, (it + 1) / settings.load_steps)
         _move_supports(model, x_trial, start, target, lam)
@@ -289,6 +344,40 @@ def _relaxation(model, x, start, target, settings, counters):
             return True, f"converged in {it} relaxation steps", it, state, x
         damping *= settings.damping_decrement
     return False, _failure(model, R, state, None, settings), settings.max_iterations, state, x
+
+
+def _regularized_fallback(model, x, start, target, settings, counters, failed):
+    """Newton's failure on the exact cable law retried as a continuation: Newton on the
+    regularized law (slack elements with ``slack_ratio EA``, the smoothing band; its tangent
+    is the exact derivative of its residual, which guides a step that throws elements slack
+    better), then Newton on the exact law from there. The exact law's result when it
+    converges, else the first failure."""
+    regularized = StaticModel(model.mesh, model.current, friction=model.friction)
+    ok, _, iterations, _, x = _newton(regularized, x.copy(), start, target, settings, counters)
+    if not ok:
+        return failed
+    polish = replace(settings, load_steps=1)
+    ok, message, more, state, x = _newton(model, x, target, target, polish, counters)
+    if not ok:
+        return failed
+    return (True, f"{message} on the exact cable law from the regularized law's equilibrium "
+            f"after Newton did not ({failed[1]})", failed[2] + iterations + more, state, x)
+
+
+def _relaxation_fallback(model, x, start, target, settings, counters, failed):
+    """Newton's failure retried by viscous relaxation (Tuah eq. 4.1.5-4.1.8) from the same
+    start, with 20 times Newton's iteration limit: its damping steadies what a Newton step
+    cannot, such as a long lying stretch that seabed friction leaves without tension (no
+    stiffness, and a friction force with no potential for the line search) or a buoyant
+    line folded over its fairlead with almost no horizontal tension. Its result when it
+    converges (the same residual check follows), else Newton's failure."""
+    relax = replace(settings, method="relaxation", max_iterations=20 * settings.max_iterations)
+    ok, message, iterations, state, x = _relaxation(model, x.copy(), start, target, relax,
+                                                    counters)
+    if not ok:
+        return failed
+    return (True, f"relaxation {message} after Newton did not ({failed[1]})",
+            failed[2] + iterations, state, x)
 
 
 def _failure(model: StaticModel, R: FloatArray, state: ForceState, step: int | None,
