@@ -27,6 +27,7 @@ WITH_FIELD = [
     ("current_drag_with_bodies", "analyses[0].current_drag"),
     ("harmonic_with_bodies", "analyses[1].kind"),
     ("harmonic_viscoelastic", "analyses[1].kind"),
+    ("motion_period_below_two_steps", "points.fairlead.motion.period"),
 ]
 
 

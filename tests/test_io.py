@@ -237,6 +237,8 @@ BAD_CASES = [
     ("current_drag_with_bodies", "analyses[0].current_drag", "not supported yet"),
     ("harmonic_with_bodies", "analyses[1].kind", "systems with bodies is not supported"),
     ("harmonic_viscoelastic", "analyses[1].kind", "needs elastic lines"),
+    ("motion_period_below_two_steps", "points.fairlead.motion.period",
+     "shorter than two time steps"),
     ("body_point_unknown_body", "points.fairlead.body", "unknown body 'hull'"),
     # non-finite and out-of-range numbers (MAX_MAGNITUDE, MIN_MAGNITUDE)
     ("nan_EA", "line_types.chain.EA", "expected a number, got nan"),

@@ -375,12 +375,31 @@ def _check_sizes(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
             if steps > MAX_TIME_STEPS:
                 fail(f"duration / dt (x substeps) = {steps:.3g} time steps, more than "
                      f"MAX_TIME_STEPS = {MAX_TIME_STEPS:.0e}", f"analyses[{k}].dt")
+        if analysis.kind == "dynamics":
+            _check_resolved_periods(spec, analysis.dt, f"analyses[{k}].dt", fail)
         need, what, key = analysis_memory(analysis.kind, analysis, n_nodes, components, every)
         if need > MAX_MEMORY:
             field = f"analyses[{k}].{key}" if key else "environment.waves.record_length"
             fail(f"{analysis.kind} would need about {need / 1024**3:.3g} GiB ({what}, "
                  f"{n_nodes} nodes), more than MAX_MEMORY = {MAX_MEMORY / 1024**3:g} GiB",
                  field)
+
+
+def _check_resolved_periods(spec: CaseSpec, dt: float, field: str,
+                            fail: Callable[[str, str], None]) -> None:
+    """Harmonic motions and force histories must last at least two time steps a period: a
+    step cannot resolve a faster one (the run would alias it and look fine)."""
+    histories = []
+    for name, point in spec.points.items():
+        histories += [(f"points.{name}.motion", point.motion),
+                      (f"points.{name}.force_history", point.force_history)]
+    for name, body in (spec.bodies or {}).items():
+        histories.append((f"bodies.{name}.force_history", body.force_history))
+    for key, history in histories:
+        if history is not None and history.kind == "harmonic" and history.period is not None \
+                and history.period < 2.0 * dt:
+            fail(f"period {history.period:g} is shorter than two time steps of the dynamics "
+                 f"({field} = {dt:g}): the step cannot resolve it", f"{key}.period")
 
 
 def _check_point(
