@@ -140,6 +140,11 @@ class Mesh:
         return int(self.dof_of_node.max(initial=-1)) + 1
 
     @property
+    def longest_line(self) -> float:
+        """Unstretched length of the longest line [length] (1 without lines)."""
+        return max((float(self.length0[e].sum()) for e in self.line_elements), default=1.0)
+
+    @property
     def free_nodes(self) -> BoolArray:
         """Mask of nodes that move freely (n_nodes,)."""
         return self.dof_of_node[:, 0] >= 0

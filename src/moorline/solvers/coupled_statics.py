@@ -217,8 +217,7 @@ def _limit(du: FloatArray, problem: CoupledStatics, settings: StaticsSettings) -
     body nearly free to turn, such as the yaw of a buoy on one line, would otherwise hold the
     whole step back)."""
     mesh = problem.mesh
-    longest = max((float(mesh.length0[e].sum()) for e in mesh.line_elements), default=1.0)
-    reach = settings.max_step * longest
+    reach = settings.max_step * mesh.longest_line
     du = du.copy()
     moves = [np.abs(du[: problem.n_free]).max(initial=0.0) / reach]
     for d in problem.body_dof[problem.body_dof >= 0]:

@@ -201,7 +201,7 @@ def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
     ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
     bodies = _static_poses(initial) if mesh.body_names else None
     state = StepState(0.0, x, v, a, ev.material, ev, bodies)
-    return accelerated(model, BodyModel(mesh, model.fluid, bodies), state, material, forces, dt)
+    return accelerated(model, state, material, forces, dt)
 
 
 def _static_poses(initial) -> BodyState:

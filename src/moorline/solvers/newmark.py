@@ -36,7 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .assembly import SparseFactor, factorize, gather_free, scatter_free, solve_sparse
+from .assembly import BlockPattern, SparseFactor, factorize, gather_free, scatter_free, solve_sparse
 from .bodies import BodyState, transformation
 from .body_model import BodyModel
 from .dynamic_model import DynamicModel, Evaluation, MaterialState
@@ -91,7 +91,9 @@ class _Trial:
     arms: FloatArray
     ev: Evaluation
     body_other: FloatArray | None
-    node_forces: FloatArray  # (n_nodes, 3) the forces the attached nodes pass to the bodies
+    node_forces: FloatArray | None  # (n_nodes, 3) nodal forces as weighted in the residual,
+    #                                 which attached nodes pass to their bodies (with bodies
+    #                                 or HHT; else None)
 
     @property
     def has_tangent(self) -> bool:
@@ -177,8 +179,11 @@ class Stepper:
         t1 = s0.t + h
         ev = self.model.evaluate(x1, v1, a1, t1, s0.material, h, tangent, st.point_forces)
         m_s = self.model.node_mass[:, None]
-        other = ev.nodal - ev.inertial
-        inertial = ev.inertial - m_s * a1
+        node_forces = None
+        if alpha or bs is not None:  # HHT weights the non-inertial forces; bodies get both
+            other = ev.nodal - ev.inertial
+            inertial = ev.inertial - m_s * a1
+            node_forces = (1 + alpha) * other + inertial
         if alpha:
             ev0 = s0.evaluation
             node = (1 + alpha) * other - alpha * (ev0.nodal - ev0.inertial) + inertial
@@ -187,7 +192,6 @@ class Stepper:
         r = np.zeros(self.layout.n_unknowns)
         r[: self.layout.n_free] = gather_free(node, self.dof)
         body_other = None
-        node_forces = (1 + alpha) * other + inertial
         if bs is not None:
             body_other, body_inertial = self.bodies.forces(bs, other, inertial, arms, t1)
             weighted = body_other if not alpha else ((1 + alpha) * body_other
@@ -277,11 +281,7 @@ class Stepper:
         if self.rayleigh is not None and self.C_rayleigh is None:
             self._setup_rayleigh(s0)
         self._current = _Step(s0, h, constrained, point_forces)
-        x1 = s0.x + h * s0.v + 0.5 * h * h * s0.a
-        x1[~self.free] = constrained[0]
-        dq = (h * s0.bodies.vel + 0.5 * h * h * s0.bodies.acc if s0.bodies is not None
-              else np.zeros((0, 6)))
-        u = (x1, dq)
+        u = self._predict(s0, h, constrained)
         if self.variant != "iterative":
             return self._one_shot(u, h)
         out = solve(self, u, self.policy, self.cache, self.work, key=h)
@@ -395,16 +395,21 @@ class Stepper:
     def worst_dof(self, state: StepState, h: float, constrained, forces) -> int:
         """The unknown with the largest residual at the predicted state (for messages)."""
         self._current = _Step(state, h, constrained, forces)
-        x1 = state.x + h * state.v + 0.5 * h * h * state.a
+        return int(np.argmax(np.abs(self.residual(self._predict(state, h, constrained),
+                                                  False).r)))
+
+    def _predict(self, s0: StepState, h: float, constrained) -> tuple[FloatArray, FloatArray]:
+        """The unknowns' predictor ``x0 + h v0 + h^2 a0 / 2`` (constrained nodes where their
+        motion puts them; bodies' step ``dq`` likewise)."""
+        x1 = s0.x + h * s0.v + 0.5 * h * h * s0.a
         x1[~self.free] = constrained[0]
-        dq = (h * state.bodies.vel + 0.5 * h * h * state.bodies.acc
-              if state.bodies is not None else np.zeros((0, 6)))
-        return int(np.argmax(np.abs(self.residual((x1, dq), False).r)))
+        dq = (h * s0.bodies.vel + 0.5 * h * h * s0.bodies.acc if s0.bodies is not None
+              else np.zeros((0, 6)))
+        return x1, dq
 
 
-def accelerated(model: DynamicModel, bodies: BodyModel, state: StepState,
-                material: MaterialState, point_forces: FloatArray | None,
-                dt: float) -> StepState:
+def accelerated(model: DynamicModel, state: StepState, material: MaterialState,
+                point_forces: FloatArray | None, dt: float) -> StepState:
     """``state`` with the accelerations its loads give: ``M a = F`` over the free node dofs
     (Tuah (1982) eq. 4.2.1 at the start of a run; unknowns without mass, weightless strings,
     start at ``a = 0``); ``material``: the elements' state before the start.
@@ -415,7 +420,6 @@ def accelerated(model: DynamicModel, bodies: BodyModel, state: StepState,
     round-off growth of Ex7's sway).
     """
     mesh = model.mesh
-    lay = bodies.layout
     x, v, a = state.x.copy(), state.v.copy(), state.a.copy()
     bs = state.bodies
     if bs is not None:
@@ -424,12 +428,12 @@ def accelerated(model: DynamicModel, bodies: BodyModel, state: StepState,
     nodes_m = model.node_mass[:, None, None] * np.eye(3)
     if ev.node_M is not None:
         nodes_m = nodes_m + ev.node_M
-    M = sp.csc_matrix(lay.pattern.assemble(ev.Ma, nodes_m))
+    M = sp.csc_matrix(BlockPattern(mesh.elements, mesh.dof_of_node).assemble(ev.Ma, nodes_m))
     massive = M.diagonal() > 0
     if not np.any(massive):
         return StepState(state.t, x, v, a, ev.material, ev)
     rhs = gather_free(ev.nodal, mesh.dof_of_node)
-    acc = np.zeros(lay.n_unknowns)
+    acc = np.zeros(mesh.n_dofs)
     acc[massive] = solve_sparse(M[massive][:, massive], rhs[massive])
     a = a + scatter_free(acc, mesh.dof_of_node)
     ev = model.evaluate(x, v, a, state.t, material, dt, False, point_forces)

@@ -246,10 +246,6 @@ def _shift(model: StaticModel) -> float:
     return SHIFT * float(np.max(m.EA / m.length0, initial=0.0))
 
 
-def _longest_line(mesh: Mesh) -> float:
-    return max((float(mesh.length0[e].sum()) for e in mesh.line_elements), default=1.0)
-
-
 def _limit_step(dx: FloatArray, max_step: float) -> FloatArray:
     """Scale a displacement step so that no node moves farther than ``max_step``."""
     largest = float(np.sqrt((dx * dx).sum(axis=1)).max(initial=0.0))
@@ -260,7 +256,7 @@ def _newton(model, x, start, target, settings, counters):
     """Residual feedback with equilibrium iterations per load increment (Tuah eq. 4.1.2),
     each increment solved by the Newton core."""
     tol = _tolerance(model, x, settings)
-    max_step = settings.max_step * _longest_line(model.mesh)
+    max_step = settings.max_step * model.mesh.longest_line
     policy = NewtonPolicy(tolerance=tol, max_iterations=settings.max_iterations,
                           stiffness_update=settings.stiffness_update, age_per="iteration",
                           refresh_ratio=None, stall_limit=0, max_halvings=11)
