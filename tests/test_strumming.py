@@ -196,7 +196,7 @@ def test_needs_water():
 def test_tuah_ex6_rows_pass():
     rows = tuah_ex6.run()
     assert len(rows) == 5
-    failed = [r for r in rows if not r.passed]
+    failed = [r for r in rows if r.status == "fail"]
     assert not failed, "\n".join(f"{r.quantity}: {r.reference} vs {r.computed}" for r in failed)
 
 

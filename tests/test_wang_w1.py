@@ -18,7 +18,7 @@ def rows():
 def test_rows_pass(rows):
     assert len(rows) >= 6
     failed = [(r.quantity, r.reference, r.computed, r.error, r.tolerance) for r in rows
-              if not r.passed]
+              if r.status == "fail"]
     assert not failed, failed
 
 

@@ -54,12 +54,13 @@ def run() -> list[Row]:
     note = f"{result.iterations} Newton iterations, {result.n_factorizations} factorizations"
     return [
         Row(CASE, "Newton iterations from the catenary start (at most 8)", 0.0,
-            float(result.iterations), 8.0, relative=False, note=note),
-        Row(CASE, "fairlead horizontal force", exact.H, -fair[0], 1e-3, unit="N"),
-        Row(CASE, "fairlead vertical force", exact.V_b, -fair[2], 1e-3, unit="N"),
+            float(result.iterations), 8.0, relative=False, note=note, kind="internal cross-check"),
+        Row(CASE, "fairlead horizontal force", exact.H, -fair[0], 1e-3, unit="N", kind="exact"),
+        Row(CASE, "fairlead vertical force", exact.V_b, -fair[2], 1e-3, unit="N", kind="exact"),
         Row(CASE, "fairlead tension", exact.tension_b, float(np.linalg.norm(fair)), 1e-3,
-            unit="N"),
-        Row(CASE, "anchor horizontal force", exact.force_a[0], anchor[0], 1e-3, unit="N"),
+            unit="N", kind="exact"),
+        Row(CASE, "anchor horizontal force", exact.force_a[0], anchor[0], 1e-3, unit="N",
+        kind="exact"),
         Row(CASE, "seabed length", exact.seabed_length, result.seabed_length("line1"),
-            LENGTH / segments, relative=False, unit="m"),
+            LENGTH / segments, relative=False, unit="m", kind="exact"),
     ]

@@ -72,8 +72,8 @@ def _time_domain(system: System, static) -> tuple:
     return td, td.time >= RECORD - 1e-9
 
 
-def run(fast: bool = False) -> list[Row]:
-    """The rows (see the module docstring); ``fast`` is the same (the case takes seconds)."""
+def run(quick: bool = False) -> list[Row]:
+    """The rows (see the module docstring); ``quick`` is the same (the case takes seconds)."""
     system = riser_system()
     static = solve_statics(system)
     foss = solve_stochastic(system, StochasticSettings(method="foss"), static)
@@ -90,7 +90,7 @@ def run(fast: bool = False) -> list[Row]:
                 note=f"{foss.counters['modes']} modes, {len(foss.omega)} frequencies; "
                      f"{foss.iterations} linearization iterations (tolerance 0.01); closest "
                      f"poles {gap:.1e} apart (relative): round-off floor eps/gap = "
-                     f"{floor:.1e}, tolerance 100 times that")]
+                     f"{floor:.1e}, tolerance 100 times that", kind="internal cross-check")]
 
     # kinematics transfer functions against the time-domain field
     mesh, x0 = static.mesh, static.positions
@@ -109,12 +109,12 @@ def run(fast: bool = False) -> list[Row]:
     rows.append(Row(CASE, "fluid velocity and acceleration transfer functions vs the time-"
                     "domain wave field (max relative difference)", 0.0, worst, 1e-10,
                     relative=False, note="eq. 5.2.8-5.2.10 at the element midpoints, two "
-                                         "instants"))
+                                         "instants", kind="internal cross-check"))
     discrete = float(np.sum(foss.wave_spectrum) * foss.d_omega)
     rows.append(Row(CASE, "DSA record: elevation variance vs the discrete spectrum's area",
                     discrete, float(np.var(foss.elevation)), 1e-9, unit="m^2",
                     note=f"m0 = Hs^2/16 = {3.0**2 / 16:.4f} m^2 less the tail beyond "
-                         f"{foss.omega[-1]:.2f} rad/s"))
+                         f"{foss.omega[-1]:.2f} rad/s", kind="internal cross-check"))
 
     # against the nonlinear time-domain model in the same realization
     td, second = _time_domain(system, static)
@@ -125,15 +125,16 @@ def run(fast: bool = False) -> list[Row]:
                     0.2, unit="m",
                     note="statistical drag linearization underestimates a drag-excited "
                          "response (linearized force variance 8/pi vs 3 sigma^4); second "
-                         f"record of a {2 * RECORD:.0f} s run at dt {DT} s"))
+                         f"record of a {2 * RECORD:.0f} s run at dt {DT} s",
+                         kind="internal cross-check"))
     rows.append(Row(CASE, "top element: std of the tension, frequency vs time domain",
                     float(np.std(td.tension[second, top])), float(foss.tension_std[top]), 0.2,
-                    unit="N"))
+                    unit="N", kind="internal cross-check"))
     series = np.interp(td.time[second] - RECORD, foss.time, foss.displacement[:, MID_NODE, 0])
     corr = float(np.corrcoef(series, u_td - u_td.mean())[0, 1])
     rows.append(Row(CASE, "mid-length node x: correlation of the frequency-domain series (FFT) "
                     "with the time-domain one", 1.0, corr, 0.15, relative=False,
-                    note="the same DSA realization, phases and all"))
+                    note="the same DSA realization, phases and all", kind="internal cross-check"))
 
     # an inertia-dominated variant (Cd 0.3): within the wave band the two agree closely;
     # outside it the time domain adds the broadband content of the quadratic drag (sum and
@@ -155,7 +156,8 @@ def run(fast: bool = False) -> list[Row]:
                     note=f"{lo:.2f}-{hi:.2f} rad/s, from the FFT of the time-domain record; "
                          f"at the spectral peak: amplitude ratio "
                          f"{abs(X_fd[peak] / X_td[peak]):.3f}, phase difference "
-                         f"{float(np.angle(X_fd[peak] / X_td[peak])):.3f} rad"))
+                         f"{float(np.angle(X_fd[peak] / X_td[peak])):.3f} rad",
+                         kind="internal cross-check"))
     return rows
 
 

@@ -66,15 +66,15 @@ def run() -> list[Row]:
             note = f"{result.iterations} Newton iterations"
             tol = {5: 5e-3, 10: 1.5e-3, 150: 1e-5}[n]  # O(h^2): ~4x per halving
             rows.append(Row(CASE, f"{name}: top x, {n} elements", X, top[0], tol, unit="m",
-                            note=note))
+                            note=note, kind="exact"))
             rows.append(Row(CASE, f"{name}: top z, {n} elements", Z, top[1], tol, unit="m",
-                            note=note))
+                            note=note, kind="exact"))
         order = math.log2(errors[5] / errors[10])
         rows.append(Row(CASE, f"{name}: convergence order, 5 -> 10 elements", 2.0, order, 0.15,
                         relative=False, note=f"errors {errors[5]:.3g} m, {errors[10]:.3g} m, "
-                                              f"{errors[150]:.3g} m (150 el.)"))
+                                              f"{errors[150]:.3g} m (150 el.)", kind="exact"))
         sol = solve_catenary(X, Z, LENGTH, E * AREA, w, seabed_contact=False)
         anchor = float(np.linalg.norm(result.end_force("line", "a")))
         rows.append(Row(CASE, f"{name}: anchor tension, 150 elements (eq. 3.25)",
-                        sol.tension_a, anchor, 1e-4, unit="N"))
+                        sol.tension_a, anchor, 1e-4, unit="N", kind="exact"))
     return rows

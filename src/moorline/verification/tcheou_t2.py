@@ -117,7 +117,7 @@ def _order(values: list[float]) -> float:
     return math.log2(abs(a - b) / abs(b - c))
 
 
-def run(fast: bool = False) -> list[Row]:
+def run(quick: bool = False) -> list[Row]:
     """The rows (see the module docstring)."""
     rows: list[Row] = []
     shapes = {}
@@ -132,7 +132,8 @@ def run(fast: bool = False) -> list[Row]:
             rows.append(Row(CASE, f"{label} {name}: convergence order of the top's first-"
                             "harmonic surge amplitude (10, 20, 40 elements)", 2.0,
                             _order(tops), 0.5, relative=False,
-                            note="amplitudes " + ", ".join(f"{v:.4f}" for v in tops) + " m"))
+                            note="amplitudes " + ", ".join(f"{v:.4f}" for v in tops) + " m",
+                            kind="internal cross-check"))
             system, static, result = solve(density, 20, period, harmonics=TD_HARMONICS)
             last, before = time_domain_difference(system, static, result,
                                                   periods=60 if label == "T2" else 40)
@@ -141,20 +142,21 @@ def run(fast: bool = False) -> list[Row]:
                             last, 0.01, relative=False,
                             note=f"{TD_HARMONICS} harmonics ({result.iterations} Newton "
                                  f"iterations); last period of the run; the period before: "
-                                 f"{before:.4f} (the transient is gone)"))
+                                 f"{before:.4f} (the transient is gone)",
+                                 kind="internal cross-check"))
     steel, synthetic = (interior_antinodes(shapes[n]) for n in ("steel", "synthetic"))
     rows.append(Row(CASE, "T2 steel: interior antinodes of the normal first-harmonic "
                     "amplitude (hybrid second mode: 1)", 1.0, float(steel), 0.0,
-                    relative=False))
+                    relative=False, kind="internal cross-check"))
     rows.append(Row(CASE, "T2 synthetic: interior antinodes (first mode: 0)", 0.0,
-                    float(synthetic), 0.0, relative=False))
+                    float(synthetic), 0.0, relative=False, kind="internal cross-check"))
     for name, density in MATERIALS.items():
         _, static, vertical = solve(density, 40, 10.0, "z")
         ratio = float(normal_amplitude(static, vertical).max() / shapes[name].max())
         rows.append(Row(CASE, f"T2 {name}: vertical top force moves the line less than a "
                         "horizontal one (1 = yes)", 1.0, float(ratio < 1.0), 0.0,
                         relative=False, note=f"ratio of the largest normal amplitudes "
-                                             f"{ratio:.3f}"))
+                                             f"{ratio:.3f}", kind="internal cross-check"))
     return rows
 
 

@@ -60,14 +60,16 @@ def run() -> list[Row]:
     for p in LOADS:
         d, its, ok = _deflection(p, newton)
         rows.append(Row(CASE, f"midspan deflection, P = {p:g} lbf, newton", exact[p], d, 1e-3,
-                        unit="ft", note=f"{its} Newton iterations" + ("" if ok else ", FAILED")))
+                        unit="ft", note=f"{its} Newton iterations" + ("" if ok else ", FAILED"),
+                        kind="exact"))
     relax = StaticsSettings(method="relaxation", tolerance=1e-6, max_iterations=400,
                             damping=1e5, damping_decrement=0.5, pseudo_dt=1.0,
                             stiffness_update=10, start="straight")
     d, its, ok = _deflection(1000.0, relax)
     rows.append(Row(CASE, "midspan deflection, P = 1000 lbf, viscous relaxation", exact[1000.0],
                     d, 1e-3, unit="ft",
-                    note=f"{its} relaxation steps (Tuah: 44); C0=1e5, mu=0.5, K every 10"))
+                    note=f"{its} relaxation steps (Tuah: 44); C0=1e5, mu=0.5, K every 10",
+                    kind="exact"))
     d100, _, _ = _deflection(1000.0, StaticsSettings(method="incremental", load_steps=100,
                                                      start="straight"))
     d, its, _ = _deflection(1000.0, StaticsSettings(method="incremental", load_steps=1600,
@@ -75,5 +77,6 @@ def run() -> list[Row]:
     drift = (d100 - exact[1000.0]) / exact[1000.0]
     rows.append(Row(CASE, "midspan deflection, P = 1000 lbf, purely incremental x1600",
                     exact[1000.0], d, 1e-3, unit="ft",
-                    note=f"{its} increments; with Webster's 100 the drift is {drift:+.1%}"))
+                    note=f"{its} increments; with Webster's 100 the drift is {drift:+.1%}",
+                    kind="exact"))
     return rows

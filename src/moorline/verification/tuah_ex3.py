@@ -81,12 +81,12 @@ def run() -> list[Row]:
     exact = creep_strain(times, T1, T_RAMP, 1.0, EA1, tau)
     rows = [Row(CASE, "fit of the SLS to the printed hold-phase strains (rms misfit)", 0.0,
                 fit.rms, 5e-4, relative=False,
-                note=f"EA1/EA = {EA1:.4f}, tau = {tau:.4f} s, T1/EA = {T1}")]
+                note=f"EA1/EA = {EA1:.4f}, tau = {tau:.4f} s, T1/EA = {T1}", kind="published")]
     iterative = DynamicsSettings(duration=60.0, dt=0.1, tolerance=1e-10)
     computed = strain_history(system, iterative, times)
     for t, ref, val in zip(times, exact, computed, strict=True):
         rows.append(Row(CASE, f"strain at t = {t:g} s, iterative, exponential SLS", ref, val,
-                        1e-3))
+                        1e-3, kind="exact"))
     short = times[times <= 3.0]
     feedback = DynamicsSettings(duration=3.0, dt=0.02, variant="residual_feedback",
                                 viscoelastic_update="incremental")
@@ -97,7 +97,8 @@ def run() -> list[Row]:
     drift = (pi[-1] - exact[len(short) - 1]) / exact[len(short) - 1]
     for t, ref, val in zip(short, exact[: len(short)], fb, strict=True):
         rows.append(Row(CASE, f"strain at t = {t:g} s, residual feedback, eq. 2.2.b.3", ref,
-                        val, 1e-2))
+                        val, 1e-2, kind="exact"))
     rows[-1] = Row(CASE, rows[-1].quantity, rows[-1].reference, rows[-1].computed, 1e-2,
-                   note=f"purely incremental at 3 s: {drift:+.3%} (linear problem: no drift)")
+                   note=f"purely incremental at 3 s: {drift:+.3%} (linear problem: no drift)",
+                   kind="exact")
     return rows

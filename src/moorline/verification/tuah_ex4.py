@@ -40,6 +40,7 @@ from ..solvers.dynamics import simulate
 from .core import Row
 
 CASE = "tuah-ex4"
+SOURCE_PERIOD = 0.65  # s, Tuah (1982) sec. 6.4
 E, AREA, STRESS0, SPAN, MASS, D0 = 1.0e7, 0.1, 500.0, 20.0, 5.0, 2.0
 EA = E * AREA
 EA1_RATIO, TAU = 7.4641, 4.9209  # our Ex3 fit (viscoelastic_reference.fit_tuah_ex3)
@@ -148,22 +149,30 @@ def run() -> list[Row]:
     period = float(np.mean(periods(t, d)))
     rows.append(Row(CASE, "elastic period, dt = 0.001 s, 2 elements", period_exact, period,
                     5e-3, unit="s", note="source prints 0.65 s; its stated data give "
-                    f"{period_exact:.4f} s (exact ODE)"))
+                    f"{period_exact:.4f} s (exact ODE)", kind="exact"))
+    rows.append(Row(CASE, "elastic period, the source's printed value", SOURCE_PERIOD, period,
+                    0.05, unit="s", kind="published", source="Tuah (1982) sec. 6.4",
+                    reproduced=False,
+                    note="the stated data (EA = 1e6 lbf, 5 slug, 20 ft) give "
+                    f"{period_exact:.4f} s by the exact equation of motion; 0.65 s would need "
+                    f"EA {(period_exact / SOURCE_PERIOD) ** 2:.3f} times smaller (a lost or "
+                    "misprinted datum); the inputs are not tuned"))
     energy = _energy(result)
     rows.append(Row(CASE, "elastic: energy error over ~11 periods (undamped, iterative)", 0.0,
                     float(np.abs(energy / energy[0] - 1).max()), 1e-3, relative=False,
                     note="average acceleration conserves energy exactly only for linear "
-                    "springs; for this stiffening string the error is O(dt^2), bounded"))
+                    "springs; for this stiffening string the error is O(dt^2), bounded",
+                    kind="exact"))
     errors = [abs(float(np.mean(periods(*_run(False, h, 3.0)[1:]))) - period_exact)
               for h in (0.004, 0.002)]
     rows.append(Row(CASE, "Newmark order in dt (period error, dt 0.004 -> 0.002 s)", 2.0,
                     math.log2(errors[0] / errors[1]), 0.2, relative=False,
-                    note=f"period errors {errors[0]:.3g} s, {errors[1]:.3g} s"))
+                    note=f"period errors {errors[0]:.3g} s, {errors[1]:.3g} s", kind="exact"))
     _, _, d_pure = _run(False, 0.001, 3.0, "incremental")
     rows[0] = Row(*[getattr(rows[0], k) for k in ("case", "quantity", "reference", "computed",
                                                   "tolerance", "relative", "unit")],
                   note=rows[0].note + "; purely incremental: final amplitude "
-                  f"{abs(peaks(t, d_pure)[-1]):.3f} ft vs {D0} ft (drifts)")
+                  f"{abs(peaks(t, d_pure)[-1]):.3f} ft vs {D0} ft (drifts)", kind="exact")
     rows += _viscoelastic_rows()
     return rows
 
@@ -180,12 +189,13 @@ def _viscoelastic_rows() -> list[Row]:
     slack = _slack_fraction(t, result.tension[:, 0] <= 0)
     return [
         Row(CASE, "viscoelastic: last period in 3 s (lengthens)", float(p_ref[n]), float(p[n]),
-            5e-3, unit="s", note=f"first period {p_ref[0]:.4f} s"),
+            5e-3, unit="s", note=f"first period {p_ref[0]:.4f} s", kind="exact"),
         Row(CASE, "viscoelastic: last upward peak in 3 s", float(a_ref[m]), float(a[m]), 1e-3,
             unit="ft", note=f"release from {D0} ft; the amplitude first grows as the modulus "
-            "relaxes, then decays (reference: 2.08 ft at ~10 s, 1.92 ft at 40 s)"),
+            "relaxes, then decays (reference: 2.08 ft at ~10 s, 1.92 ft at 40 s)", kind="exact"),
         Row(CASE, "viscoelastic: slack time fraction in the last second", slack_ref[1], slack[1],
-            0.02, relative=False, note=f"first second: {slack_ref[0]:.3f} (reference)"),
+            0.02, relative=False, note=f"first second: {slack_ref[0]:.3f} (reference)",
+            kind="exact"),
     ]
 
 

@@ -508,18 +508,18 @@ def window(run: Run, start: float) -> NDArray[np.bool_]:
 
 
 # ----------------------------------------------------------------------------- rows
-def run(fast: bool = False) -> list[Row]:
+def run(quick: bool = False) -> list[Row]:
     """Ex5 rows.
 
     Parameters
     ----------
-    fast
+    quick
         Shorter run (the tests): the residual-feedback run over 12 s instead of 30 s (the
         3- and 8-element runs keep their 30 s: shorter windows make the up-crossing
         periods noisy, +2 % over four periods).
     """
     duration = 30.0
-    rf_duration = 12.0 if fast else duration
+    rf_duration = 12.0 if quick else duration
     start = RAMP_TIME + 2 * WAVE_PERIOD  # steady window: after the ramp and two periods
     three = run_dynamics(3, 0.02, duration=duration)
     eight = run_dynamics(8, 0.02, duration=duration)
@@ -528,7 +528,8 @@ def run(fast: bool = False) -> list[Row]:
 
     # hydrodynamic data: the stored damping against the Haskind relation
     rows.append(Row(CASE, "disc B33 vs Haskind from |X3|", haskind_heave_damping(), B33, 0.05,
-                    unit="lbf s/ft", note="potential-flow data consistency (deep water)"))
+                    unit="lbf s/ft", note="potential-flow data consistency (deep water)",
+                    kind="internal cross-check"))
 
     w3 = window(three, start)
     t3 = three.time[w3]
@@ -537,7 +538,8 @@ def run(fast: bool = False) -> list[Row]:
         rows.append(Row(CASE, f"{name} response period (3 el, iterative dt 0.02)",
                         WAVE_PERIOD, period, 0.02, unit="s",
                         note=f"source: slightly longer than the wave's; here "
-                             f"{100 * (period / WAVE_PERIOD - 1):+.2f} %"))
+                             f"{100 * (period / WAVE_PERIOD - 1):+.2f} %",
+                             kind="internal cross-check"))
 
     heave = harmonic_fit(t3, three.pose[w3, 2], OMEGA, 2, trend=True).phasor()
     cable = harmonic_fit(t3, three.fairlead_force[w3, 2], OMEGA, 2, trend=True).phasor()
@@ -548,7 +550,7 @@ def run(fast: bool = False) -> list[Row]:
     rows.append(Row(CASE, "heave amplitude vs linear RAO with the cable's 1st harmonic",
                     linear, abs(heave), 0.05, unit="ft",
                     note=f"bare disc RAO {bare:.3f} ft; cable 1st-harmonic vertical force "
-                         f"{abs(cable):.0f} lbf"))
+                         f"{abs(cable):.0f} lbf", kind="internal cross-check"))
 
     w8 = window(eight, start)
     fit3 = harmonic_fit(t3, three.pose[w3, 0], OMEGA, 2, trend=True)
@@ -557,7 +559,8 @@ def run(fast: bool = False) -> list[Row]:
     ratio = abs(surge8) / abs(surge3)
     rows.append(Row(CASE, "surge amplitude 8 el / 3 el", 1.0, ratio, 0.1,
                     note=f"source: 8 el slightly larger; 3 el {abs(surge3):.3f} ft, "
-                         f"8 el {abs(surge8):.3f} ft; 3 el drift {drift3:+.3f} ft/s"))
+                         f"8 el {abs(surge8):.3f} ft; 3 el drift {drift3:+.3f} ft/s",
+                         kind="internal cross-check"))
 
     top = three.tension[:, -1]
     slack_periods = _slack_periods(three.time, top, t3[0], t3[-1])
@@ -568,7 +571,7 @@ def run(fast: bool = False) -> list[Row]:
                     note=f"{events} slack events in {(t3[-1] - t3[0]) / WAVE_PERIOD:.0f} "
                          f"periods; peak top tension {top[w3].max():.0f} lbf (static "
                          f"{top[0]:.0f}); heave acceleration beyond two harmonics up to "
-                         f"{kick:.1f} ft/s^2"))
+                         f"{kick:.1f} ft/s^2", kind="internal cross-check"))
 
     rows.extend(_feedback_rows(three, feedback, start))
     return rows
@@ -600,7 +603,7 @@ def _feedback_rows(iterative: Run, feedback: Run, start: float) -> list[Row]:
     if feedback.diverged_at is not None:
         return [Row(CASE, "residual feedback dt 0.005: time of divergence", math.inf,
                     feedback.diverged_at, math.inf, relative=False, unit="s",
-                    note="the state went non-finite")]
+                    note="the state went non-finite", kind="internal cross-check")]
     residual = feedback.residual if feedback.residual is not None else np.zeros(1)
     end = min(feedback.time[-1], iterative.time[-1])
     first = max(start if end - start >= 3 * WAVE_PERIOD else RAMP_TIME, 0.0)
@@ -619,10 +622,12 @@ def _feedback_rows(iterative: Run, feedback: Run, start: float) -> list[Row]:
                         note=f"{n} periods before t = {end:.1f} s; carried residual up to "
                              f"{residual.max():.0f} lbf ({residual.max() / static_top:.1f} x "
                              f"the static top tension, at the snaps), median "
-                             f"{np.median(residual):.2g} lbf; no divergence"))
+                             f"{np.median(residual):.2g} lbf; no divergence",
+                             kind="internal cross-check"))
     x_it = float(np.interp(end, iterative.time, iterative.pose[:, 0]))
     x_rf = float(np.interp(end, feedback.time, feedback.pose[:, 0]))
     rows.append(Row(CASE, "residual feedback vs iterative: surge offset at the end / surge "
                     "amplitude", 0.0, abs(x_rf - x_it) / fits["surge"][0], 0.1,
-                    relative=False, note=f"t = {end:.1f} s: {x_rf - x_it:+.3f} ft"))
+                    relative=False, note=f"t = {end:.1f} s: {x_rf - x_it:+.3f} ft",
+                    kind="internal cross-check"))
     return rows

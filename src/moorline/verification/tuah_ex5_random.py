@@ -65,8 +65,8 @@ def local_maxima(y: np.ndarray) -> np.ndarray:
     return np.flatnonzero((y[1:-1] > y[:-2]) & (y[1:-1] > y[2:])) + 1
 
 
-def run(fast: bool = False) -> list[Row]:
-    """The rows (see the module docstring); ``fast`` is the same (the case takes a second)."""
+def run(quick: bool = False) -> list[Row]:
+    """The rows (see the module docstring); ``quick`` is the same (the case takes a second)."""
     system, static = random_system()
     result: StochasticResult = solve_stochastic(system, StochasticSettings(), static)
     modal = solve_modes(system, ModalSettings(n_modes=12, mass="consistent"), static)
@@ -85,17 +85,19 @@ def run(fast: bool = False) -> list[Row]:
     return [
         Row(CASE, "drag linearization: iterations to 0.01 vs the source's", SOURCE_ITERATIONS,
             float(result.iterations), 1.0, relative=False,
-            note="changes " + ", ".join(f"{c:.3f}" for c in result.history)),
+            note="changes " + ", ".join(f"{c:.3f}" for c in result.history),
+            kind="internal cross-check"),
         Row(CASE, "heave spectrum shaped like the wave spectrum: correlation over the wave "
             "band", 1.0, corr, 0.02, relative=False,
             note=f"band {w[band][0]:.2f}-{w[band][-1]:.2f} rad/s (S >= 5 % of its peak); "
                  f"|H_heave| {np.abs(H[band, 2]).min():.3f}-{np.abs(H[band, 2]).max():.3f}; "
                  f"std surge {std[0]:.2f} ft, heave {std[2]:.2f} ft (wave "
-                 f"{math.sqrt(M0):.2f} ft), pitch {std[4]:.3f} rad"),
+                 f"{math.sqrt(M0):.2f} ft), pitch {std[4]:.3f} rad", kind="internal cross-check"),
         Row(CASE, "pitch spectrum: local peak vs the pitch-dominated natural frequency",
             pitch_mode, near, 2.0 * result.d_omega, relative=False, unit="rad/s",
             note="coupled modes (consistent mass, added mass); the source's 4.6 rad/s "
-                 "belonged to its lost disc data; tolerance two frequency steps"),
+                 "belonged to its lost disc data; tolerance two frequency steps",
+                 kind="internal cross-check"),
     ]
 
 

@@ -191,14 +191,15 @@ def run() -> list[Row]:
             f"tilts the end elements); S_T inferred from the source: "
             f"{SOURCE_STROUHAL_FREQUENCY * DIAMETER / (2 * math.pi * SPEED):.4f}; "
             f"Re = {SPEED * DIAMETER / NU:.0f}; S_T = 0.2 gives "
-            f"{2 * math.pi * 0.2 * SPEED / DIAMETER:.2f} rad/s"),
+            f"{2 * math.pi * 0.2 * SPEED / DIAMETER:.2f} rad/s", kind="internal cross-check"),
         Row(CASE, "fundamental (cross-flow), 4 elements, consistent mass, no added mass",
             SOURCE_FUNDAMENTAL, w1, 0.05, unit="rad/s",
             note=f"with added mass {cross_flow_fundamental(added_mass=True):.2f}; lumped mass "
             f"{cross_flow_fundamental(mass='lumped'):.2f}; with the weight (sag stiffening) "
             f"{cross_flow_fundamental(G_FT):.2f}, and added mass "
             f"{cross_flow_fundamental(G_FT, True):.2f}; continuous string "
-            f"{math.pi / SPAN * math.sqrt(STRESS0 / DENSITY):.2f} rad/s"),
+            f"{math.pi / SPAN * math.sqrt(STRESS0 / DENSITY):.2f} rad/s",
+            kind="internal cross-check"),
     ]
     u_lit, u_sig = midpoint_z(literal), midpoint_z(signed)
     i_lit, i_sig = int(np.argmax(np.abs(u_lit))), int(np.argmax(np.abs(u_sig)))
@@ -208,7 +209,8 @@ def run() -> list[Row]:
                     float(np.abs(u_lit[i_lit])), 0.2, unit="ft",
                     note=f"measured by Ramberg et al. (1980), equal to the source's; at t = "
                     f"{t[i_lit]:.2f} s (source: 2.0 s); wake driven by |U_T'| (literal); with "
-                    f"signed U_T': {abs(u_sig[i_sig]):.4f} ft at t = {t[i_sig]:.2f} s"))
+                    f"signed U_T': {abs(u_sig[i_sig]):.4f} ft at t = {t[i_sig]:.2f} s",
+                    kind="internal cross-check"))
     peaks = positive_lift_peaks(literal)
     signed_amplitude = lift_amplitudes(signed)
     rows.append(Row(CASE, "fraction of positive C_L peaks >= C_L0 (all elements)", 1.0,
@@ -218,7 +220,8 @@ def run() -> list[Row]:
                     f"negative peaks down to {lift_amplitudes(literal).min():.3f}: |U_T'| "
                     f"shifts C_L up; with signed U_T' the C_L peaks fall to "
                     f"{signed_amplitude.min():.3f} (fraction >= C_L0: "
-                    f"{np.mean(signed_amplitude >= CL0 * (1 - 1e-9)):.2f})"))
+                    f"{np.mean(signed_amplitude >= CL0 * (1 - 1e-9)):.2f})",
+                    kind="internal cross-check"))
     mode = int(np.argmax(np.abs(literal.modal_amplitude).max(axis=0)))
     w_mode = float(literal.omega[mode])
     period, maxima = beat_period(t, u_lit)
@@ -228,5 +231,5 @@ def run() -> list[Row]:
                     note=f"reference 2 pi / |w_s - w_1| with w_s = {ws_mean:.3f}, w_1 = "
                     f"{w_mode:.3f} rad/s; envelope maxima at "
                     + ", ".join(f"{x:.2f}" for x in maxima[:3])
-                    + f" s; signed U_T': {period_signed:.2f} s"))
+                    + f" s; signed U_T': {period_signed:.2f} s", kind="internal cross-check"))
     return rows

@@ -168,15 +168,15 @@ def _fairlead_force(result: DynamicResult) -> FloatArray:
     return total
 
 
-def run(fast: bool = False) -> list[Row]:
+def run(quick: bool = False) -> list[Row]:
     """Ex7 rows.
 
     Parameters
     ----------
-    fast
+    quick
         Shorter run (the tests): 27 s instead of 45 s, and no time-step check.
     """
-    duration = 27.0 if fast else 45.0
+    duration = 27.0 if quick else 45.0
     main = run_dynamics(duration, DT)
     res = main.result
     start = ex5.RAMP_TIME + 2 * ex5.WAVE_PERIOD
@@ -196,16 +196,16 @@ def run(fast: bool = False) -> list[Row]:
                     "static", 0.0, min_lee / static_lee, 0.1, relative=False,
                     note=f"static {static_lee:.0f} lbf (windward legs {windward[0]:.0f}, "
                          f"{windward[1]:.0f}); min {min_lee:.3g} lbf; peak windward "
-                         f"{peak_windward:.0f} lbf"))
+                         f"{peak_windward:.0f} lbf", kind="internal cross-check"))
     slack = ex5._slack_periods(res.time, res.tension[:, lee], t[0], t[-1])
     rows.append(Row(CASE, "wave periods with the leeward top element slack / periods", 1.0,
-                    slack, 0.25, relative=False))
+                    slack, 0.25, relative=False, kind="internal cross-check"))
 
     for name, dof in (("surge", 0), ("heave", 2)):
         period = ex5.up_crossing_period(t, pose[w, dof], ex5.WAVE_PERIOD)
         rows.append(Row(CASE, f"{name} response period", ex5.WAVE_PERIOD, period, 0.02,
                         unit="s", note=f"{100 * (period / ex5.WAVE_PERIOD - 1):+.2f} % "
-                                       f"from the wave's"))
+                                       f"from the wave's", kind="internal cross-check"))
 
     heave = harmonic_fit(t, pose[w, 2], ex5.OMEGA, 2, trend=True).phasor()
     cable = harmonic_fit(t, _fairlead_force(res)[w, 2], ex5.OMEGA, 2, trend=True).phasor()
@@ -218,16 +218,18 @@ def run(fast: bool = False) -> list[Row]:
     rows.append(Row(CASE, "heave amplitude vs linear RAO with the legs' 1st harmonic", linear,
                     abs(heave), 0.05, unit="ft",
                     note=f"bare disc RAO {abs(wave_force) / abs(denominator):.3f} ft; legs' "
-                         f"1st-harmonic vertical force {abs(cable):.0f} lbf"))
+                         f"1st-harmonic vertical force {abs(cable):.0f} lbf",
+                         kind="internal cross-check"))
 
     fit = harmonic_fit(t, pose[w, 0], ex5.OMEGA, 2, trend=True)
     surge, drift = fit.phasor(), fit.slope
     sway = float(np.abs(pose[:, 1] - pose[0, 1]).max())
     rows.append(Row(CASE, "surge amplitude vs Example 5's (3 el)", EX5_SURGE, abs(surge), 0.15,
                     unit="ft", note=f"drift {drift:+.3f} ft/s; static offset {x0:+.3f} ft "
-                                    f"down-wave; largest sway {sway:.3g} ft"))
+                                    f"down-wave; largest sway {sway:.3g} ft",
+                                    kind="internal cross-check"))
 
-    if not fast:  # time step: the run's first 21 s against dt / 2
+    if not quick:  # time step: the run's first 21 s against dt / 2
         fine = run_dynamics(21.0, DT / 2)
         amps = []
         for r in (res, fine.result):
@@ -235,7 +237,8 @@ def run(fast: bool = False) -> list[Row]:
             amps.append(harmonic_fit(r.time[m], r.body_history(ex5.BODY)[m, 2], ex5.OMEGA, 2,
                                      trend=True).amplitude())
         rows.append(Row(CASE, f"heave amplitude dt {DT} vs dt {DT / 2} (first 21 s)", amps[1],
-                        amps[0], 0.01, unit="ft", note="the source used 0.005 s"))
+                        amps[0], 0.01, unit="ft", note="the source used 0.005 s",
+                        kind="internal cross-check"))
     return rows
 
 

@@ -186,17 +186,17 @@ def _weighted_shedding(result: StrummingResult, mask: NDArray[np.bool_]) -> tupl
     return mean, float(np.sqrt(((ws - mean) ** 2 * weight).sum() / weight.sum()))
 
 
-def run(fast: bool = False) -> list[Row]:
+def run(quick: bool = False) -> list[Row]:
     """Ex7-with-lift rows: the sway's slow and fast parts, the lift coefficient, the growth
     rate against the in-line run's, the lock-in with static modes.
 
     Parameters
     ----------
-    fast
+    quick
         Shorter runs (the tests): in-line and strumming 21 s, no growth-rate row.
     """
-    end = FAST_STRUMMING_END if fast else STRUMMING_END
-    return rows(run_case(end if fast else IN_LINE_DURATION, end), growth=not fast)
+    end = FAST_STRUMMING_END if quick else STRUMMING_END
+    return rows(run_case(end if quick else IN_LINE_DURATION, end), growth=not quick)
 
 
 def rows(case: Ex7LiftRun, growth: bool = True) -> list[Row]:
@@ -223,13 +223,14 @@ def rows(case: Ex7LiftRun, growth: bool = True) -> list[Row]:
         Row(CASE, f"fairlead sway, slow part: dominant frequency below {FAST_BAND:g} rad/s "
             "vs the wave's", ex5.OMEGA, slow, resolution, relative=False, unit="rad/s",
             note=f"modes refreshed every in-line step; {window}; resolution "
-                 f"{resolution:.2f} rad/s"),
+                 f"{resolution:.2f} rad/s", kind="internal cross-check"),
         Row(CASE, "fairlead sway, fast part: centroid of the acceleration power above "
             f"{FAST_BAND:g} rad/s vs 2 pi S_T |V_NR| / D", w_s, fast_part, spread,
             relative=False, unit="rad/s",
             note=f"same window; w_s from the in-line velocities, mean over the shedding "
                  f"elements and time weighted by |V_NR|^2 L0; tolerance: its standard "
-                 f"deviation over the wave cycle ({spread:.1f} rad/s)"),
+                 f"deviation over the wave cycle ({spread:.1f} rad/s)",
+                 kind="internal cross-check"),
     ]
     shedding = s.strouhal_frequency[mask] > 0
     cl = s.lift_coefficient[mask]
@@ -238,7 +239,8 @@ def rows(case: Ex7LiftRun, growth: bool = True) -> list[Row]:
     out.append(Row(CASE, "max |C_L| of the shedding elements above C_L0 (1 = yes)", 1.0,
                     float(ratio > 1.0), 0.0, relative=False,
                     note=f"max |C_L| / C_L0 = {ratio:.2f}, rms C_L / (C_L0 / sqrt 2) = "
-                         f"{rms:.2f} (source: the lift grows above the stationary one)"))
+                         f"{rms:.2f} (source: the lift grows above the stationary one)",
+                         kind="internal cross-check"))
     if growth:
         inline = case.inline.result
         rate_inline, a0, a1 = growth_rate(*period_envelope(
@@ -252,7 +254,8 @@ def rows(case: Ex7LiftRun, growth: bool = True) -> list[Row]:
             note=f"in-line (nonlinear Newmark, sway from round-off, {IN_LINE_LEVELS[0]:g} to "
                  f"{IN_LINE_LEVELS[1]:g} ft, t = {a0:.1f}-{a1:.1f} s) vs strumming (linear, "
                  f"modal, t = {b0:.1f}-{b1:.1f} s): the symmetric in-line motion is unstable "
-                 f"to sway-roll-yaw and the lift seeds it; per-period maxima, log-linear fit"))
+                 f"to sway-roll-yaw and the lift seeds it; per-period maxima, log-linear fit",
+                 kind="internal cross-check"))
     ws_, amp_s = spectrum(t[after], static.displacement[after, FAIRLEAD_NODE, 1])
     lock = peak_frequency(ws_, amp_s, FAST_BAND, float(ws_[-1]))
     band = static.omega[np.abs(static.omega - w_s) <= spread]
@@ -263,7 +266,8 @@ def rows(case: Ex7LiftRun, growth: bool = True) -> list[Row]:
         note=f"modes computed once at the static equilibrium (the sway stays bounded); window "
              f"{t[after][0]:.0f}-{t[after][-1]:.0f} s; natural frequencies within w_s = "
              f"{w_s:.1f} +- {spread:.1f} rad/s: "
-             + ", ".join(f"{o:.2f}" for o in band) + "; tolerance: the spectral resolution"))
+             + ", ".join(f"{o:.2f}" for o in band) + "; tolerance: the spectral resolution",
+             kind="internal cross-check"))
     return out
 
 

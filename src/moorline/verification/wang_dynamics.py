@@ -419,25 +419,26 @@ def run_w2(quick: bool = False) -> list[Row]:
     rows = [
         Row(CASE_W2, "steady surge period (up-crossings) vs forcing period 2 pi / 1.6",
             PERIOD, crossing_period(t, pose[:, 0]), 2e-3, unit="s",
-            note=f"last 5 periods of {duration:g} s, dt {dt:g} s"),
+            note=f"last 5 periods of {duration:g} s, dt {dt:g} s", kind="internal cross-check"),
         Row(CASE_W2, "steady heave period: second order, half the forcing period", PERIOD / 2,
             heave_period, heave_resolution / (PERIOD / 2), unit="s",
             note="linear heave vanishes by the x -> -x symmetry; tolerance: half an FFT bin "
             f"of the window; heave amplitude {amp['z']:.4g} m, mean set-down "
-            f"{float(np.mean(pose[:, 2]) - run.eq.result.body_pose[0, 2]):.3g} m"),
+            f"{float(np.mean(pose[:, 2]) - run.eq.result.body_pose[0, 2]):.3g} m",
+            kind="internal cross-check"),
         Row(CASE_W2, "mean surge in the steady state (symmetric mooring, zero-mean force)",
             0.0, surge_mean, 0.01 * amp["x"], relative=False, unit="m",
-            note="tolerance 1 % of the surge amplitude"),
+            note="tolerance 1 % of the surge amplitude", kind="internal cross-check"),
         Row(CASE_W2, "out-of-plane motion (sway, roll, yaw) under in-plane forcing", 0.0,
             amp["out_of_plane"], 1e-6, relative=False,
-            note="largest half peak-to-peak of y [m], rx, rz [rad]"),
+            note="largest half peak-to-peak of y [m], rx, rz [rad]", kind="internal cross-check"),
         Row(CASE_W2, "steady surge amplitude vs quasi-static surge-pitch estimate",
             float(abs(qs[0])), amp["x"], 0.25, unit="m",
             note=f"rigid box on group_stiffness + hydrostatics, Rayleigh damping, no line "
             f"inertia or drag (line mass + added mass = {line_mass_share(run.eq):.0%} of the "
             f"box); pitch "
             f"{amp['ry']:.4g} rad vs {abs(qs[4]):.4g}; max tension {run.max_tension:.4g} N "
-            f"(static {static_tension:.4g} N)"),
+            f"(static {static_tension:.4g} N)", kind="internal cross-check"),
     ]
     # near the line modes the phase is sensitive to Newmark's period error: dt 0.05 s
     rows += _small_amplitude_rows(small_duration, 0.05)
@@ -446,7 +447,8 @@ def run_w2(quick: bool = False) -> list[Row]:
         rows.append(Row(CASE_W2, f"surge amplitude, dt {dt:g} s vs {dt / 2:g} s",
                         fine.amplitudes["x"], amp["x"], 5e-3, unit="m",
                         note=f"pitch {amp['ry']:.5g} vs {fine.amplitudes['ry']:.5g} rad, max "
-                        f"tension {run.max_tension:.6g} vs {fine.max_tension:.6g} N"))
+                        f"tension {run.max_tension:.6g} vs {fine.max_tension:.6g} N",
+                        kind="internal cross-check"))
     return rows
 
 
@@ -471,15 +473,16 @@ def _small_amplitude_rows(duration: float, dt: float) -> list[Row]:
             f"{', '.join(f'{w:.3f}' for w in sorted(near))}")
     return [
         Row(CASE_W2, "small amplitude: surge amplitude vs linearized model", float(abs(X[0])),
-            ax, 0.02, unit="m", note=note),
+            ax, 0.02, unit="m", note=note, kind="internal cross-check"),
         Row(CASE_W2, "small amplitude: pitch amplitude vs linearized model", float(abs(X[4])),
-            ary, 0.02, unit="rad"),
+            ary, 0.02, unit="rad", kind="internal cross-check"),
         Row(CASE_W2, "small amplitude: surge phase vs linearized model",
             float(np.angle(X[0])), phx, 0.05, relative=False, unit="rad",
-            note="phase of x against sin(1.6 t)"),
+            note="phase of x against sin(1.6 t)", kind="internal cross-check"),
         Row(CASE_W2, "linearized model at zero frequency vs mooring stiffness (surge)",
             float(static), zero, 1e-6, unit="m",
-            note="static compliance of the assembled model vs group_stiffness + hydrostatics"),
+            note="static compliance of the assembled model vs group_stiffness + hydrostatics",
+            kind="internal cross-check"),
     ]
 
 
@@ -550,7 +553,7 @@ def run_w3(quick: bool = False) -> list[Row]:
         rows.append(Row(CASE_W3, f"Fig. {fig} {key} amplitude falls as the line gets tauter, "
                         f"{sags} (Spearman)", -1.0, spearman(value[key][s], taut), 0.15,
                         relative=False, note=f"{listing(s, key)} {unit}; tolerance: one "
-                        "adjacent pair may swap"))
+                        "adjacent pair may swap", kind="internal cross-check"))
     t_max, t_static = value["max_tension"], value["static_tension"]
     lowest = 1.0 / ratio[s][np.argmin(t_max[s])]
     rows.append(Row(
@@ -559,7 +562,8 @@ def run_w3(quick: bool = False) -> list[Row]:
         spearman(t_max[s], pretension[s]), 0.15, relative=False,
         note=f"max tension {listing(s, 'max_tension')} N at {sags}; pretension "
         f"w cos(theta) l / (8 d/l) {', '.join(f'{pretension[k]:.3g}' for k in s)} N; "
-        f"dynamic part max - static {', '.join(f'{t_max[k] - t_static[k]:.3g}' for k in s)} N"))
+        f"dynamic part max - static {', '.join(f'{t_max[k] - t_static[k]:.3g}' for k in s)} N",
+        kind="internal cross-check"))
     trend = spearman(value["surge"][i], angle[i])
     frequencies = ", ".join(f"{surge_pitch_frequency(forced_equilibrium(ratio[k], angle[k])):.3g}"
                             for k in i)
@@ -572,13 +576,14 @@ def run_w3(quick: bool = False) -> list[Row]:
             note=f"{listing(i, key)} at {angles} deg vs estimate "
             f"{', '.join(f'{estimate[k, col]:.4g}' for k in i)}; surge-pitch frequency "
             f"{frequencies} rad/s: steeper lines are softer horizontally, the frequency "
-            "approaches the forcing 1.6 rad/s"))
+            "approaches the forcing 1.6 rad/s", kind="internal cross-check"))
     rows.append(Row(
         CASE_W3, f"Fig. 8b heave vs inclination: paper falls, here rises (Spearman "
         f"{spearman(value['heave'][i], angle[i]):+.2f}); check: this second-order response "
         "follows the quasi-static surge estimate (Spearman)", 1.0,
         spearman(value["heave"][i], estimate[i, 0]), 0.15, relative=False,
-        note=f"{listing(i, 'heave')} m at {angles} deg; surge trend {trend:+.2f}"))
+        note=f"{listing(i, 'heave')} m at {angles} deg; surge trend {trend:+.2f}",
+        kind="internal cross-check"))
     grid = np.sort(angle[i])
     centre = int(np.argmin(np.abs(grid - INCLINATION_DEG)))
     step = float(np.min(np.abs(np.delete(grid, centre) - grid[centre])))
@@ -586,11 +591,12 @@ def run_w3(quick: bool = False) -> list[Row]:
         CASE_W3, "Fig. 8d inclination of the least max tension (paper: near 50 deg)",
         INCLINATION_DEG, float(angle[i][np.argmin(t_max[i])]), step, relative=False,
         unit="deg", note=f"max tension {listing(i, 'max_tension')} N at {angles} deg; "
-        "tolerance: one grid step"))
+        "tolerance: one grid step", kind="internal cross-check"))
     everything = np.unique(np.column_stack((ratio, angle)), axis=0, return_index=True)[1]
     rows.append(Row(
         CASE_W3, "surge amplitude across all cases follows the quasi-static surge-pitch "
         "estimate (Spearman)", 1.0, spearman(value["surge"][everything],
                                              estimate[everything, 0]), 0.15, relative=False,
-        note="rigid box on the mooring stiffness at 1.6 rad/s, Rayleigh damping"))
+        note="rigid box on the mooring stiffness at 1.6 rad/s, Rayleigh damping",
+        kind="internal cross-check"))
     return rows
