@@ -370,15 +370,19 @@ def verify(cases: tuple[str, ...], quick: bool, as_json: bool, quiet: bool,
 
 
 def _verify_case(core: Any, name: str, quick: bool) -> list[dict[str, Any]]:
-    """Rows of one case as dicts; a case that raises a moorline error gives one failed row."""
+    """Rows of one case as dicts; a case that raises (other than a skip) gives one failed row
+    naming the error."""
     try:
         return [row.to_dict() for row in core.run_case(name, quick)]
-    except MoorlineError as exc:
-        click.echo(f"error: verification case {name}: {exc}", err=True)
+    except core.CaseSkipped:
+        raise
+    except Exception as exc:  # noqa: BLE001 (one broken case must not hide the others)
+        reason = str(exc) if isinstance(exc, MoorlineError) else f"{type(exc).__name__}: {exc}"
+        click.echo(f"error: verification case {name}: {reason}", err=True)
         return [{"case": name, "quantity": "run",
                  "reference": {"value": None, "kind": None, "source": ""}, "computed": None,
                  "tolerance": None, "relative": False, "unit": "", "error": None,
-                 "status": "fail", "passed": False, "note": f"failed: {exc}"}]
+                 "status": "fail", "passed": False, "note": f"failed: {reason}"}]
 
 
 def _verify_summary(rows: list[dict[str, Any]], skipped: dict[str, str]) -> str:

@@ -51,6 +51,7 @@ from ..solvers.modal import solve_modes
 from .core import Row
 
 CASE = "modes-irvine"
+REFERENCE = "Irvine & Caughey (1974), Proc. R. Soc. Lond. A 341"
 SPAN, MASS, DIAMETER, GRAVITY = 100.0, 1.0, 0.012, 9.80665
 SAG_RATIO = 1.0 / 50.0
 ELEMENTS = 80
@@ -161,7 +162,7 @@ def run() -> list[Row]:
                 float(result.omega[k]), TOLERANCE, unit="rad/s",
                 note=f"mode {k + 1}; EA/H = {EA / H:.4g}, sag/span = {p['sag'] / SPAN:.4f}, "
                      f"{ELEMENTS} elements; x-share of kinetic energy {share[0]:.4f}",
-                     kind="published"))
+                     kind="published", source=REFERENCE))
         if label == "4 pi^2":
             ratio = (result.omega[modes["in-plane symmetric"]]
                      / result.omega[modes["in-plane antisymmetric"]])
@@ -169,5 +170,5 @@ def run() -> list[Row]:
                             1.0, float(ratio), TOLERANCE,
                             note="equal in the theory; the FE antisymmetric mode is lowered "
                                  "by the longitudinal inertia the theory neglects",
-                                 kind="published"))
+                                 kind="published", source=REFERENCE))
     return rows

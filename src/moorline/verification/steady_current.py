@@ -41,6 +41,7 @@ from ..solvers.statics import solve_statics
 from .core import Row
 
 CASE = "steady-current"
+REFERENCE = "shooting solution of the elastic cable equations with current drag (scipy)"
 A, B = np.array([0.0, 0.0, -60.0]), np.array([70.0, 0.0, 0.0])
 LENGTH, DIAMETER, MASS, EA, CD, CT = 100.0, 0.05, 3.0, 1.0e7, 1.2, 0.01
 RHO, G, U = 1025.0, 9.81, 1.0
@@ -109,11 +110,14 @@ def run() -> list[Row]:
     return [
         Row(CASE, "largest node distance from the shooting solution", 0.0, error,
             1e-3 * LENGTH, relative=False, unit="m",
-            note=f"40 elements; motion over the last 10 s {motion:.1e} m (steady)", kind="exact"),
-        Row(CASE, "tension at A", T_a, float(np.linalg.norm(end[0])), 5e-3, unit="N", kind="exact"),
-        Row(CASE, "tension at B", T_b, float(np.linalg.norm(end[1])), 5e-3, unit="N", kind="exact"),
+            note=f"40 elements; motion over the last 10 s {motion:.1e} m (steady)",
+            kind="exact", source=REFERENCE),
+        Row(CASE, "tension at A", T_a, float(np.linalg.norm(end[0])), 5e-3, unit="N",
+            kind="exact", source=REFERENCE),
+        Row(CASE, "tension at B", T_b, float(np.linalg.norm(end[1])), 5e-3, unit="N",
+            kind="exact", source=REFERENCE),
         Row(CASE, "steady: largest node motion over the last 10 s", 0.0, motion, 1e-4,
-            relative=False, unit="m", kind="exact"),
+            relative=False, unit="m", kind="exact", source=REFERENCE),
         *static_rows(system, s, xz, T_a, result),
     ]
 
@@ -129,7 +133,7 @@ def static_rows(system, s, xz, T_a, dynamic) -> list[Row]:
         Row(CASE, "statics with current drag: largest node distance from the shooting "
             "solution", 0.0, error, 1e-3 * LENGTH, relative=False, unit="m",
             note=f"{static.iterations} Newton iterations; from the steady dynamic state: "
-                 f"{to_dynamic:.1e} m", kind="exact"),
+                 f"{to_dynamic:.1e} m", kind="exact", source=REFERENCE),
         Row(CASE, "statics with current drag: tension at A", T_a,
-            float(np.linalg.norm(end)), 5e-3, unit="N", kind="exact"),
+            float(np.linalg.norm(end)), 5e-3, unit="N", kind="exact", source=REFERENCE),
     ]

@@ -26,6 +26,7 @@ from ..solvers.statics import solve_statics
 from .core import Row
 
 CASE = "tcheou-t1"
+REFERENCE = "closed-form elastic catenary, Tcheou (1997) eqs. 3.25, 3.27"
 H, V, LENGTH, E, AREA, RHO_WATER, G = 4000.0, 8000.0, 600.0, 1.0e9, 2.0e-4, 1000.0, 9.81
 MATERIALS = {"steel": 7000.0, "synthetic": 2000.0}
 SETTINGS = StaticsSettings(method="newton", tolerance=1e-10, max_iterations=100)
@@ -66,15 +67,19 @@ def run() -> list[Row]:
             note = f"{result.iterations} Newton iterations"
             tol = {5: 5e-3, 10: 1.5e-3, 150: 1e-5}[n]  # O(h^2): ~4x per halving
             rows.append(Row(CASE, f"{name}: top x, {n} elements", X, top[0], tol, unit="m",
-                            note=note, kind="exact"))
+                            note=note, kind="exact",
+                            source=REFERENCE))
             rows.append(Row(CASE, f"{name}: top z, {n} elements", Z, top[1], tol, unit="m",
-                            note=note, kind="exact"))
+                            note=note, kind="exact",
+                            source=REFERENCE))
         order = math.log2(errors[5] / errors[10])
         rows.append(Row(CASE, f"{name}: convergence order, 5 -> 10 elements", 2.0, order, 0.15,
                         relative=False, note=f"errors {errors[5]:.3g} m, {errors[10]:.3g} m, "
-                                              f"{errors[150]:.3g} m (150 el.)", kind="exact"))
+                                              f"{errors[150]:.3g} m (150 el.)", kind="exact",
+                        source="2-node elements with lumped weight: second order"))
         sol = solve_catenary(X, Z, LENGTH, E * AREA, w, seabed_contact=False)
         anchor = float(np.linalg.norm(result.end_force("line", "a")))
         rows.append(Row(CASE, f"{name}: anchor tension, 150 elements (eq. 3.25)",
-                        sol.tension_a, anchor, 1e-4, unit="N", kind="exact"))
+                        sol.tension_a, anchor, 1e-4, unit="N", kind="exact",
+                        source=REFERENCE))
     return rows

@@ -31,6 +31,7 @@ from .core import Row
 from .references import G_FT, tuah_ex2_reference
 
 CASE = "tuah-ex2"
+REFERENCE = "two-segment elastic catenary with a point load, solved independently (references)"
 AREA, E, RHO_CABLE, RHO_WATER, LOAD = 0.0218, 8.12e6, 3.35, 2.0, 900.0
 SPAN = math.hypot(1200.0, 500.0)
 
@@ -71,17 +72,21 @@ def run() -> list[Row]:
         junction = result.point_position("J")
         note = f"{result.iterations} iterations, success={result.success}"
         rows.append(Row(CASE, f"junction x [{label}]", exact.junction[0], junction[0],
-                        tol * SPAN, relative=False, unit="ft", note=note, kind="exact"))
+                        tol * SPAN, relative=False, unit="ft", note=note, kind="exact",
+                        source=REFERENCE))
         rows.append(Row(CASE, f"junction z [{label}]", exact.junction[1], junction[2],
-                        tol * SPAN, relative=False, unit="ft", note=note, kind="exact"))
+                        tol * SPAN, relative=False, unit="ft", note=note, kind="exact",
+                        source=REFERENCE))
         H = result.end_force("lower", "a")[0]
         rows.append(Row(CASE, f"horizontal tension H [{label}]", exact.H, H, tol_h,
-                        unit="lbf", kind="exact"))
+                        unit="lbf", kind="exact",
+                        source=REFERENCE))
     shift = float(np.hypot(*(np.asarray(exact.junction) - np.asarray(rigid.junction))))
     rows.append(Row(CASE, "junction shift by extensibility, 60 el. vs inextensible", shift,
                     float(np.hypot(fine.point_position("J")[0] - rigid.junction[0],
                                    fine.point_position("J")[2] - rigid.junction[1])),
                     0.1, relative=False, unit="ft",
                     note=f"inextensible junction ({rigid.junction[0]:.2f}, "
-                         f"{rigid.junction[1]:.2f}) ft, H = {rigid.H:.1f} lbf", kind="exact"))
+                         f"{rigid.junction[1]:.2f}) ft, H = {rigid.H:.1f} lbf", kind="exact",
+                         source=REFERENCE))
     return rows

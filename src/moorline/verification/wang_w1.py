@@ -93,6 +93,8 @@ from ..solvers.statics import solve_statics
 from .core import Row
 
 CASE = "wang-w1"
+PAPER = "Wang, Er & Iu: the static draft h_s = 0.896 m"
+EXACT = "closed-form elastic catenary of each line + eq. (1)"
 PAPER_DRAFT = 0.896  # m, the paper's h_s from eq. (1)
 
 # Table 2 (body) and Table 1 (lines); sea water
@@ -414,25 +416,26 @@ def run() -> list[Row]:
     return [
         Row(CASE, "draft h_s, paper's parabolic formulas + eq. (1)", PAPER_DRAFT, paper, 5e-3,
             unit="m", note=f"{geometry}; submerged weight {WEIGHT:.1f} N/m (dry weight: "
-            f"{parabolic_draft(weight=DRY_WEIGHT):.3f} m)", kind="published"),
+            f"{parabolic_draft(weight=DRY_WEIGHT):.3f} m)", kind="published", source=PAPER),
         Row(CASE, "draft h_s, exact elastic catenary + eq. (1)", PAPER_DRAFT, exact, 5e-3,
             unit="m", note=f"L = {line.length:.4f} m, chord {chord:.4f} m, "
-            f"V_top = {line.V_b:.0f} N", kind="published"),
+            f"V_top = {line.V_b:.0f} N", kind="published", source=PAPER),
         Row(CASE, f"draft h_s, finite elements ({SEGMENTS} per line), coupled statics",
             PAPER_DRAFT, fe, 5e-3, unit="m",
-            note=f"fixed point draft -> anchors, L -> statics: {solves} solves", kind="published"),
+            note=f"fixed point draft -> anchors, L -> statics: {solves} solves",
+            kind="published", source=PAPER),
         Row(CASE, f"draft, finite elements ({SEGMENTS}) vs exact catenary", exact, fe, 3e-3,
             unit="m", note=f"a-priori O(h^2) estimate {d_draft / exact:+.2%}; "
-            f"{2 * SEGMENTS} elements: {(fine - exact) / exact:+.3%}", kind="exact"),
+            f"{2 * SEGMENTS} elements: {(fine - exact) / exact:+.3%}", kind="exact", source=EXACT),
         Row(CASE, "draft error of the elements / a-priori estimate", 1.0,
             (fe - exact) / d_draft, 0.2,
             note="inscribed-polygon slack L (h kappa)^2/24 through the line compliance",
-            kind="exact"),
+            kind="exact", source=EXACT),
         Row(CASE, f"observed order of the draft error ({SEGMENTS} -> {2 * SEGMENTS} elements)",
-            2.0, order, 0.2, relative=False, kind="exact"),
+            2.0, order, 0.2, relative=False, kind="exact", source=EXACT),
         Row(CASE, "fairlead tension, finite elements vs exact catenary (same geometry)",
             same.tension_b, t_fe, 6e-3, unit="N",
-            note=f"a-priori estimate {rel_t:+.2%}", kind="exact"),
+            note=f"a-priori estimate {rel_t:+.2%}", kind="exact", source=EXACT),
     ]
 
 
