@@ -1,0 +1,60 @@
+"""Streaming benchmark: the cost of writing every step's record to NetCDF as the run goes.
+
+The OC3 three-line dynamics (``cases/oc3_dynamics.yaml``: its mesh and time step, 300 s) is run
+twice in the same process: without a writer and with a :class:`~moorline.io.stream.HistoryWriter`
+receiving one record per time step (the densest output a run can ask for). Prints both wall
+times and the streaming cost as a fraction of the stepping (target: at most 5 %). Each run is
+repeated and the fastest kept, so a busy machine inflates neither. Run with ``make bench``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import tempfile
+import time
+from pathlib import Path
+
+from moorline.io.case import load_case
+from moorline.io.stream import HistoryWriter
+from moorline.mesh import discretize
+from moorline.solvers.dynamics import simulate
+from moorline.solvers.statics import solve_statics
+
+CASE = Path(__file__).resolve().parents[1] / "cases" / "oc3_dynamics.yaml"
+REPEAT = 3
+
+
+def main() -> None:
+    system = load_case(CASE)
+    settings = system.first("dynamics")
+    settings = dataclasses.replace(settings, duration=300.0)
+    static = solve_statics(system)
+    mesh = discretize(system)
+    simulate(system, settings, static, output_every=settings.dt)  # compile once
+
+    def bare() -> float:
+        start = time.perf_counter()
+        simulate(system, settings, static, output_every=settings.dt)
+        return time.perf_counter() - start
+
+    def streamed() -> tuple[float, float]:
+        with tempfile.TemporaryDirectory() as tmp:
+            start = time.perf_counter()
+            with HistoryWriter(Path(tmp) / "h.nc", mesh, {"case": system.name,
+                                                           "units": system.units}) as writer:
+                opened = time.perf_counter()
+                simulate(system, settings, static, output_every=settings.dt, writer=writer)
+            return time.perf_counter() - start, opened - start
+
+    t_bare = min(bare() for _ in range(REPEAT))
+    t_stream, t_open = min(streamed() for _ in range(REPEAT))
+    steps = round(settings.duration / settings.dt)
+    print(f"streaming: OC3 three lines, {settings.duration:g} s at dt {settings.dt:g} s, "
+          f"{steps} records (one per step)")
+    print(f"  stepping alone {t_bare:.3f} s, with the stream {t_stream:.3f} s: streaming "
+          f"costs {100 * (t_stream - t_bare) / t_bare:+.1f} % of the stepping (target <= 5 %), "
+          f"of which {1e3 * t_open:.0f} ms creating the file")
+
+
+if __name__ == "__main__":
+    main()
