@@ -107,10 +107,10 @@ def test_us_units_are_si_results_converted():
     """The same cylinder in US units and in SI (same mesh): every block scales as
     mass * length^(r_i + r_j) (added mass, damping, stiffness) or mass * length^r_i
     (exciting force per unit amplitude)."""
-    from moorline.io.units import UREG
+    from moorline.io.units import registry
 
-    ft = float(UREG.Quantity(1.0, "ft").to("m").magnitude)
-    slug = float(UREG.Quantity(1.0, "slug").to("kg").magnitude)
+    ft = float(registry().Quantity(1.0, "ft").to("m").magnitude)
+    slug = float(registry().Quantity(1.0, "slug").to("kg").magnitude)
     us = body_coefficients("cylinder", DISC, DISC_DRAFT, [2.0], RHO_US, G_US, units="US",
                            panel_size=1.0)
     si = body_coefficients("cylinder", {k: v * ft for k, v in DISC.items()}, DISC_DRAFT * ft,

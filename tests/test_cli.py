@@ -34,11 +34,11 @@ def _invoke(*args: str) -> Result:
 
 @pytest.fixture(scope="module")
 def statics_run(tmp_path_factory: pytest.TempPathFactory) -> tuple[Result, Path]:
-    """``moorline statics cases/oc3_line.yaml --json`` once for the module."""
+    """``moorline statics cases/oc3_line.yaml --json --plots`` once for the module."""
     if not OC3.is_file():
         pytest.skip("cases/oc3_line.yaml not present")
     out = tmp_path_factory.mktemp("out")
-    return _invoke("statics", OC3, "--out", out, "--json"), out
+    return _invoke("statics", OC3, "--out", out, "--json", "--plots"), out
 
 
 @needs_oc3
@@ -104,6 +104,21 @@ def test_run_writes_statics_outputs_and_prints_tables(tmp_path: Path) -> None:
     summary = json.loads((tmp_path / "oc3-line" / "summary.json").read_text())
     assert summary["converged"] is True
     assert [a["kind"] for a in summary["analyses"]] == ["statics"]
+
+
+@needs_oc3
+def test_plots_only_when_asked_for_with_json(tmp_path: Path) -> None:
+    """``statics --json`` writes the numbers only (no plots unless --plots); ``run
+    --no-plots`` too; plain ``statics`` draws them."""
+    pngs = ("configuration_xz.png", "configuration_3d.png")
+    for args, drawn in ((("statics", "--json"), False), (("run", "--no-plots"), False),
+                        (("statics",), True)):
+        out = tmp_path / "-".join(args)
+        result = _invoke(*args[:1], OC3, "--out", out, "--quiet", *args[1:])
+        assert result.exit_code == 0, result.stderr
+        folder = out / "oc3-line"
+        assert (folder / "results.nc").is_file() and (folder / "summary.json").is_file()
+        assert all((folder / p).is_file() == drawn for p in pngs), (args, drawn)
 
 
 @needs_oc3

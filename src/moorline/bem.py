@@ -108,10 +108,12 @@ def _si_factors(units: str) -> tuple[float, float]:
         return 1.0, 1.0
     if units != "US":
         raise MoorlineError(f"unknown unit system {units!r} (SI or US)")
-    from .io.units import UREG
+    from .io.units import registry
 
-    return (float(UREG.Quantity(1.0, "kg").to("slug").magnitude),
-            float(UREG.Quantity(1.0, "m").to("ft").magnitude))
+    ureg = registry()
+
+    return (float(ureg.Quantity(1.0, "kg").to("slug").magnitude),
+            float(ureg.Quantity(1.0, "m").to("ft").magnitude))
 
 
 def _dimension_values(shape: str, dimensions: Mapping[str, float] | Sequence[float]

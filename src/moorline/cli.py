@@ -168,21 +168,30 @@ def cli() -> None:
     """moorline: nonlinear statics and dynamics of ocean mooring cables."""
 
 
+def _plots_option(func: F) -> F:
+    return click.option("--plots/--no-plots", "plots", default=None,
+                        help="Draw the plots (default: yes, except with --json for statics); "
+                             "--no-plots writes the numbers only.")(func)
+
+
 @cli.command()
 @click.argument("case", type=click.Path(dir_okay=False, path_type=Path))
 @_out_option
 @_json_option
+@_plots_option
 @_common_options
-def statics(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> None:
+def statics(case: Path, out: Path, as_json: bool, plots: bool | None, quiet: bool,
+            verbose: bool) -> None:
     """Solve the static equilibrium of CASE (the method of its first statics analysis).
 
     Writes DIR/<case>/results.nc (group statics), summary.json, summary.txt,
-    configuration_xz.png and configuration_3d.png.
+    configuration_xz.png and configuration_3d.png (the plots not with --json unless --plots
+    is given, nor with --no-plots).
     """
     _configure_logging(verbose)
     system = _load(case)
     settings = system.first("statics")
-    context = _context(system, case, out, quiet)
+    context = _context(system, case, out, quiet, plots=not as_json if plots is None else plots)
     _run_analyses(context, [settings], ["statics"])
     _finish(case, context, context.outcomes[0].summary, as_json)
 
@@ -191,8 +200,10 @@ def statics(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) ->
 @click.argument("case", type=click.Path(dir_okay=False, path_type=Path))
 @_out_option
 @_json_option
+@_plots_option
 @_common_options
-def run(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> None:
+def run(case: Path, out: Path, as_json: bool, plots: bool | None, quiet: bool,
+        verbose: bool) -> None:
     """Run every analysis CASE lists, in order, writing DIR/<case>/.
 
     One results file, results.nc, holds a group per analysis (statics, dynamics; numbered
@@ -208,7 +219,7 @@ def run(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> Non
     if unknown:
         raise CaseError(f"analysis kind {', '.join(map(repr, unknown))} is not supported by "
                         f"this version; supported: {', '.join(KINDS)}", str(case), "analyses")
-    context = _context(system, case, out, quiet)
+    context = _context(system, case, out, quiet, plots=plots is not False)
     _run_analyses(context, analyses, kinds)
     outcomes = context.outcomes
     summary = {"case": system.name,
@@ -218,9 +229,9 @@ def run(case: Path, out: Path, as_json: bool, quiet: bool, verbose: bool) -> Non
     _finish(case, context, summary, as_json)
 
 
-def _context(system: Any, case: Path, out: Path, quiet: bool) -> RunContext:
+def _context(system: Any, case: Path, out: Path, quiet: bool, plots: bool = True) -> RunContext:
     directory = out / _safe_name(system.name, case.stem)
-    return RunContext(system, directory, directory / RESULTS_FILE, quiet)
+    return RunContext(system, directory, directory / RESULTS_FILE, quiet, plots=plots)
 
 
 def _finish(case: Path, context: RunContext, summary: dict[str, Any], as_json: bool) -> None:

@@ -22,7 +22,6 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from enum import StrEnum
 from typing import Any
 
 import numpy as np
@@ -35,17 +34,6 @@ FloatArray = NDArray[np.float64]
 
 #: Labels of the six rigid-body degrees of freedom, in the order of every body array.
 BODY_DOFS: tuple[str, ...] = ("surge", "sway", "heave", "roll", "pitch", "yaw")
-
-
-class Status(StrEnum):
-    """How an analysis ended (the ``status`` of a result and of its group)."""
-
-    CONVERGED = "converged"
-    COMPLETED = "completed"
-    FAILED = "failed"
-    INTERRUPTED = "interrupted"
-    TERMINATED = "terminated"
-    RUNNING = "running"
 
 
 _BODY = {

@@ -9,8 +9,9 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from .datasets import BODY_DOFS, Status, build_dataset, dynamics_dataset, group_attrs
+from .datasets import BODY_DOFS, build_dataset, dynamics_dataset, group_attrs
 from .mesh import Mesh
+from .status import Status
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]

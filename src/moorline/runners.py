@@ -22,9 +22,9 @@ from rich.markup import escape
 from . import __version__
 from .analyses import KINDS
 from .console import _status
-from .datasets import Status
 from .errors import CaseError, ConvergenceError, MoorlineError
 from .signals import Terminated
+from .status import Status
 
 logger = logging.getLogger(__name__)
 
@@ -76,6 +76,9 @@ class RunContext:
     time
         Simulated time reached by the running time-domain analysis (for the interrupt
         message), ``None`` outside one.
+    plots
+        Whether the analyses draw their plots (``--no-plots``: numbers only, and no
+        matplotlib import).
     """
 
     system: Any
@@ -84,6 +87,7 @@ class RunContext:
     quiet: bool
     outcomes: list[Outcome] = field(default_factory=list)
     time: float | None = None
+    plots: bool = True
 
     def latest(self, kind: str) -> Outcome | None:
         """The most recent outcome of an analysis kind, if any."""
@@ -160,8 +164,11 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
         logger.info("dynamics of %s failed: %s", system.name, message)
     ds = read_group(context.results, label)
     summary = history_summary(ds, settings, success, message, counters, status)
-    with _status("plotting ...", context.quiet):
-        files = KINDS["dynamics"].plot_group(ds, context.directory, _prefix(label, "dynamics"))
+    files: list[Path] = []
+    if context.plots:
+        with _status("plotting ...", context.quiet):
+            files = KINDS["dynamics"].plot_group(ds, context.directory,
+                                                 _prefix(label, "dynamics"))
     return Outcome("dynamics", success, message, summary, files,
                    result if success else None)
 
@@ -282,8 +289,10 @@ def _solve_and_write(kind: str, what: str, solve: Callable[[], Any], context: Ru
         update("writing results ...")
         ds = result.to_xarray()
         write_group(ds, context.results, label)
-        update("plotting ...")
-        files = entry.plot_group(ds, context.directory, _prefix(label, kind))
+        files: list[Path] = []
+        if context.plots:
+            update("plotting ...")
+            files = entry.plot_group(ds, context.directory, _prefix(label, kind))
         summary = entry.summarize(result)
     return Outcome(kind, bool(result.success), result.message, summary, files, result)
 

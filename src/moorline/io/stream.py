@@ -26,9 +26,10 @@ import netCDF4
 import numpy as np
 from numpy.typing import NDArray
 
-from ..datasets import Status, dynamics_dataset, record_variables
+from ..datasets import dynamics_dataset, record_variables
 from ..mesh import Mesh
 from ..signals import Terminated, signals_deferred
+from ..status import Status
 
 FloatArray = NDArray[np.float64]
 

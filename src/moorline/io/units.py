@@ -5,6 +5,10 @@ slug, s, lbf). Any scalar may instead be a string with its own unit (``"20 ft"``
 ``"384.243 MN"``, ``"3e6 Pa/m"``), which is converted to the case's system with pint. Angles
 are in degrees (``"1.5 rad"`` is converted).
 
+pint (about 0.6 s to import, 0.1-0.3 s to build its registry) is loaded only when a string
+with a unit is read or a default is converted to the US system: a case in plain SI numbers
+never imports it. The registry caches its parsed definitions (pint's ``cache_folder``).
+
 This module is the one place that knows, for every physical dimension a case-file field may
 have, its unit in each system (:data:`DIMENSIONS`), and the defaults of dimensional
 quantities, stated once as physical values (:data:`DEFAULTS`). Which field has which dimension
@@ -19,16 +23,18 @@ import math
 import re
 import tokenize
 from dataclasses import dataclass
-from typing import Any, Literal
+from functools import cache
+from typing import TYPE_CHECKING, Any, Literal
 
-import pint
+if TYPE_CHECKING:
+    import pint
 
 __all__ = [
     "DEFAULTS",
     "DIMENSIONS",
     "MAX_EXPONENT",
     "MAX_TEXT",
-    "UREG",
+    "registry",
     "Dimension",
     "UnitParseError",
     "default_value",
@@ -38,9 +44,20 @@ __all__ = [
 
 System = Literal["SI", "US"]
 
-UREG = pint.UnitRegistry()
-"""The unit registry of moorline (pint's defaults plus ``psf``; ``psi`` is built in)."""
-UREG.define("pound_force_per_square_foot = force_pound / foot ** 2 = psf")
+
+
+@cache
+def registry() -> pint.UnitRegistry:
+    """The unit registry of moorline (pint's defaults plus ``psf``; ``psi`` is built in), built
+    at first use, its definitions cached on disk where the user cache directory is writable."""
+    import pint
+
+    try:
+        ureg = pint.UnitRegistry(cache_folder=":auto:")
+    except Exception:  # noqa: BLE001 - an unwritable or corrupt cache: build without it
+        ureg = pint.UnitRegistry()
+    ureg.define("pound_force_per_square_foot = force_pound / foot ** 2 = psf")
+    return ureg
 
 
 @dataclass(frozen=True)
@@ -90,17 +107,18 @@ DIMENSIONS: dict[str, Dimension] = {
 """Every dimension a case-file field may have, with its unit in each system."""
 
 DEFAULTS: dict[str, tuple[float, str]] = {
-    "water_density": (1025.0, "kg/m**3"),
-    "gravity": (9.80665, "m/s**2"),
-    "seabed_stiffness": (3.0e6, "Pa/m"),
-    "seabed_damping": (3.0e5, "Pa*s/m"),
-    "relaxation_damping": (1.0e5, "N*s/m"),
-    "pseudo_dt": (1.0, "s"),
-    "output_every": (0.1, "s"),
-    "slip_velocity": (0.01, "m/s"),
-    "viscosity": (1.0e-6, "m**2/s"),
+    "water_density": (1025.0, "mass/length^3"),
+    "gravity": (9.80665, "acceleration"),
+    "seabed_stiffness": (3.0e6, "force/length^3"),
+    "seabed_damping": (3.0e5, "force*time/length^3"),
+    "relaxation_damping": (1.0e5, "force*time/length"),
+    "pseudo_dt": (1.0, "time"),
+    "output_every": (0.1, "time"),
+    "slip_velocity": (0.01, "velocity"),
+    "viscosity": (1.0e-6, "area/time"),
 }
-"""Defaults of dimensional quantities as physical values; converted to the case's system."""
+"""Defaults of dimensional quantities: (value in the SI unit of the dimension, key of
+:data:`DIMENSIONS`); converted to the case's system."""
 
 _NUMBER_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
 
@@ -127,12 +145,12 @@ def unit_of(dimension: str, system: System) -> str:
 
 def default_value(key: str, system: System) -> float:
     """Default of a dimensional quantity (a key of :data:`DEFAULTS`) in ``system``'s units."""
-    value, unit = DEFAULTS[key]
-    quantity = UREG.Quantity(value, unit)
-    dimension = _dimension_named(quantity)
-    if dimension is None:  # pragma: no cover - the table above is consistent
-        raise KeyError(f"default {key!r} has no dimension in DIMENSIONS")
-    return float(quantity.to(unit_of(dimension, system)).magnitude)
+    value, dimension = DEFAULTS[key]
+    if system == "SI":
+        return value
+    ureg = registry()
+    return float(ureg.Quantity(value, unit_of(dimension, "SI")).to(unit_of(dimension, system))
+                 .magnitude)
 
 
 def _dimension_named(quantity: pint.Quantity) -> str | None:
@@ -140,7 +158,7 @@ def _dimension_named(quantity: pint.Quantity) -> str | None:
     for key, dim in DIMENSIONS.items():
         if key == "angle":
             continue
-        if UREG.Quantity(1.0, dim.si).dimensionality == quantity.dimensionality:
+        if registry().Quantity(1.0, dim.si).dimensionality == quantity.dimensionality:
             return key
     return None
 
@@ -255,8 +273,11 @@ def _parse_text(text: str, dimension: str, system: System) -> float:
     problem = _power_problem(text)
     if problem is not None:
         raise UnitParseError(f"cannot read {_short(text)!r}: {problem}")
+    import pint
+
+    ureg = registry()
     try:
-        quantity = UREG.Quantity(text)
+        quantity = ureg.Quantity(text)
     except pint.UndefinedUnitError as exc:
         names = ", ".join(repr(n) for n in exc.unit_names) or "?"
         raise UnitParseError(f"unknown unit {names} in {text!r}") from None
@@ -265,7 +286,7 @@ def _parse_text(text: str, dimension: str, system: System) -> float:
     if not isinstance(quantity, pint.Quantity):  # pragma: no cover - pint returns Quantity
         return float(quantity)
     expected = DIMENSIONS[dimension]
-    target = UREG.Quantity(1.0, expected.unit(system))
+    target = ureg.Quantity(1.0, expected.unit(system))
     if quantity.dimensionality != target.dimensionality:
         raise UnitParseError(
             f"expected {_a(expected.name)}, got {text!r} ({_describe(quantity)})"
