@@ -42,3 +42,24 @@ def test_a_unit_string_still_converts() -> None:
     assert to_system("20 ft", "length", "SI") == pytest.approx(6.096, rel=1e-12)
     assert default_value("gravity", "US") == pytest.approx(9.80665 / 0.3048, rel=1e-12)
     assert default_value("water_density", "SI") == 1025.0
+
+
+def test_compiled_kernels_counts_cache_misses(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Reads numba's dispatcher statistics: misses are compilations in this process."""
+    import types
+    from collections import Counter
+
+    from moorline import kernel_cache
+
+    def dispatcher(misses: int, hits: int) -> types.SimpleNamespace:
+        stats = types.SimpleNamespace(cache_path="/cache", cache_misses=Counter({"sig": misses}),
+                                      cache_hits=Counter({"sig": hits}))
+        return types.SimpleNamespace(stats=stats, py_func=lambda: None)
+
+    fake = types.ModuleType("fake_kernels")
+    fake.a, fake.b, fake.other = dispatcher(1, 0), dispatcher(0, 2), 3
+    monkeypatch.setattr(kernel_cache, "KERNEL_MODULES", ("fake_kernels", "not_loaded"))
+    monkeypatch.setitem(sys.modules, "fake_kernels", fake)
+    assert kernel_cache.compiled_kernels() == (1, "/cache")
+    fake.a = dispatcher(0, 1)
+    assert kernel_cache.compiled_kernels()[0] == 0

@@ -10,6 +10,7 @@ and exits 1). :data:`moorline.analyses.KINDS` names each kind's runner.
 from __future__ import annotations
 
 import logging
+import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -21,7 +22,7 @@ from rich.markup import escape
 
 from . import __version__
 from .analyses import KINDS
-from .console import _status
+from .console import _note, _status
 from .errors import CaseError, ConvergenceError, MoorlineError
 from .signals import Terminated
 from .status import Status
@@ -142,11 +143,15 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     initial = statics.result if statics is not None and statics.success else None
     mesh = initial.mesh if initial is not None else discretize(system)
     result, counters = None, {}
+    first_step: list[float] = []
+    started = time.monotonic()
     try:
         with _history_writer(context, mesh, settings, label) as writer, \
                 _progress(f"{label} of {system.name}", settings.duration,
                           context.quiet) as advance:
             def progress(t: float) -> None:
+                if not first_step:
+                    first_step.append(time.monotonic() - started)
                 context.time = t
                 advance(t)
 
@@ -155,6 +160,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
             result = simulate(system, settings, initial=initial, writer=writer,
                               progress=progress)
             writer.close(result.dataset_attrs())
+        _note_compilation(first_step[0] if first_step else time.monotonic() - started,
+                          context.quiet)
         success, message, status = result.success, result.message, result.status
         counters = {k: int(v) for k, v in result.counters.items()}
     except ConvergenceError as exc:
@@ -171,6 +178,17 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
                                                  _prefix(label, "dynamics"))
     return Outcome("dynamics", success, message, summary, files,
                    result if success else None)
+
+
+def _note_compilation(seconds: float, quiet: bool) -> None:
+    """Say once that the numba kernels were compiled (the first run on this machine), how
+    long it took and where they are cached."""
+    from .kernel_cache import compiled_kernels
+
+    compiled, where = compiled_kernels()
+    if compiled:
+        _note(f"compiled {compiled} numba kernels in {seconds:.1f} s (first run only: cached "
+              f"in {where})", quiet)
 
 
 @contextmanager
@@ -210,8 +228,17 @@ def _progress(description: str, total: float, quiet: bool) -> Iterator[Callable[
                TextColumn("t = {task.completed:.2f} / {task.total:g} s"),
                TimeElapsedColumn(), TimeRemainingColumn())
     with Progress(*columns, console=Console(stderr=True)) as bar:
-        task = bar.add_task(escape(description), total=total)
-        yield lambda t: bar.update(task, completed=t)
+        task = bar.add_task(escape(f"{description} (starting: the first run compiles the "
+                                   "kernels)"), total=total)
+
+        def advance(t: float) -> None:
+            if t > 0 and not started:
+                started.append(True)
+                bar.update(task, description=escape(description))
+            bar.update(task, completed=t)
+
+        started: list[bool] = []
+        yield advance
 
 
 def _statics_of(context: RunContext) -> Any:
