@@ -220,7 +220,8 @@ def test_purely_incremental_drifts_residual_feedback_does_not():
     With the source's own law as the material, pure incrementing is algebraically the same as
     residual feedback in this linear scalar problem (T_new = T_old + dT_given exactly): the
     drift needs a mismatch between the linearized predictor and the stress update (in Tuah's
-    finite element, the neglected quadratic term of the strain increment, eq. 2.2.b.5-6)."""
+    element, the initial-stress term of eq. 2.2.b.8 on the axial increment, and to a lesser
+    extent the dropped quadratic term of eq. 2.2.b.5: tests/test_tuah_ex3.py)."""
     times = _ramp_then_hold_grid(0.2, 0.2, 3.0)
     exact = ref.creep_strain(times, T1, T_RAMP, **EX3)
     applied = ref.ramp_hold_force(times, T1, T_RAMP)
