@@ -295,12 +295,16 @@ def test_vectorized_over_1e5_elements_equals_single_element_calls():
     new = s["strain_old"] + RNG.uniform(-0.02, 0.02, n)
     kw = {k: s[k] for k in ("dt", "EA", "EA1", "tau")}
     T, Q, k = sls_update_exponential(new, s["strain_old"], Q_old, **kw, slack_ratio=1e-6)
-    sls_update_incremental(new, s["strain_old"], Q_old, **kw)
+    T_old = s["EA"] * s["strain_old"] + Q_old
+    T_inc, k_inc = sls_update_incremental(new, s["strain_old"], T_old, **kw)
     assert 0 < np.count_nonzero(T < 0.0) < n  # both branches exercised
     for i in RNG.integers(0, n, 5):
-        one = sls_update_exponential(new[i], s["strain_old"][i], Q_old[i],
-                                     **{key: v[i] for key, v in kw.items()}, slack_ratio=1e-6)
+        one_kw = {key: v[i] for key, v in kw.items()}
+        one = sls_update_exponential(new[i], s["strain_old"][i], Q_old[i], **one_kw,
+                                     slack_ratio=1e-6)
         assert np.array_equal(np.array(one), np.array([T[i], Q[i], k[i]]))
+        inc = sls_update_incremental(new[i], s["strain_old"][i], T_old[i], **one_kw)
+        assert np.array_equal(np.array(inc), np.array([T_inc[i], k_inc[i]]))
 
 
 def test_elastic_limit_matches_axial_tension():
