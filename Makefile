@@ -5,6 +5,9 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
 COMPARE := $(VENV)/.compare
+# every optional extra (pyproject.toml): `make verify` runs the tests that need them, so none
+# of them may be skipped there
+EXTRAS := $(VENV)/.extras
 
 .PHONY: demo test verify bench lint clean
 
@@ -18,6 +21,11 @@ $(COMPARE): $(STAMP)
 	$(BIN)/python -m pip install --quiet -e ".[test,compare]"
 	touch $(COMPARE)
 
+$(EXTRAS): $(STAMP)
+	$(BIN)/python -m pip install --quiet -e ".[test,compare,bem,dask]"
+	$(BIN)/python -c "import capytaine, distributed, moordyn, moorpy"
+	touch $(EXTRAS)
+
 demo: $(STAMP)
 	$(BIN)/moorline run cases/oc3_line.yaml --out out
 	$(BIN)/moorline run cases/oc3_dynamics.yaml --out out
@@ -26,8 +34,10 @@ demo: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
-verify: $(COMPARE)
-	$(BIN)/python -m pytest -q -m "slow or not slow"
+# -rs lists every skipped test with its reason: with all extras installed only the case
+# files the compiled backend does not take (test_fast_newmark) may remain.
+verify: $(EXTRAS)
+	$(BIN)/python -m pytest -q -rs -m "slow or not slow"
 	$(BIN)/moorline verify
 
 # bench_dynamics.py caches MoorDyn's largest stable steps in benchmarks/.cache/ (delete it or
@@ -37,6 +47,7 @@ bench: $(COMPARE)
 	$(BIN)/python benchmarks/bench_statics_robustness.py
 	$(BIN)/python benchmarks/bench_frequency.py
 	$(BIN)/python benchmarks/bench_dynamics.py $(BENCH_ARGS)
+	$(BIN)/python benchmarks/bench_kernels.py $(BENCH_ARGS)
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks
