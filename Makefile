@@ -48,6 +48,7 @@ bench: $(COMPARE)
 	$(BIN)/python benchmarks/bench_frequency.py
 	$(BIN)/python benchmarks/bench_dynamics.py $(BENCH_ARGS)
 	$(BIN)/python benchmarks/bench_kernels.py $(BENCH_ARGS)
+	$(BIN)/python benchmarks/bench_stream.py
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks
