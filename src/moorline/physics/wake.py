@@ -27,8 +27,8 @@ The OCR prints ``C_L0`` unsquared; only ``C_L0^2`` is dimensionally consistent w
 direction, signed (Griffin et al. 1975). The source calls it "the transverse cable velocity
 magnitude"; read literally (``|U_T'|``) the forcing is rectified: it shifts ``C_L`` upwards
 and cannot synchronize the wake with the structure. The strumming solver offers both
-(:class:`moorline.model.StrummingSettings` ``transverse_velocity``); Tuah's
-Example 6 is reproduced by the literal reading (:mod:`moorline.verification.tuah_ex6`).
+(:class:`moorline.model.StrummingSettings` ``transverse_velocity``); the verification of
+Tuah's Examples 6 and 7 uses the signed one (:mod:`moorline.verification.tuah_ex6`).
 
 Free limit cycle (derivation, used by the tests). With ``E = C_L^2 + (C_L' / w_s)^2``::
 
