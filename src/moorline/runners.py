@@ -165,6 +165,9 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     ds = read_group(context.results, label)
     summary = history_summary(ds, settings, success, message, counters, status)
     summary["design"] = _design("dynamics", context, ds, summary)
+    if not success:
+        summary["design"]["warning"] = ("the run did not complete: the tensions are those of "
+                                        "the records written")
     files: list[Path] = []
     if context.plots:
         with _status("plotting ...", context.quiet):
@@ -303,6 +306,9 @@ def _solve_and_write(kind: str, what: str, solve: Callable[[], Any], context: Ru
         summary = entry.summarize(result)
         if kind in _DESIGN_KINDS:
             summary["design"] = _design(kind, context, result, summary)
+            if not result.success:
+                summary["design"]["warning"] = ("the analysis did not succeed: the tensions "
+                                                "are those of its last state")
     return Outcome(kind, bool(result.success), result.message, summary, files, result)
 
 

@@ -268,8 +268,9 @@ def _design_table(design: dict, units: str) -> list[RenderableType]:
              f"factors: {design.get('title', '')}, {design.get('clause', '')}"]
     if not design.get("verified", True):
         notes.append("(factors as commonly cited; not checked against the standard's text)")
-    if design.get("note"):
-        notes.append(str(design["note"]))
+    for key in ("note", "warning"):
+        if design.get(key):
+            notes.append(str(design[key]))
     return [table, Text("; ".join(notes))]
 
 
