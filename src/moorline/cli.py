@@ -664,3 +664,76 @@ def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
         raise CaseError(f"cannot be converted, the case would not load (not written): {exc}",
                         str(deck)) from None
     _note(f"wrote {target}", quiet)
+
+
+# ----------------------------------------------------------------------------- catalog
+
+
+@cli.command()
+@click.argument("name", required=False)
+@click.argument("diameter", required=False)
+@click.option("--units", "units", type=click.Choice(["SI", "US"]), default="SI",
+              show_default=True, help="Unit system of the printed properties.")
+@_json_option
+@_common_options
+def catalog(name: str | None, diameter: str | None, units: str, as_json: bool, quiet: bool,
+            verbose: bool) -> None:
+    """The line catalogue: its entries, or the properties of entry NAME at nominal DIAMETER.
+
+    DIAMETER is a number in mm or a number with a unit ("120 mm", "4.75 in"). The
+    properties are what a case's line type gets from
+    `{catalog: NAME, nominal_diameter: DIAMETER}`, each with its source (see
+    moorline/catalog/lines.yaml); EA_dynamic (fibre ropes) is stored, the solvers use EA.
+    Exit 2 for an unknown entry or a diameter outside its range.
+    """
+    _configure_logging(verbose)
+    from .catalog import PROPERTIES, CatalogError, families, in_units, line_properties
+    from .io.units import UnitParseError, to_system, unit_of
+    from .io.writers import jsonable
+
+    if name is None:
+        entries = families()
+        if as_json:
+            click.echo(json.dumps(jsonable(entries), indent=2, allow_nan=False))
+            return
+        table = Table(title="Line catalogue (moorline catalog NAME DIAMETER for properties)")
+        for column in ("entry", "grades", "nominal diameter [mm]", "description"):
+            table.add_column(column)
+        for family, entry in entries.items():
+            grades = ", ".join(f"{family}_{g.lower()}" for g in entry["grades"]) or family
+            low, high = entry["diameter_range_mm"]
+            table.add_row(escape(family), escape(grades), f"{low:g} to {high:g}",
+                          escape(entry["description"]))
+        _stdout().print(table)
+        return
+    if diameter is None:
+        _fail(f"catalog {name}: give a nominal diameter (e.g. moorline catalog {name} "
+              "'120 mm')", EXIT_BAD_INPUT)
+    try:
+        metres = (float(diameter) / 1e3 if re.fullmatch(r"\s*[-+]?[\d.]+([eE][-+]?\d+)?\s*",
+                                                        diameter)
+                  else to_system(diameter, "length", "SI"))
+        props = line_properties(name, metres)
+    except (CatalogError, UnitParseError, ValueError) as exc:
+        _fail(f"catalog {name} {diameter}: {exc}", EXIT_BAD_INPUT)
+    values = in_units(props.values, units)
+    if as_json:
+        click.echo(json.dumps(jsonable({
+            "catalog": props.name, "nominal_diameter_m": props.nominal_diameter,
+            "units": units, "values": values,
+            "units_of": {k: unit_of(PROPERTIES[k], units) for k in values},
+            "sources": props.sources, "verified": props.verified,
+            "mean_load_percent": props.mean_load_percent}), indent=2, allow_nan=False))
+        return
+    table = Table(title=escape(f"{props.name}, nominal diameter {props.nominal_diameter * 1e3:g}"
+                               f" mm ({units})"))
+    for column in ("key", "value", "unit", "source"):
+        table.add_column(column, justify="right" if column == "value" else "left")
+    for key, value in values.items():
+        unit = unit_of(PROPERTIES[key], units).replace("dimensionless", "-")
+        source = props.sources[key] + ("" if props.verified[key] else " [not verified]")
+        table.add_row(key, f"{value:.6g}", escape(unit), escape(source))
+    _stdout().print(table)
+    if props.mean_load_percent:
+        _note(f"EA_dynamic at a mean load of {props.mean_load_percent:g} % MBL; the solvers "
+              "use EA", quiet)

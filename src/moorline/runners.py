@@ -171,6 +171,10 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
         logger.info("dynamics of %s failed: %s", system.name, message)
     ds = read_group(context.results, label)
     summary = history_summary(ds, settings, success, message, counters, status)
+    summary["design"] = _design("dynamics", context, ds, summary)
+    if not success:
+        summary["design"]["warning"] = ("the run did not complete: the tensions are those of "
+                                        "the records written")
     files: list[Path] = []
     if context.plots:
         with _status("plotting ...", context.quiet):
@@ -196,6 +200,7 @@ def _history_writer(context: RunContext, mesh: Any, settings: Any,
                     label: str) -> Iterator[Any]:
     """A :class:`~moorline.io.stream.HistoryWriter` on group ``label`` of the results file."""
     from .datasets import group_attrs
+    from .design import line_attrs
     from .io.stream import HistoryWriter
     from .io.writers import add_analysis
 
@@ -203,7 +208,8 @@ def _history_writer(context: RunContext, mesh: Any, settings: Any,
     attrs = group_attrs("dynamics", case=system.name, units=system.units, success=False,
                         status=Status.RUNNING, message="", settings=settings,
                         extra={"complete": 0, "seabed_z": float(mesh.seabed_z),
-                               "output_every": float(max(system.output.every, settings.dt))})
+                               "output_every": float(max(system.output.every, settings.dt)),
+                               **line_attrs(system)})
     add_analysis(context.results, label)
     with HistoryWriter(context.results, mesh, attrs, group=label) as writer:
         yield writer
@@ -315,13 +321,55 @@ def _solve_and_write(kind: str, what: str, solve: Callable[[], Any], context: Ru
         logger.info("%s of %s: %s", kind, context.system.name, result.message)
         update("writing results ...")
         ds = result.to_xarray()
+        if kind in _DESIGN_KINDS:
+            from .design import line_attrs
+
+            ds.attrs.update(line_attrs(context.system))
         write_group(ds, context.results, label)
         files: list[Path] = []
         if context.plots:
             update("plotting ...")
             files = entry.plot_group(ds, context.directory, _prefix(label, kind))
         summary = entry.summarize(result)
+        if kind in _DESIGN_KINDS:
+            summary["design"] = _design(kind, context, result, summary)
+            if not result.success:
+                summary["design"]["warning"] = ("the analysis did not succeed: the tensions "
+                                                "are those of its last state")
     return Outcome(kind, bool(result.success), result.message, summary, files, result)
+
+
+_DESIGN_KINDS = ("statics", "dynamics", "stochastic")
+"""The analysis kinds whose summary has the design checks (:mod:`moorline.design`)."""
+
+
+def _design(kind: str, context: RunContext, result: Any, summary: dict[str, Any]) -> Any:
+    """The ``design`` block of a summary: the lines' largest tensions (from the statics
+    summary, the dynamics group ``result``, or the stochastic result about the run's statics)
+    checked against the case's standard."""
+    from .design import (
+        design_summary,
+        dynamics_extremes,
+        statics_extremes,
+        stochastic_extremes,
+    )
+
+    system = context.system
+    if kind == "statics":
+        return design_summary(system, kind, statics_extremes(summary),
+                              "largest tension of each line, its ends included")
+    if kind == "dynamics":
+        return design_summary(system, kind, dynamics_extremes(result),
+                              "largest tension of each line over the output records, its "
+                              "ends included; mean: the time mean there")
+    statics = _statics_of(context)
+    static = statics.tension if statics is not None else result.tension.mean(axis=0)
+    duration = system.design.storm_duration if system.design is not None else None
+    extremes = stochastic_extremes(result, static, duration)
+    return design_summary(system, kind, extremes,
+                          "static tension plus the most probable maximum of the stochastic "
+                          "tension over the storm, largest element of each line (end "
+                          "tensions are not computed)")
 
 
 def _labels(kinds: list[str]) -> list[str]:

@@ -23,6 +23,7 @@ from moorline.errors import CaseError
 from moorline.model import (
     Body,
     Current,
+    DesignSettings,
     Environment,
     Hydrostatics,
     Line,
@@ -45,6 +46,7 @@ from .limits import (
     analysis_memory,
     wave_components,
 )
+from .line_catalog import resolve_line_types
 from .schema import (
     MAX_MAGNITUDE,
     MIN_MAGNITUDE,
@@ -165,8 +167,9 @@ def _load(text: str, file: str, source: str | None) -> System:
     except ValidationError as exc:
         field, reason = describe_errors(exc)
         raise CaseError(reason, file=file, field=field) from None
+    line_types = resolve_line_types(spec.line_types, units, file)
     _cross_check(spec, file)
-    system = _build(spec, source)
+    system = _build(spec, source, line_types)
     logger.debug("loaded case %r from %s", system.name, file)
     return system
 
@@ -521,7 +524,7 @@ def _xyz(v: Sequence[float]) -> str:
 # spec -> model
 
 
-def _build(spec: CaseSpec, source: str | None) -> System:
+def _build(spec: CaseSpec, source: str | None, line_types: dict[str, LineType]) -> System:
     units = spec.units
 
     def default(value: float | None, key: str) -> float:
@@ -543,9 +546,6 @@ def _build(spec: CaseSpec, source: str | None) -> System:
         current=_current(env.current),
         waves=_waves(env.waves),
     )
-    line_types = {
-        name: LineType(name=name, **lt.model_dump()) for name, lt in spec.line_types.items()
-    }
     points = {
         name: Point(
             name=name,
@@ -581,6 +581,7 @@ def _build(spec: CaseSpec, source: str | None) -> System:
         analyses=analyses,
         output=OutputSettings(every=default(spec.output.every, "output_every")),
         source=source,
+        design=None if spec.design is None else DesignSettings(**spec.design.model_dump()),
     )
 
 

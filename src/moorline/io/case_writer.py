@@ -48,6 +48,8 @@ def system_to_dict(system: System) -> dict[str, Any]:
     out["lines"] = {n: _line(line) for n, line in system.lines.items()}
     out["analyses"] = [_analysis(a) for a in system.analyses]
     out["output"] = {"every": system.output.every}
+    if system.design is not None:
+        out["design"] = {k: v for k, v in asdict(system.design).items() if v is not None}
     return out
 
 
@@ -77,8 +79,9 @@ def write_case(system: System, path: str | Path, header: str = "") -> Path:
 def _line_type(lt: LineType) -> dict[str, Any]:
     data = asdict(lt)
     data.pop("name")
-    if data["displaced_area"] is None:
-        data.pop("displaced_area")
+    for key in ("displaced_area", "MBL", "EA_dynamic", "catalog", "nominal_diameter"):
+        if data[key] is None:
+            data.pop(key)
     return data
 
 

@@ -32,8 +32,8 @@ from ..analyses import KINDS
 from .units import UnitParseError, to_system
 
 __all__ = ["MAX_COUNT", "MAX_ITERATIONS", "MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec",
-           "CaseSpec", "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec", "LineSpec",
-           "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
+           "CaseSpec", "DesignSpec", "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec",
+           "LineSpec", "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
            "StochasticSpec", "StrummingSpec", "check_number", "describe_errors", "quantity"]
 
 MAX_MAGNITUDE = 1.0e30
@@ -254,11 +254,23 @@ class EnvironmentSpec(_Spec):
 
 
 class LineTypeSpec(_Spec):
-    """``line_types.<name>``: cross-section properties."""
+    """``line_types.<name>``: cross-section properties.
 
-    diameter: quantity("length", gt=0.0)
-    mass_per_length: quantity("mass/length", gt=0.0)
-    EA: quantity("force", gt=0.0)
+    ``catalog`` and ``nominal_diameter`` take ``diameter``, ``mass_per_length``, ``EA``,
+    ``EA_dynamic``, ``MBL`` and the hydrodynamic coefficients from the line catalogue
+    (:mod:`moorline.catalog`); a key given here overrides the catalogue's value. Without a
+    catalogue ``diameter``, ``mass_per_length`` and ``EA`` are required (checked by
+    :mod:`moorline.io.case`). ``MBL`` (minimum breaking load) enables the design checks;
+    ``EA_dynamic`` (fibre ropes) is stored, the solvers use ``EA``.
+    """
+
+    catalog: str | None = None
+    nominal_diameter: quantity("length", gt=0.0) | None = None
+    diameter: quantity("length", gt=0.0) | None = None
+    mass_per_length: quantity("mass/length", gt=0.0) | None = None
+    EA: quantity("force", gt=0.0) | None = None
+    EA_dynamic: quantity("force", gt=0.0) | None = None
+    MBL: quantity("force", gt=0.0) | None = None
     displaced_area: quantity("area", gt=0.0) | None = None
     Cd: Coefficient = 1.2
     Ca: Coefficient = 1.0
@@ -514,6 +526,19 @@ AnalysisSpec = Annotated[Union[tuple(globals()[k.spec] for k in KINDS.values())]
                          Field(discriminator="kind")]
 
 
+class DesignSpec(_Spec):
+    """``design``: the standard and condition of the line tension checks
+    (:mod:`moorline.design`); ``analysis`` ``None``: quasi-static for statics, dynamic for
+    dynamics and stochastic results; ``storm_duration`` (``None``: 3 hours) sets the most
+    probable maximum of stochastic results."""
+
+    standard: Literal["API-RP-2SK", "DNV-OS-E301"] = "API-RP-2SK"
+    condition: Literal["intact", "damaged"] = "intact"
+    analysis: Literal["quasi-static", "dynamic"] | None = None
+    consequence_class: Literal[1, 2] = 1
+    storm_duration: quantity("time", gt=0.0) | None = None
+
+
 class OutputSpec(_Spec):
     """``output``: interval of written time histories (``None``: unit-system default)."""
 
@@ -532,6 +557,7 @@ class CaseSpec(_Spec):
     bodies: dict[str, BodySpec] | None = None
     analyses: list[AnalysisSpec] | None = None
     output: OutputSpec = Field(default_factory=OutputSpec)
+    design: DesignSpec | None = None
 
     @field_validator("name")
     @classmethod

@@ -234,7 +234,44 @@ def _render_analysis(summary: dict, units: str) -> list[RenderableType]:
     """The tables of one analysis summary: statics and dynamics have their own, the other
     kinds a line with their status and message."""
     render = _RENDERERS.get(summary.get("kind", "statics"), _render_line)
-    return render(summary, units)
+    out = render(summary, units)
+    if summary.get("design"):
+        out.extend(_design_table(summary["design"], summary.get("units", units)))
+    return out
+
+
+def _design_table(design: dict, units: str) -> list[RenderableType]:
+    """Utilization, safety factor and pass/fail of every line (:mod:`moorline.design`)."""
+    force = _unit("force", units)
+    dnv = design.get("standard") == "DNV-OS-E301"
+    what = f"{design.get('standard')} {design.get('edition', '')}, {design.get('condition')}, "\
+        f"{design.get('analysis')}"
+    if dnv:
+        what += f", consequence class {design.get('consequence_class')}"
+    table = Table(title=escape(f"Design checks ({what}) [{force}]"))
+    columns = ["line", "MBL", "T max", "T max / MBL", "MBL / T max",
+               "design tension" if dnv else "required SF", "utilization", "check"]
+    for name in columns:
+        table.add_column(escape(name), justify="left" if name in ("line", "check") else "right")
+    for name, line in design.get("lines", {}).items():
+        if line.get("passed") is None:
+            table.add_row(escape(name), "-", _num(line.get("max_tension")), "-", "-", "-", "-",
+                          "no MBL: not checked")
+            continue
+        middle = (_num(line.get("design_tension")) if dnv
+                  else f"{line.get('required_safety_factor'):.3g}")
+        table.add_row(escape(name), _num(line.get("MBL")), _num(line.get("max_tension")),
+                      f"{line['utilization']:.4g}", f"{line['safety_factor']:.4g}", middle,
+                      f"{line['design_utilization']:.4g}",
+                      "pass" if line["passed"] else "FAIL")
+    notes = [f"tension: {design.get('basis', '')}",
+             f"factors: {design.get('title', '')}, {design.get('clause', '')}"]
+    if not design.get("verified", True):
+        notes.append("(factors as commonly cited; not checked against the standard's text)")
+    for key in ("note", "warning"):
+        if design.get(key):
+            notes.append(str(design[key]))
+    return [table, Text("; ".join(notes))]
 
 
 def _render_line(summary: dict, units: str) -> list[RenderableType]:

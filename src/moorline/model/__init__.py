@@ -16,11 +16,13 @@ from .analysis import (
 )
 from .body import Body, Hydrostatics, WaveExcitation
 from .components import Line, LineType, Motion, Point, PointKind
+from .design import DesignSettings
 from .environment import Current, Environment, Seabed, Waves
 from .system import System, UnitSystem
 
 __all__ = [
     "Body",
+    "DesignSettings",
     "Hydrostatics",
     "DynamicScheme",
     "DynamicVariant",

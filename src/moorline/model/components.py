@@ -38,6 +38,14 @@ class LineType:
     slack_stiffness_ratio
         Fraction of EA a slack element keeps in compression, so the tangent stays usable
         (Tuah 6.2: "the modulus E for the slack element is set to a very small value").
+    MBL
+        Minimum breaking load [force]; ``None``: unknown (no design check).
+    EA_dynamic
+        Dynamic axial stiffness of a fibre rope [force], stored for reference (the solvers
+        use ``EA``); ``None``: not given.
+    catalog, nominal_diameter
+        The line catalogue entry and nominal diameter [length] the properties came from
+        (:mod:`moorline.catalog`), ``None`` for a line type given by hand.
     """
 
     name: str
@@ -55,6 +63,10 @@ class LineType:
     slack_stiffness_ratio: float = 1.0e-6
     slack_smoothing: float = 1.0e-5
     BA: float = 0.0
+    MBL: float | None = None
+    EA_dynamic: float | None = None
+    catalog: str | None = None
+    nominal_diameter: float | None = None
 
     @property
     def area_displaced(self) -> float:

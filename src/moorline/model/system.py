@@ -8,6 +8,7 @@ from typing import Any, Literal, TypeVar, overload
 from .analysis import DynamicsSettings, OutputSettings, StaticsSettings
 from .body import Body
 from .components import Line, LineType, Point
+from .design import DesignSettings
 from .environment import Environment
 
 UnitSystem = Literal["SI", "US"]
@@ -32,6 +33,7 @@ class System:
     analyses: tuple[StaticsSettings | DynamicsSettings, ...] = (StaticsSettings(),)
     output: OutputSettings = field(default_factory=OutputSettings)
     source: str | None = None
+    design: DesignSettings | None = None
 
     @overload
     def first(self, kind: type[S]) -> S: ...
