@@ -162,8 +162,8 @@ def test_the_small_amplitude_rows_would_see_a_wrong_leg_model():
 
 
 def test_ex5_quick_rows():
-    """The small-amplitude moorline run against the linear model, the slack in the source's
-    wave, the residual-feedback report."""
+    """The small-amplitude moorline run against the linear model and the slack in the
+    source's wave."""
     rows = tuah_ex5.run(quick=True)
     assert not _failed(rows), _failed(rows)
     kinds = {r.kind for r in rows}

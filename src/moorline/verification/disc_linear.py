@@ -9,7 +9,8 @@ vanishing wave amplitude:
   ``rho g V`` at the centre of buoyancy as world-vertical forces at body-fixed points; a
   constant restoring matrix ``S`` about the body's reference pose (load ``-S q``, ``q`` the
   offset and the rotation vector); a constant world force (the wind) at the origin.
-* **Legs**: 2-node elastic elements (tension ``EA (l / L0 - 1)``), masses lumped half an
+* **Legs**: 2-node elastic elements (tension ``EA (l / L0 - 1)``; the legs must be taut at the
+  static state, there is no slack law), masses lumped half an
   element to each node (or the consistent bar mass), submerged weight lumped the same way,
   added mass ``rho A L0 / 2 [Ca (I - t t^T) + Cat t t^T]`` per node of each element and the
   Morison fluid inertia ``rho A L0 / 2 [(1 + Ca)(I - t t^T) + (1 + Cat) t t^T] a_f`` with the
@@ -337,9 +338,9 @@ def airy_velocity(omega: float, k: float, depth: float, amplitude: float, x: Flo
 
 def cable_inertia_operator(s: LinearSystem, omega: float, k: float, amplitude: float,
                            heading_deg: float = 0.0) -> ComplexArray:
-    """(n,) Morison fluid-inertia load on the legs per unit fluid *acceleration factor*: the
-    load is ``Re(G s e^{s t})`` for the velocity ``Re(U e^{s t})`` (``s = -i w`` in steady
-    waves), lumped half to each node, the fairlead's half onto the body."""
+    """(n,) the legs' Morison fluid-inertia operator ``G``: for the fluid velocity
+    ``Re(U e^{s t})`` (Airy, wave of ``amplitude``) the load is ``Re(s G e^{s t})`` (``s =
+    -i w`` in steady waves); lumped half to each node, the fairlead's half onto the body."""
     G = np.zeros(s.n, dtype=complex)
     for kk, leg in enumerate(s.legs):
         L0 = leg.length / leg.n_elements
