@@ -83,7 +83,7 @@ What is checked (``run()``)
 --------------------------
 *Small amplitude, against an independent solution (kind "exact").* The same system is written
 again, apart from moorline's solvers, in :mod:`moorline.verification.disc_linear`: its own
-statics (root solve of the force balances; it lands on moorline's static state to 1e-9 ft),
+statics (root solve of the force balances; it lands on moorline's static state to 1e-7 ft),
 tangent stiffness (central differences), lumped masses and added masses, the disc's rigid-body
 equations with ``A``, ``B``, the restoring matrix and the rotating weight and buoyancy, the
 legs' Morison fluid inertia in the Airy wave, the seabed's penalty spring and damper; drag
