@@ -116,6 +116,26 @@ def _matrix6(value) -> FloatArray:
     return np.diag(m) if m.ndim == 1 else m
 
 
+def _seabed_damping_blocks(mesh, positions: FloatArray, model) -> FloatArray | None:
+    """Node damping blocks (n_nodes, 3, 3) of the seabed contact damper linearized about the
+    static state: ``c share`` on z of the nodes the seabed pushes, the same law as the time
+    domain (:func:`moorline.physics.seabed.contact_force` at zero velocity: its ``d/dv_z``);
+    ``None`` without a seabed."""
+    from ..physics import seabed
+
+    if not np.isfinite(mesh.seabed_z):
+        return None
+    c = mesh.seabed_damping_per_area * mesh.node_contact_area
+    zero = np.zeros(mesh.n_nodes)
+    _, _, d_dv = seabed.contact_force(positions[:, 2] - mesh.seabed_z, zero,
+                                      model.node_seabed_stiffness, c, model.seabed_ramp)
+    if not np.any(d_dv):
+        return None
+    blocks = np.zeros((mesh.n_nodes, 3, 3))
+    blocks[:, 2, 2] = -d_dv
+    return blocks
+
+
 class _LinearModel:
     """``K``, ``M`` and the assembly of damping and forces over the unknowns: the free node
     dofs of the lines, then six per free body (the master-slave transformation ``P`` of
@@ -137,6 +157,7 @@ class _LinearModel:
                                  in enumerate(problem.body_dof) if d >= 0]).reshape(-1, 3)
         self.K, self.M = K, M
         self.environment = system.environment
+        self.seabed_blocks = _seabed_damping_blocks(mesh, statics.positions, problem.model)
 
     def body_kinematics(self, omega: FloatArray) -> _BodyWaves:
         """The wave loads on the free bodies."""
@@ -144,8 +165,11 @@ class _LinearModel:
 
     def damping(self, element_blocks: FloatArray, sigma_b: FloatArray,
                 node_blocks: FloatArray | None = None) -> sp.csr_matrix:
-        """Linearized line (and point) drag, bodies' radiation damping and linearized body
-        drag."""
+        """Linearized line (and point) drag, the seabed contact damper of the resting nodes,
+        bodies' radiation damping and linearized body drag."""
+        if self.seabed_blocks is not None:
+            node_blocks = (self.seabed_blocks if node_blocks is None
+                           else node_blocks + self.seabed_blocks)
         C = self.pattern.assemble(element_blocks, node_blocks)
         C = (self.P.T @ C @ self.P).tolil()
         for i, (body, d) in enumerate(zip(self.bodies, self.body_dof, strict=True)):
