@@ -47,7 +47,13 @@ from ..solvers import dynamics as dyn
 from ..solvers.equilibrium import StaticModel
 from ..solvers.newmark import StepState
 from ..solvers.statics import solve_statics
-from ..solvers.stiffness import arm_rotation_stiffness, condensed_tangent, rigid_map
+from ..solvers.stiffness import (
+    arm_rotation_stiffness,
+    condense,
+    condensed_tangent,
+    full_pattern,
+    rigid_map,
+)
 from .interval import Interval, Kinematics
 
 __all__ = ["Coupling", "CouplingState", "Interval"]
@@ -65,6 +71,7 @@ class CouplingState:
     forces: FloatArray
     tangent: tuple
     level: tuple[int, int] = (0, 0)
+    previous: tuple = (None, None)  # the state before the last step and its size
 
 
 class _HostMotion:
@@ -225,6 +232,7 @@ class Coupling:
         self._forces = self._generalized(static.positions, nodal[self._nodes], q)
         self.counters = {"steps": 0, "step_cuts": 0}
         self._level, self._calm = 0, 0
+        self._previous, self._step_size = state, None
         return self._forces.copy()
 
     def _guess(self, derived: System, q: FloatArray) -> FloatArray | None:
@@ -340,6 +348,7 @@ class Coupling:
             raise ConvergenceError(f"coupling step of {self.system.name}: {exc.message()}",
                                    time=exc.time + self._offset) from None
         self._level, self._calm = dyn._adapt(level, self._calm, cuts, max_cuts)
+        self._previous, self._step_size = self._state, dt / m
         self._state, self._kin = state, interval.at(end)
         self.counters["steps"] += m
         self.counters["step_cuts"] += cuts
@@ -347,23 +356,44 @@ class Coupling:
         return self._forces.copy()
 
     # ------------------------------------------------------------------ tangent
-    def stiffness(self) -> FloatArray:
+    def stiffness(self, dynamic: bool = False) -> FloatArray:
         """The current tangent of the lines at the coupled dofs, ``K = -d f / d q``
-        (n_dof, n_dof): the static tangent of the one solver core
+        (n_dof, n_dof), every free dof condensed out, ``K_cc - K_cf K_ff^-1 K_fc``
+        (:func:`~moorline.solvers.stiffness.condense`); held dofs are the fixed points and
+        the prescribed points not coupled.
+
+        ``dynamic=False``: the static tangent of the one solver core
         (:class:`~moorline.solvers.equilibrium.StaticModel`) at the current node positions
-        with every free dof condensed out, ``K_cc - K_cf K_ff^-1 K_fc``
-        (:func:`~moorline.solvers.stiffness.condensed_tangent`); a body's block maps it
-        through its points' rigid motion, ``T^T K T``, less the turning of the arms under
-        the current static forces (as :func:`~moorline.solvers.stiffness.group_stiffness`).
-        Held dofs are the fixed points and the prescribed points not coupled."""
+        (:func:`~moorline.solvers.stiffness.condensed_tangent`; at an equilibrium,
+        :func:`~moorline.solvers.stiffness.point_stiffness`).
+
+        ``dynamic=True``: the tangent of the last :meth:`step`'s forces with respect to the
+        end positions when the velocities and accelerations follow them by the Newmark
+        relations (``dv/dx = gamma / (beta h)``, ``da/dx = 1 / (beta h^2)``): the condensed
+        effective tangent ``(M_s + M_a) / (beta h^2) + gamma C / (beta h) + K`` (Tuah (1982)
+        eq. 4.2.9a) of the dynamic model at the current state, the Jacobian a Newmark host
+        iterating on its own equations needs (with HHT the ``(1 + alpha)`` weights of the
+        residual; for bodies the rigid map of positions serves for the velocities and
+        accelerations too, leaving out their angular-velocity terms).
+
+        A body's block maps the point tangent through its points' rigid motion, ``T^T K T``,
+        less the turning of the arms under the current forces (as
+        :func:`~moorline.solvers.stiffness.group_stiffness`)."""
         self._check_open()
         if self._state is None:
             raise RuntimeError("call init() first")
         x = self._state.x
-        Kc = condensed_tangent(self._mesh, x, list(self._nodes))
+        if dynamic:
+            Kc = condense(self._effective_tangent(), self._mesh, list(self._nodes))
+            ev = self._state.evaluation
+            forces = (ev.nodal[self._nodes]
+                      - self._stepper.model.node_mass[self._nodes, None]
+                      * self._state.a[self._nodes])
+        else:
+            Kc = condensed_tangent(self._mesh, x, list(self._nodes))
+            forces = StaticModel(self._mesh).forces(x).nodal[self._nodes]
         T = np.zeros((3 * len(self._nodes), self.n_dof))
         bq, _ = self._split(self._kin[0])
-        forces = StaticModel(self._mesh).forces(x).nodal[self._nodes]
         geometric = []
         col = 0
         for b in range(len(self.body_names)):
@@ -381,13 +411,30 @@ class Coupling:
             K[c:c + 3, c:c + 3] -= block
         return K
 
+    def _effective_tangent(self):
+        """``-dr/dx1`` of the last step over every node dof (Tuah eq. 4.2.9a)."""
+        if self._step_size is None:
+            raise RuntimeError("stiffness(dynamic=True) needs a step first")
+        st, h = self._state, self._step_size
+        c = self._stepper.c
+        ca, cv, ck = 1 / (c.beta * h * h), (1 + c.alpha) * c.gamma / (c.beta * h), 1 + c.alpha
+        model = self._stepper.model
+        forces = self._excitation.point_forces(st.t, self._mesh.n_nodes)
+        ev = model.evaluate(st.x, st.v, st.a, st.t, self._previous.material, h, True, forces)
+        pattern = full_pattern(self._mesh)
+        mass = model.node_mass[:, None, None] * np.eye(3)
+        if ev.node_M is not None:
+            mass = mass + ev.node_M
+        return (ck * pattern.assemble(ev.K, ev.node_K) + cv * pattern.assemble(ev.C, ev.node_C)
+                + ca * pattern.assemble(ev.Ma, mass))
+
     # ------------------------------------------------------------------ state
     def state(self) -> CouplingState:
         """A snapshot of the integration (for a predictor-corrector host)."""
         self._check_open()
         return CouplingState(self._state, tuple(k.copy() for k in self._kin),
                              self._forces.copy(), self._stepper.tangent_state(),
-                             (self._level, self._calm))
+                             (self._level, self._calm), (self._previous, self._step_size))
 
     def restore(self, saved: CouplingState) -> None:
         """Go back to a snapshot: the next :meth:`step` from it repeats the same iterations
@@ -397,6 +444,7 @@ class Coupling:
         self._forces = saved.forces.copy()
         self._stepper.set_tangent_state(saved.tangent)
         self._level, self._calm = saved.level
+        self._previous, self._step_size = saved.previous
 
     def close(self) -> None:
         """Release the integration (further calls raise)."""

@@ -40,8 +40,18 @@ def condensed_tangent(mesh: Mesh, positions: FloatArray, nodes: list[int]) -> Fl
     """The condensed tangent of :func:`condensed_stiffness` at any node positions (not only
     an equilibrium: the current tangent of a time-domain state, :mod:`moorline.coupling`)."""
     model = StaticModel(mesh)
-    pattern = BlockPattern(mesh.elements, np.arange(3 * mesh.n_nodes).reshape(-1, 3))
-    K = model.tangent(positions, pattern).tocsr()
+    return condense(model.tangent(positions, full_pattern(mesh)), mesh, nodes)
+
+
+def full_pattern(mesh: Mesh) -> BlockPattern:
+    """The block pattern over every node dof (fixed and prescribed ones included)."""
+    return BlockPattern(mesh.elements, np.arange(3 * mesh.n_nodes).reshape(-1, 3))
+
+
+def condense(K, mesh: Mesh, nodes: list[int]) -> FloatArray:
+    """``K_rr - K_rc K_cc^-1 K_cr`` of a matrix over every node dof (:func:`full_pattern`):
+    the dofs of ``nodes`` kept, every free dof condensed out, the other held."""
+    K = K.tocsr()
     kept = (3 * np.asarray(nodes)[:, None] + np.arange(3)).ravel()
     free = mesh.dof_of_node >= 0
     free_flat = np.flatnonzero(free.ravel())
@@ -50,8 +60,9 @@ def condensed_tangent(mesh: Mesh, positions: FloatArray, nodes: list[int]) -> Fl
     if condensed.size == 0:
         return K_rr
     K_rc = K[kept][:, condensed].toarray()
-    lu = factorize(K[condensed][:, condensed])
-    return K_rr - K_rc @ lu.solve(np.ascontiguousarray(K_rc.T))
+    K_cr = K[condensed][:, kept].toarray()  # not K_rc^T: drag and damping tangents are not
+    lu = factorize(K[condensed][:, condensed])  # symmetric
+    return K_rr - K_rc @ lu.solve(np.ascontiguousarray(K_cr))
 
 
 def point_stiffness(result: StaticResult, point: str) -> FloatArray:
