@@ -20,6 +20,7 @@ Usage::
 
     python benchmarks/bench_coupling.py              # 60 s, dtM = 0.05 / 16 s
     python benchmarks/bench_coupling.py --dtm 0.001 --duration 120
+    python benchmarks/bench_coupling.py --substep 0.0125   # moorline's steps within 0.05 s
     python benchmarks/bench_coupling.py --no-moordyn
 """
 
@@ -55,11 +56,12 @@ def fairlead_kinematics(system, t: float) -> tuple[list[float], list[float]]:
 
 
 def drive(module: ModuleType, source: str, system, duration: float,
-          dt: float = COUPLING_DT) -> dict:
-    """The MoorDyn-style driver: ``module`` is ``moordyn`` or ``moorline.coupling.moordyn``."""
+          dt: float = COUPLING_DT, **options) -> dict:
+    """The MoorDyn-style driver: ``module`` is ``moordyn`` or ``moorline.coupling.moordyn``
+    (``options``: the facade's extra ``Create`` options)."""
     tic = time.perf_counter()
     with silenced_fd(1):
-        md = module.Create(source)
+        md = module.Create(source, **options)
         x0, _ = fairlead_kinematics(system, 0.0)
         status = module.Init(md, x0, [0.0] * len(x0))
     if status:
@@ -124,6 +126,9 @@ def main() -> None:
                         help="statistics from this time on [s]")
     parser.add_argument("--dtm", type=float, default=COUPLING_DT / 16,
                         help="MoorDyn's internal step dtM [s]")
+    parser.add_argument("--substep", type=float, default=None,
+                        help="moorline's largest internal step [s] (default: one implicit "
+                             "step per coupling interval)")
     parser.add_argument("--no-moordyn", action="store_true")
     args = parser.parse_args()
     system = load_case(CASE)
@@ -131,7 +136,8 @@ def main() -> None:
 
     # a first short run compiles the numba kernels (not timed below)
     drive(facade, str(CASE), system, 4 * COUPLING_DT)
-    runs = {"moorline": drive(facade, str(CASE), system, args.duration)}
+    runs = {"moorline": drive(facade, str(CASE), system, args.duration,
+                              substep=args.substep)}
     if not args.no_moordyn:
         import moordyn
 
@@ -139,7 +145,9 @@ def main() -> None:
             deck = write_moordyn(system, Path(folder) / "oc3.dat", args.dtm)
             runs["moordyn"] = drive(moordyn, str(deck), system, args.duration)
     print(f"OC3 fairleads, {CASE.name}: {args.duration:g} s, coupling interval "
-          f"{COUPLING_DT:g} s; moorline one implicit step per interval"
+          f"{COUPLING_DT:g} s; moorline "
+          + (f"implicit steps of {args.substep:g} s" if args.substep
+             else "one implicit step per interval")
           + ("" if args.no_moordyn else f", MoorDyn dtM = {args.dtm:g} s"))
     report(runs, args.start, list(system.lines))
 

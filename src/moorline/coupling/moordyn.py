@@ -15,7 +15,7 @@ The coupled dofs are the case's prescribed points (a MoorDyn deck's ``Coupled``/
 points), three per point in the case's order. ``Step`` moves them as MoorDyn does,
 ``x + xd (t' - t)`` over the interval (:meth:`~moorline.coupling.Coupling.step_linear`), and
 returns the forces on them at ``t + dt``. Differences: one implicit step per call (no
-``dtM`` sub-steps; a case's ``substep`` is available through :class:`Coupling`), the
+``dtM`` sub-steps unless ``Create(file, substep=...)``), the
 forces on a point include its node's lumped inertia, and MoorDyn's bodies and rods are not
 read from decks. ``GetStiffness`` (not in MoorDyn) gives the coupled dofs' tangent.
 """
@@ -45,14 +45,15 @@ class _Line:
     index: int
 
 
-def Create(filepath: str | os.PathLike = "") -> Coupling:
-    """Read a moorline case (``.yaml``, ``.yml``, ``.json``) or a MoorDyn deck."""
+def Create(filepath: str | os.PathLike = "", **options) -> Coupling:
+    """Read a moorline case (``.yaml``, ``.yml``, ``.json``) or a MoorDyn deck; ``options``
+    (not in MoorDyn) go to :class:`Coupling` (``substep``, ``dynamics``, ...)."""
     path = Path(filepath or "Mooring/lines.txt")
     if path.suffix.lower() in (".yaml", ".yml", ".json"):
-        return Coupling(path)
+        return Coupling(path, **options)
     from ..io.moordyn import read_moordyn
 
-    return Coupling(read_moordyn(path))
+    return Coupling(read_moordyn(path), **options)
 
 
 def NCoupledDOF(instance: Coupling) -> int:
