@@ -1,11 +1,12 @@
 """Coupling benchmark: one MoorDyn-style driver, run on ``moordyn`` itself and on moorline's
 facade :mod:`moorline.coupling.moordyn`.
 
-The driver (:func:`drive`) is written against the ``moordyn`` module's call pattern
-(``Create``, ``Init``, ``Step``, ``GetLine``, ``GetLineFairTen``, ``GetLineNodeForce``,
-``Close``) and takes the module as an argument: the only difference between the two runs is
-the module (and the input: a moorline case for the facade, the same system written as a
-MoorDyn deck by :func:`~moorline.io.moordyn.write_moordyn` for MoorDyn). It moves the OC3
+The driver (:func:`moorline.compare.moordyn_driver.drive`) is written against the
+``moordyn`` module's call pattern (``Create``, ``Init``, ``Step``, ``GetLine``,
+``GetLineFairTen``, ``GetLineNodeForce``, ``Close``) and takes the module as an argument:
+the only difference between the two runs is the module (and the input: a moorline case for
+the facade, the same system written as a MoorDyn deck by
+:func:`~moorline.io.moordyn.write_moordyn` for MoorDyn). It moves the OC3
 fairleads of ``cases/oc3_dynamics.yaml`` along the case's motion (5 m surge at 10 s, ramped
 over 10 s), giving position and velocity at the start of each 0.05 s coupling interval as
 MoorDyn expects; MoorDyn sub-steps with its explicit ``dtM`` (default 0.05 / 16 s), moorline
@@ -28,62 +29,16 @@ from __future__ import annotations
 
 import argparse
 import tempfile
-import time
 from pathlib import Path
-from types import ModuleType
 
 import numpy as np
 
-from moorline.compare.moordyn_runner import silenced_fd
+from moorline.compare.moordyn_driver import drive
 from moorline.io import load_case
 from moorline.io.moordyn import write_moordyn
-from moorline.solvers.excitation import motion_value
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "oc3_dynamics.yaml"
 COUPLING_DT = 0.05
-
-
-def fairlead_kinematics(system, t: float) -> tuple[list[float], list[float]]:
-    """Positions and velocities of the prescribed points at ``t`` (the case's motions)."""
-    x, v = [], []
-    for p in system.points.values():
-        if p.kind != "prescribed":
-            continue
-        d, dv, _ = motion_value(p.motion, t)
-        x.extend((np.asarray(p.position) + d).tolist())
-        v.extend(dv.tolist())
-    return x, v
-
-
-def drive(module: ModuleType, source: str, system, duration: float,
-          dt: float = COUPLING_DT, **options) -> dict:
-    """The MoorDyn-style driver: ``module`` is ``moordyn`` or ``moorline.coupling.moordyn``
-    (``options``: the facade's extra ``Create`` options)."""
-    tic = time.perf_counter()
-    with silenced_fd(1):
-        md = module.Create(source, **options)
-        x0, _ = fairlead_kinematics(system, 0.0)
-        status = module.Init(md, x0, [0.0] * len(x0))
-    if status:
-        raise RuntimeError(f"Init failed ({status})")
-    init_time = time.perf_counter() - tic
-    lines = [module.GetLine(md, i) for i in range(1, len(system.lines) + 1)]
-    n_seg = [module.GetLineN(line) for line in lines]
-    n = int(round(duration / dt))
-    fair, force, times = np.zeros((n, len(lines))), np.zeros((n, len(lines))), np.zeros(n)
-    loop = 0.0
-    for i in range(n):
-        x, v = fairlead_kinematics(system, i * dt)
-        tic = time.perf_counter()
-        module.Step(md, x, v, i * dt, dt)
-        loop += time.perf_counter() - tic
-        times[i] = (i + 1) * dt
-        for j, (line, ns) in enumerate(zip(lines, n_seg, strict=True)):
-            fair[i, j] = module.GetLineFairTen(line)
-            force[i, j] = np.linalg.norm(module.GetLineNodeForce(line, ns))
-    module.Close(md)
-    return {"time": times, "fair_ten": fair, "fairlead_force": force,
-            "wall_init": init_time, "wall_loop": loop}
 
 
 def _stats(series: np.ndarray) -> np.ndarray:
@@ -135,15 +90,15 @@ def main() -> None:
     import moorline.coupling.moordyn as facade
 
     # a first short run compiles the numba kernels (not timed below)
-    drive(facade, str(CASE), system, 4 * COUPLING_DT)
-    runs = {"moorline": drive(facade, str(CASE), system, args.duration,
+    drive(facade, str(CASE), system, 4 * COUPLING_DT, COUPLING_DT)
+    runs = {"moorline": drive(facade, str(CASE), system, args.duration, COUPLING_DT,
                               substep=args.substep)}
     if not args.no_moordyn:
         import moordyn
 
         with tempfile.TemporaryDirectory() as folder:
             deck = write_moordyn(system, Path(folder) / "oc3.dat", args.dtm)
-            runs["moordyn"] = drive(moordyn, str(deck), system, args.duration)
+            runs["moordyn"] = drive(moordyn, str(deck), system, args.duration, COUPLING_DT)
     print(f"OC3 fairleads, {CASE.name}: {args.duration:g} s, coupling interval "
           f"{COUPLING_DT:g} s; moorline "
           + (f"implicit steps of {args.substep:g} s" if args.substep
