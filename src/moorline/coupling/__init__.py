@@ -167,10 +167,10 @@ class Coupling:
         system = self.system
         points = dict(system.points)
         poses = self._split(positions)[0]
-        for b, names in enumerate(self.body_names):
-            body = replace(system.bodies[names], position=tuple(poses[b, :3]),
+        for b, name in enumerate(self.body_names):
+            body = replace(system.bodies[name], position=tuple(poses[b, :3]),
                            rotation=tuple(poses[b, 3:]))
-            posed = replace(system, bodies={**system.bodies, names: body})
+            posed = replace(system, bodies={**system.bodies, name: body})
             for p in self.body_points[b]:
                 point = system.points[p]
                 points[p] = Point(p, "prescribed", tuple(world_position(posed, point)),
@@ -195,9 +195,11 @@ class Coupling:
         """Solve the statics with the coupled dofs at ``positions`` (default: the case's) and
         start the time integration there, at rest, at ``time``.
 
-        ``velocities`` (optional) are the coupled dofs' velocities at ``time`` (the start of
-        the first interval's Hermite motion; the lines start at rest). Returns the static
-        forces on the coupled dofs (n_dof,).
+        ``velocities`` (optional) are the coupled dofs' velocities at ``time``: the start of
+        the first interval's Hermite motion; the free nodes start at rest with the
+        accelerations their loads give then (as :func:`~moorline.solvers.dynamics.simulate`
+        starts a prescribed point that moves at t = 0). Returns the static forces on the
+        coupled dofs (n_dof,).
 
         Raises
         ------
