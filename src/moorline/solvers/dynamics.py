@@ -69,25 +69,7 @@ def simulate(
         Initial Maxwell-branch force of viscoelastic elements (n_elements,); default relaxed
         (zero) at the initial positions.
     """
-    mesh = (with_loads_of(initial.mesh, system) if isinstance(initial, StaticResult)
-            else discretize(system))
-    if initial is None:
-        initial = solve_statics(system, _statics_settings(system), mesh=mesh)
-        if not initial.success:
-            raise ConvergenceError(f"static equilibrium before dynamics failed: "
-                                   f"{initial.message}", time=0.0)
-    x0 = initial.positions if isinstance(initial, StaticResult) else np.asarray(initial, float)
-    fluid = fluid if fluid is not None else _fluid(
-        system, settings, ramp_current=not getattr(initial, "current_drag", False))
-    model = DynamicModel(mesh, fluid, settings.viscoelastic_update,
-                         system.environment.seabed)
-    excitation = Excitation(mesh, x0)
-    state = _initial_state(model, excitation, x0, settings.dt, maxwell, initial)
-    # force scale of the residual tolerance: the larger of the nodal loads and the tensions
-    scale = max(float(np.abs(model.external).max(initial=0.0)),
-                float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
-    tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
-    stepper = _stepper(model, fluid, settings, tolerance, system, state)
+    mesh, fluid, excitation, state, stepper = start(system, settings, initial, fluid, maxwell)
     every = max(output_every or system.output.every, settings.dt)
     recorder = _Recorder(mesh, writer, fluid)
     recorder.add(state)
@@ -124,6 +106,34 @@ def simulate(
     counters = dict(stepper.counters, steps=n_steps, step_cuts=cuts)
     return recorder.result(True, f"completed {n_steps} steps", counters, system,
                            asdict(settings))
+
+
+def start(system: System, settings: DynamicsSettings,
+          initial: StaticResult | FloatArray | None = None, fluid=None,
+          maxwell: FloatArray | None = None):
+    """What a time-domain run starts from (the set-up of :func:`simulate`, also used by
+    :mod:`moorline.coupling`): ``(mesh, fluid, excitation, state, stepper)``; the arguments
+    as :func:`simulate`'s."""
+    mesh = (with_loads_of(initial.mesh, system) if isinstance(initial, StaticResult)
+            else discretize(system))
+    if initial is None:
+        initial = solve_statics(system, _statics_settings(system), mesh=mesh)
+        if not initial.success:
+            raise ConvergenceError(f"static equilibrium before dynamics failed: "
+                                   f"{initial.message}", time=0.0)
+    x0 = initial.positions if isinstance(initial, StaticResult) else np.asarray(initial, float)
+    fluid = fluid if fluid is not None else _fluid(
+        system, settings, ramp_current=not getattr(initial, "current_drag", False))
+    model = DynamicModel(mesh, fluid, settings.viscoelastic_update,
+                         system.environment.seabed)
+    excitation = Excitation(mesh, x0)
+    state = _initial_state(model, excitation, x0, settings.dt, maxwell, initial)
+    # force scale of the residual tolerance: the larger of the nodal loads and the tensions
+    scale = max(float(np.abs(model.external).max(initial=0.0)),
+                float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
+    tolerance = max(settings.tolerance * scale, StaticModel(mesh).roundoff_floor(x0))
+    stepper = _stepper(model, fluid, settings, tolerance, system, state)
+    return mesh, fluid, excitation, state, stepper
 
 
 def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: float,

@@ -375,6 +375,15 @@ class FastStepper:
         """Drop the factorization (after a step cut)."""
         self.lu_valid = False
 
+    def tangent_state(self) -> tuple:
+        """The banded factors and their age (see :meth:`Stepper.tangent_state`)."""
+        return self.lu.copy(), self.lu_h, self.lu_age, self.lu_valid
+
+    def set_tangent_state(self, saved: tuple) -> None:
+        """Restore what :meth:`tangent_state` returned."""
+        lu, self.lu_h, self.lu_age, self.lu_valid = saved
+        self.lu[...] = lu
+
     @property
     def counters(self) -> dict:
         """Same keys as :class:`~moorline.solvers.newmark.Stepper`."""

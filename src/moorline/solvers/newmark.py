@@ -160,6 +160,21 @@ class Stepper:
         """Drop the factorization (after a step cut)."""
         self.cache.forget()
 
+    def tangent_state(self) -> tuple:
+        """The reused factorization, its age and key (and the incremental variant's carried
+        imbalance): with :meth:`set_tangent_state`, a step repeated from a restored state
+        (a predictor-corrector host, :mod:`moorline.coupling`) repeats the same iterations."""
+        c = self.cache
+        return c.factor, getattr(c.factor, "_lu", None), c.age, c.key, self.carried
+
+    def set_tangent_state(self, saved: tuple) -> None:
+        """Restore what :meth:`tangent_state` returned."""
+        factor, lu, age, key, carried = saved
+        if lu is not None:  # a SparseFactor refactorizes in place: put its factors back
+            factor._lu = lu
+        self.cache.factor, self.cache.age, self.cache.key = factor, age, key
+        self.carried = carried
+
     # ------------------------------------------------------------------ Newton problem
     def residual(self, u: tuple[FloatArray, FloatArray], tangent: bool) -> _Trial:
         """Effective residual (eq. 4.2.10) at unknowns ``u = (x1, dq)``."""

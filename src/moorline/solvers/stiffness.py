@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..mesh import Mesh
 from ..physics.rigid_body import skew
 from ..results import StaticResult
 from .assembly import BlockPattern, factorize
@@ -32,10 +33,25 @@ def condensed_stiffness(result: StaticResult, nodes: list[int]) -> FloatArray:
     nodes
         Node indices to keep (free or prescribed; fixed nodes are allowed but rarely useful).
     """
-    mesh = result.mesh
+    return condensed_tangent(result.mesh, result.positions, nodes)
+
+
+def condensed_tangent(mesh: Mesh, positions: FloatArray, nodes: list[int]) -> FloatArray:
+    """The condensed tangent of :func:`condensed_stiffness` at any node positions (not only
+    an equilibrium: the current tangent of a time-domain state, :mod:`moorline.coupling`)."""
     model = StaticModel(mesh)
-    pattern = BlockPattern(mesh.elements, np.arange(3 * mesh.n_nodes).reshape(-1, 3))
-    K = model.tangent(result.positions, pattern).tocsr()
+    return condense(model.tangent(positions, full_pattern(mesh)), mesh, nodes)
+
+
+def full_pattern(mesh: Mesh) -> BlockPattern:
+    """The block pattern over every node dof (fixed and prescribed ones included)."""
+    return BlockPattern(mesh.elements, np.arange(3 * mesh.n_nodes).reshape(-1, 3))
+
+
+def condense(K, mesh: Mesh, nodes: list[int]) -> FloatArray:
+    """``K_rr - K_rc K_cc^-1 K_cr`` of a matrix over every node dof (:func:`full_pattern`):
+    the dofs of ``nodes`` kept, every free dof condensed out, the other held."""
+    K = K.tocsr()
     kept = (3 * np.asarray(nodes)[:, None] + np.arange(3)).ravel()
     free = mesh.dof_of_node >= 0
     free_flat = np.flatnonzero(free.ravel())
@@ -44,8 +60,9 @@ def condensed_stiffness(result: StaticResult, nodes: list[int]) -> FloatArray:
     if condensed.size == 0:
         return K_rr
     K_rc = K[kept][:, condensed].toarray()
-    lu = factorize(K[condensed][:, condensed])
-    return K_rr - K_rc @ lu.solve(np.ascontiguousarray(K_rc.T))
+    K_cr = K[condensed][:, kept].toarray()  # not K_rc^T: drag and damping tangents are not
+    lu = factorize(K[condensed][:, condensed])  # symmetric
+    return K_rr - K_rc @ lu.solve(np.ascontiguousarray(K_cr))
 
 
 def point_stiffness(result: StaticResult, point: str) -> FloatArray:
@@ -75,8 +92,22 @@ def group_stiffness(result: StaticResult, points: list[str], reference: FloatArr
     nodes = [int(mesh.point_node[mesh.point_index(p)]) for p in points]
     Kc = condensed_stiffness(result, nodes)
     arms = result.positions[nodes] - np.asarray(reference, dtype=float)
-    T = np.vstack([np.hstack((np.eye(3), -skew(a))) for a in arms])
+    T = rigid_map(arms)
     K6 = T.T @ Kc @ T
     forces = StaticModel(mesh).forces(result.positions).nodal[nodes]
-    K6[3:, 3:] -= sum(skew(f) @ skew(a) for f, a in zip(forces, arms, strict=True))
+    K6[3:, 3:] -= arm_rotation_stiffness(forces, arms)
     return K6
+
+
+def rigid_map(arms: FloatArray) -> FloatArray:
+    """``T`` (3n x 6): the displacements of points at world ``arms`` from a rigid group's
+    small motion ``(dx, dy, dz, rx, ry, rz)``, rows ``[I, -[a_i x]]``."""
+    return np.vstack([np.hstack((np.eye(3), -skew(a))) for a in np.reshape(arms, (-1, 3))])
+
+
+def arm_rotation_stiffness(forces: FloatArray, arms: FloatArray) -> FloatArray:
+    """``sum_i [f_i x][a_i x]`` (3 x 3): the change of the moment ``sum a_i x f_i`` when the
+    arms turn under fixed forces, per unit rotation (subtracted in :func:`group_stiffness`)."""
+    return sum((skew(f) @ skew(a) for f, a in zip(np.reshape(forces, (-1, 3)),
+                                                  np.reshape(arms, (-1, 3)), strict=True)),
+               np.zeros((3, 3)))
