@@ -301,3 +301,18 @@ def test_fatigue_without_dynamics_fails(tmp_path: Path) -> None:
     assert result.exit_code != 0
     assert "analyses[2].curves.chain.curve" in result.output and "unknown T-N curve" in \
         result.output
+
+
+def test_curve_strength_from_line_type() -> None:
+    """Without an MBL in the curve entry, the line type's own MBL is the reference strength
+    (and its absence is an error naming the line type)."""
+    from types import SimpleNamespace
+
+    from moorline.errors import MoorlineError
+    from moorline.fatigue_analysis import line_type_curves
+
+    choice = {"chain": {"curve": "api_studless_chain"}}
+    found = line_type_curves(choice, {"chain"}, "SI", {"chain": SimpleNamespace(MBL=7.0e6)})
+    assert found["chain"][1] == 7.0e6
+    with pytest.raises(MoorlineError, match="curves.chain"):
+        line_type_curves(choice, {"chain"}, "SI", {"chain": SimpleNamespace()})

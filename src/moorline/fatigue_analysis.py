@@ -147,9 +147,11 @@ def _settings_attrs(settings: Any) -> dict[str, Any]:
 
 
 def line_type_curves(choices: Mapping[str, Mapping[str, Any]], types: set[str],
-                     units: str) -> dict[str, tuple[TNCurve, float]]:
+                     units: str, line_types: Mapping[str, Any] | None = None
+                     ) -> dict[str, tuple[TNCurve, float]]:
     """The curve and scale of each line type from the analysis's ``curves`` entries
-    (``{type: {curve, MBL, diameter, area}}``).
+    (``{type: {curve, MBL, diameter, area}}``); without an ``MBL`` there, the line type's
+    own ``MBL`` attribute when it has one (``line_types``: the system's line types).
 
     Raises
     ------
@@ -161,9 +163,12 @@ def line_type_curves(choices: Mapping[str, Mapping[str, Any]], types: set[str],
         if name not in types:
             raise MoorlineError(f"fatigue curves: no line of type {name!r} "
                                 f"(line types: {', '.join(sorted(types))})")
+        strength = choice.get("MBL")
+        if strength is None and line_types is not None and name in line_types:
+            strength = getattr(line_types[name], "MBL", None)
         try:
             tn = curve(str(choice["curve"]))
-            scale = tn.scale(MBL=choice.get("MBL"), diameter=choice.get("diameter"),
+            scale = tn.scale(MBL=strength, diameter=choice.get("diameter"),
                              area=choice.get("area"), units=units)
         except (KeyError, ValueError) as exc:
             raise MoorlineError(f"fatigue curves.{name}: {exc.args[0]}") from None
@@ -187,7 +192,8 @@ def _rainflow_damage(signals: FloatArray, means: FloatArray, tn: TNCurve, scale:
 
 
 def solve_fatigue(records: TensionRecords, settings: Any, case: str = "",
-                  units: str = "SI") -> FatigueResult:
+                  units: str = "SI", line_types: Mapping[str, Any] | None = None
+                  ) -> FatigueResult:
     """Miner damage and life per line end and element.
 
     Parameters
@@ -198,8 +204,11 @@ def solve_fatigue(records: TensionRecords, settings: Any, case: str = "",
         :class:`~moorline.model.FatigueSettings`.
     case, units
         For output.
+    line_types
+        The system's line types (their ``MBL`` when a curve entry gives none).
     """
-    curves = line_type_curves(settings.curves or {}, set(records.line_types), units)
+    curves = line_type_curves(settings.curves or {}, set(records.line_types), units,
+                              line_types)
     if not curves:
         raise MoorlineError("fatigue: give a curve for at least one line type "
                             "(curves: {type: {curve: ..., MBL: ...}})")

@@ -390,7 +390,8 @@ def run_fatigue(settings: Any, context: RunContext, label: str) -> Outcome:
 
     system = context.system
     return _solve_and_write("fatigue", "fatigue", lambda: solve_fatigue(
-        _records(context, settings), settings, system.name, system.units), context, label)
+        _records(context, settings), settings, system.name, system.units,
+        system.line_types), context, label)
 
 
 def run_extremes(settings: Any, context: RunContext, label: str) -> Outcome:

@@ -328,7 +328,8 @@ class FatigueSettings:
     curves
         Per line type: ``{"curve": name, "MBL": ..., "diameter": ..., "area": ...}``; the
         curve a key of ``moorline/data/tn_curves.yaml``; ``MBL`` the reference breaking
-        strength of API T-N curves [force]; ``diameter`` (chain, nominal area
+        strength of API T-N curves [force] (default: the line type's ``MBL`` where line
+        types have one); ``diameter`` (chain, nominal area
         ``2 pi d^2 / 4``) or ``area`` for DNV S-N curves [length, area]. Line types not
         listed get no damage (NaN).
     spectral
