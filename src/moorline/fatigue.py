@@ -8,7 +8,7 @@ curve is ``N = K x^-m`` and the damage of ``n_i`` cycles of normalized range ``x
 Rainflow counting uses the four-point algorithm of ``fatpack`` (Amzallag et al. 1994, as
 implemented by ``fatpack.find_rainflow_cycles``) on the exact turning points of the signal
 (no load classes); the residue is counted as half cycles, which gives the counts of the
-three-point procedure of ASTM E1049-85 sec. 5.4.4, or closed by repeating it (Marsh et al.
+three-point procedure of ASTM E1049-85 sec. 5.4.4 (McInnes & Meehan 2008), or closed by repeating it (Marsh et al.
 2016, the stationary-process convention).
 """
 
@@ -62,7 +62,8 @@ def rainflow(x: ArrayLike, residue: Literal["half", "repeat"] = "half"
     residue
         ``half``: the ranges left open after the pass count as half cycles (ASTM E1049-85
         sec. 5.4.4); ``repeat``: the residue is followed by itself and counted again, closing
-        its cycles (Marsh et al. 2016; for a record of a stationary process).
+        its cycles (Marsh et al. 2016; the counts of ASTM E1049-85 sec. 5.4.5 for a repeating
+        history; for a record of a stationary process).
 
     Returns
     -------
