@@ -8,8 +8,8 @@ curve is ``N = K x^-m`` and the damage of ``n_i`` cycles of normalized range ``x
 Rainflow counting uses the four-point algorithm of ``fatpack`` (Amzallag et al. 1994, as
 implemented by ``fatpack.find_rainflow_cycles``) on the exact turning points of the signal
 (no load classes); the residue is counted as half cycles, which gives the counts of the
-three-point procedure of ASTM E1049-85 sec. 5.4.4 (McInnes & Meehan 2008), or closed by repeating it (Marsh et al.
-2016, the stationary-process convention).
+three-point procedure of ASTM E1049-85 sec. 5.4.4 (McInnes & Meehan 2008), or closed by
+repeating it (Marsh et al. 2016, the stationary-process convention).
 """
 
 from __future__ import annotations

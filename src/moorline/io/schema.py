@@ -536,7 +536,8 @@ class FatigueSpec(_Spec):
     kind: Literal["fatigue"]
     source: Literal["auto", "dynamics", "stochastic"] = "auto"
     curves: dict[str, FatigueCurveSpec]
-    spectral: list[Literal["narrow_band", "dirlik"]] = ["narrow_band", "dirlik"]
+    spectral: Annotated[list[Literal["narrow_band", "dirlik"]], Field(min_length=1)] = [
+        "narrow_band", "dirlik"]
     residue: Literal["half", "repeat"] = "half"
     skip: quantity("time", ge=0.0) | None = None
     safety_factor: quantity("dimensionless", gt=0.0) = 1.0
