@@ -20,6 +20,8 @@ from typing import Any
 
 from .model.analysis import (
     DynamicsSettings,
+    ExtremesSettings,
+    FatigueSettings,
     HarmonicSettings,
     ModalSettings,
     StaticsSettings,
@@ -109,6 +111,15 @@ KINDS: dict[str, AnalysisKind] = {k.name: k for k in (
           viscosity="viscosity"),
     _kind("stochastic", StochasticSettings, "StochasticSpec", "StochasticResult"),
     _kind("harmonic", HarmonicSettings, "HarmonicSpec", "HarmonicResult"),
+    AnalysisKind("fatigue", FatigueSettings, "FatigueSpec", runner="moorline.runners:run_fatigue",
+                 result="moorline.fatigue_analysis:FatigueResult",
+                 plot="moorline.plot:plot_fatigue_group",
+                 summary="moorline.summaries:fatigue_summary"),
+    AnalysisKind("extremes", ExtremesSettings, "ExtremesSpec",
+                 runner="moorline.runners:run_extremes",
+                 result="moorline.extremes_analysis:ExtremesResult",
+                 plot="moorline.plot:plot_extremes_group",
+                 summary="moorline.summaries:extremes_summary"),
 )}
 
 

@@ -129,6 +129,33 @@ VARIABLES: dict[str, dict[str, tuple[str, str]]] = {
         "tension": ("force", "element tension over one period"),
         "static_position": ("length", "static node position"),
     },
+    "fatigue": {
+        "fatigue_method": ("1", "fatigue damage method (rainflow, narrow_band, dirlik)"),
+        "damage": ("1", "Miner fatigue damage over the analysed duration at the line end"),
+        "annual_damage": ("1/year", "Miner fatigue damage per year at the line end"),
+        "life": ("year", "fatigue life at the line end (duration / (safety factor damage))"),
+        "cycles": ("1", "tension cycles over the analysed duration at the line end"),
+        "mean_tension": ("force", "mean tension at the line end"),
+        "element_damage": ("1", "Miner fatigue damage over the analysed duration"),
+        "element_life": ("year", "fatigue life of the element"),
+        "element_cycles": ("1", "tension cycles of the element over the analysed duration"),
+        "element_mean_tension": ("force", "mean element tension"),
+    },
+    "extremes": {
+        "percentile": ("%", "percentile level"),
+        "mpm": ("force", "most probable maximum tension at the line end over the exposure"),
+        "maximum": ("force", "largest sampled tension at the line end"),
+        "mean_tension": ("force", "mean tension at the line end"),
+        "std_tension": ("force", "standard deviation of the tension at the line end"),
+        "percentile_tension": ("force", "tension percentile at the line end"),
+        "fit_location": ("force", "location of the fitted extreme-value distribution"),
+        "fit_shape": ("1", "shape of the fitted Weibull distribution of peak excesses"),
+        "fit_scale": ("force", "scale of the fitted distribution"),
+        "events": ("1", "peaks or maxima fitted (time domain), expected zero-up-crossings "
+                        "in the exposure (frequency domain)"),
+        "element_mpm": ("force", "most probable maximum element tension over the exposure"),
+        "element_maximum": ("force", "largest sampled element tension"),
+    },
 }
 
 

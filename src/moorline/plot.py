@@ -710,3 +710,58 @@ plot_harmonic_group = _single_figure(plot_harmonic, "harmonic", "harmonic")
 
 __all__ += ["plot_dynamics_group", "plot_harmonic_group", "plot_modal_group",
             "plot_statics_group", "plot_stochastic_group", "plot_strumming_group"]
+
+
+def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
+                       prefix: str = "") -> list[Path]:
+    """``fatigue.png``: fatigue life [years] along every line (per element) for each method."""
+    path = Path(directory) / f"{prefix}fatigue.png"
+    fig = Figure(figsize=(8.0, 4.5), layout="constrained")
+    ax = fig.add_subplot()
+    lines = [str(v) for v in dataset["element_line"].values]
+    for k, method in enumerate(dataset["fatigue_method"].values):
+        life = dataset["element_life"].values[k]
+        for name in dict.fromkeys(lines):
+            mask = np.array([n == name for n in lines])
+            ax.semilogy(np.arange(mask.sum()), life[mask], marker=".",
+                        label=f"{name} ({method})")
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+
+    # plain tick labels: the figure's texts are not parsed as mathtext (see _save)
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
+    ax.yaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel("element along the line (from end a)")
+    ax.set_ylabel("fatigue life [years]")
+    ax.grid(True, which="both", linewidth=0.3)
+    ax.legend(fontsize=7)
+    fig.suptitle(f"fatigue ({dataset.attrs.get('source', '')}): "
+                 f"{dataset.attrs.get('curves', '')}", fontsize=9)
+    _save(fig, path)
+    return [path]
+
+
+def plot_extremes_group(dataset: xr.Dataset, directory: str | Path,
+                        prefix: str = "") -> list[Path]:
+    """``extremes.png``: most probable maximum element tension along every line."""
+    path = Path(directory) / f"{prefix}extremes.png"
+    fig = Figure(figsize=(8.0, 4.5), layout="constrained")
+    ax = fig.add_subplot()
+    lines = [str(v) for v in dataset["element_line"].values]
+    for name in dict.fromkeys(lines):
+        mask = np.array([n == name for n in lines])
+        ax.plot(np.arange(mask.sum()), dataset["element_mpm"].values[mask], marker=".",
+                label=f"{name} MPM")
+        maximum = dataset["element_maximum"].values[mask]
+        if np.isfinite(maximum).any():
+            ax.plot(np.arange(mask.sum()), maximum, linestyle=":", label=f"{name} max")
+    ax.set_xlabel("element along the line (from end a)")
+    ax.set_ylabel(f"tension [{dataset['element_mpm'].attrs.get('units', '')}]")
+    ax.grid(True, linewidth=0.3)
+    ax.legend(fontsize=7)
+    fig.suptitle(f"extremes ({dataset.attrs.get('method', '')}) over "
+                 f"{float(dataset.attrs.get('duration', 0)):.6g} s", fontsize=9)
+    _save(fig, path)
+    return [path]
+
+
+__all__ += ["plot_extremes_group", "plot_fatigue_group"]

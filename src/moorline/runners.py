@@ -409,3 +409,46 @@ def _run_analyses(context: RunContext, analyses: list[Any], kinds: list[str]) ->
     failed = [o for o in context.outcomes if not o.success]
     status = f"{failed[0].kind} failed: {failed[0].message}" if failed else "complete"
     update_results(context.results, {"complete": int(not failed), "status": status})
+
+
+def _records(context: RunContext, settings: Any, seeds: tuple[int, ...] = ()) -> Any:
+    """The tension signals of the run's preceding dynamics or stochastic analysis
+    (:mod:`moorline.tension_records`); time domain: after ``settings.skip`` (default the
+    dynamics' ramp time), with the realizations of the further wave ``seeds``."""
+    from .tension_records import from_dynamics, from_stochastic, preceding
+
+    outcome = preceding(context, settings.source)
+    if outcome.kind == "stochastic":
+        return from_stochastic(context.system, outcome.result)
+    from .extremes_analysis import realizations
+
+    dynamics = outcome.result.settings
+    ramp = dynamics.get("ramp_time", 0.0) if isinstance(dynamics, dict) else getattr(
+        dynamics, "ramp_time", 0.0)
+    skip = settings.skip if settings.skip is not None else float(ramp)
+    results, used = realizations(context.system, outcome, seeds, _statics_of(context))
+    return from_dynamics(context.system, results, skip, used)
+
+
+def run_fatigue(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Miner damage and fatigue life per line end and element from the run's preceding
+    dynamics (rainflow) or stochastic (narrow band, Dirlik) analysis: group ``label`` of the
+    results file."""
+    from .fatigue_analysis import solve_fatigue
+
+    system = context.system
+    return _solve_and_write("fatigue", "fatigue", lambda: solve_fatigue(
+        _records(context, settings), settings, system.name, system.units,
+        system.line_types), context, label)
+
+
+def run_extremes(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Most probable maximum tensions, maxima and percentiles per line end and element from
+    the run's preceding dynamics (repeated with the listed wave seeds) or stochastic
+    analysis: group ``label`` of the results file."""
+    from .extremes_analysis import solve_extremes
+
+    system = context.system
+    return _solve_and_write("extremes", "extremes", lambda: solve_extremes(
+        _records(context, settings, tuple(settings.seeds)), settings, system.name,
+        system.units), context, label)

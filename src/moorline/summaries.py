@@ -8,8 +8,9 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["dynamics_summary", "harmonic_summary", "history_summary", "modal_summary",
-           "statics_summary", "stochastic_summary", "strumming_summary"]
+__all__ = ["dynamics_summary", "extremes_summary", "fatigue_summary", "harmonic_summary",
+           "history_summary", "modal_summary", "statics_summary", "stochastic_summary",
+           "strumming_summary"]
 
 
 def _outcome(result: Any) -> dict[str, Any]:
@@ -190,3 +191,48 @@ def harmonic_summary(result: Any) -> dict[str, Any]:
             "max_first_harmonic_amplitude": float(result.amplitude(1).max(initial=0.0)),
             "tension_min": [float(v) for v in result.tension.min(axis=0)],
             "tension_max": [float(v) for v in result.tension.max(axis=0)]}
+
+
+def _per_line(values: Any, names: Any) -> dict[str, dict[str, float]]:
+    """``{line: {"end_a": v, "end_b": v}}`` of an (n_lines, 2) array (NaN as ``None``)."""
+    return {str(n): {f"end_{e}": _number(values[k, j]) for j, e in enumerate("ab")}
+            for k, n in enumerate(names)}
+
+
+def _number(value: Any) -> float | None:
+    value = float(value)
+    return None if math.isnan(value) else value
+
+
+def fatigue_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of a :class:`~moorline.fatigue_analysis.FatigueResult`: per
+    method, damage over the analysed duration and life [years] at both ends of every line,
+    and the element of least life."""
+    methods = {}
+    for k, method in enumerate(result.methods):
+        life = result.element_life[k]
+        worst = int(np.nanargmin(life)) if np.isfinite(life).any() else None
+        methods[method] = {
+            "damage": _per_line(result.damage[k], result.line_names),
+            "life_years": _per_line(result.life[k], result.line_names),
+            "min_element_life_years": None if worst is None else float(life[worst]),
+            "min_life_element": worst}
+    return {**_outcome(result), "source": result.source, "duration": result.duration,
+            "safety_factor": result.safety_factor,
+            "curves": {t: c.name for t, (c, _) in result.curves.items()},
+            "methods": methods}
+
+
+def extremes_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of an :class:`~moorline.extremes_analysis.ExtremesResult`: the
+    most probable maximum, the sampled maximum, mean, standard deviation and percentiles at
+    both ends of every line, in the case's units."""
+    names = result.line_names
+    return {**_outcome(result), "source": result.source, "method": result.method,
+            "duration": result.duration, "realizations": result.realizations,
+            "record_length": result.record_length,
+            "mpm": _per_line(result.mpm, names), "maximum": _per_line(result.maximum, names),
+            "mean": _per_line(result.mean, names), "std": _per_line(result.std, names),
+            "percentiles": {f"{q:g}": _per_line(result.percentile[i], names)
+                            for i, q in enumerate(result.percentiles)},
+            "max_element_mpm": float(np.nanmax(result.element_mpm))}

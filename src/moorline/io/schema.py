@@ -32,8 +32,9 @@ from ..analyses import KINDS
 from .units import UnitParseError, to_system
 
 __all__ = ["MAX_COUNT", "MAX_ITERATIONS", "MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec",
-           "CaseSpec", "DesignSpec", "DynamicsSpec", "ForceHistorySpec", "HarmonicSpec",
-           "LineSpec", "LineTypeSpec", "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
+           "CaseSpec", "DesignSpec", "DynamicsSpec", "ExtremesSpec", "FatigueCurveSpec",
+           "FatigueSpec", "ForceHistorySpec", "HarmonicSpec", "LineSpec", "LineTypeSpec",
+           "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
            "StochasticSpec", "StrummingSpec", "check_number", "describe_errors", "quantity"]
 
 MAX_MAGNITUDE = 1.0e30
@@ -518,6 +519,54 @@ class HarmonicSpec(_Spec):
     tolerance: quantity("dimensionless", gt=0.0) = 1e-8
     max_iterations: Iterations = 50
     output_points: PositiveInt = 64
+
+
+class FatigueCurveSpec(_Spec):
+    """``analyses[i].curves.<line type>`` of a fatigue analysis: a curve of
+    ``moorline/data/tn_curves.yaml`` and what it needs: ``MBL`` (API T-N curves, the
+    reference breaking strength) or ``diameter`` (chain) / ``area`` (DNV S-N curves)."""
+
+    curve: str
+    MBL: quantity("force", gt=0.0) | None = None
+    diameter: quantity("length", gt=0.0) | None = None
+    area: quantity("area", gt=0.0) | None = None
+
+    @field_validator("curve")
+    @classmethod
+    def _known_curve(cls, value: str) -> str:
+        from ..tn_curves import curves
+
+        if value not in curves():
+            raise _fail(f"unknown T-N curve {value!r}; known: {', '.join(curves())}")
+        return value
+
+
+class FatigueSpec(_Spec):
+    """``analyses[i]`` with ``kind: fatigue`` (see :class:`moorline.model.FatigueSettings`):
+    after a dynamics or stochastic analysis."""
+
+    kind: Literal["fatigue"]
+    source: Literal["auto", "dynamics", "stochastic"] = "auto"
+    curves: dict[str, FatigueCurveSpec]
+    spectral: Annotated[list[Literal["narrow_band", "dirlik"]], Field(min_length=1)] = [
+        "narrow_band", "dirlik"]
+    residue: Literal["half", "repeat"] = "half"
+    skip: quantity("time", ge=0.0) | None = None
+    safety_factor: quantity("dimensionless", gt=0.0) = 1.0
+
+
+class ExtremesSpec(_Spec):
+    """``analyses[i]`` with ``kind: extremes`` (see :class:`moorline.model.ExtremesSettings`):
+    after a dynamics or stochastic analysis."""
+
+    kind: Literal["extremes"]
+    source: Literal["auto", "dynamics", "stochastic"] = "auto"
+    duration: quantity("time", gt=0.0) = 10800.0
+    method: Literal["weibull", "gumbel"] = "weibull"
+    percentiles: list[quantity("dimensionless", ge=0.0, le=100.0)] = [50.0, 90.0, 99.0]
+    seeds: list[Annotated[int, Field(ge=0)]] = []
+    blocks: PositiveInt = 1
+    skip: quantity("time", ge=0.0) | None = None
 
 
 # ``analyses[i]``: one model per row of the table of analysis kinds (moorline.analyses.KINDS,

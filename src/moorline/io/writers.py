@@ -322,7 +322,56 @@ def _render_dynamics(summary: dict, units: str) -> list[RenderableType]:
     return out
 
 
-_RENDERERS = {"statics": _render_statics, "dynamics": _render_dynamics}
+def _render_fatigue(summary: dict, units: str) -> list[RenderableType]:
+    """Heading, then per method the damage and life [years] at both ends of every line."""
+    curves = ", ".join(f"{t}: {c}" for t, c in summary.get("curves", {}).items())
+    head = (f"fatigue ({summary.get('source', '')}, {curves}): "
+            f"{summary.get('message', '')}")
+    out: list[RenderableType] = [Text(head, style="bold")]
+    for method, entry in summary.get("methods", {}).items():
+        table = Table(title=escape(f"Fatigue, {method}: damage over "
+                                   f"{_num(summary.get('duration'))} s and life [years]"))
+        for name in ("line", "end", "damage", "life [years]"):
+            table.add_column(name, justify="left" if name in ("line", "end") else "right")
+        for name, damage in entry.get("damage", {}).items():
+            life = entry.get("life_years", {}).get(name, {})
+            for end in ("a", "b"):
+                table.add_row(escape(name) if end == "a" else "", end,
+                              _num(damage.get(f"end_{end}")), _num(life.get(f"end_{end}")))
+        out.append(table)
+        if entry.get("min_life_element") is not None:
+            out.append(Text(f"least life of an element ({method}): "
+                            f"{_num(entry.get('min_element_life_years'))} years "
+                            f"(element {entry['min_life_element']})"))
+    return out
+
+
+def _render_extremes(summary: dict, units: str) -> list[RenderableType]:
+    """Heading, then the most probable maximum, sampled maximum, mean, std and percentiles
+    of the tension at both ends of every line."""
+    force = _unit("force", units)
+    head = (f"extremes ({summary.get('source', '')}, {summary.get('method', '')}): "
+            f"{summary.get('message', '')}")
+    out: list[RenderableType] = [Text(head, style="bold")]
+    levels = list(summary.get("percentiles", {}))
+    table = Table(title=escape(f"Line end tensions: most probable maximum over "
+                               f"{_num(summary.get('duration'))} s [{force}]"))
+    for name in ("line", "end", "MPM", "max", "mean", "std", *(f"p{q}" for q in levels)):
+        table.add_column(name, justify="left" if name in ("line", "end") else "right")
+    for name, mpm in summary.get("mpm", {}).items():
+        for end in ("a", "b"):
+            key = f"end_{end}"
+            table.add_row(escape(name) if end == "a" else "", end, _num(mpm.get(key)),
+                          *(_num(summary.get(k, {}).get(name, {}).get(key))
+                            for k in ("maximum", "mean", "std")),
+                          *(_num(summary["percentiles"][q].get(name, {}).get(key))
+                            for q in levels))
+    out.append(table)
+    return out
+
+
+_RENDERERS = {"statics": _render_statics, "dynamics": _render_dynamics,
+              "fatigue": _render_fatigue, "extremes": _render_extremes}
 
 
 def _lines_table(lines: dict, force: str, length: str) -> Table:

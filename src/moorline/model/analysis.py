@@ -314,3 +314,75 @@ class HarmonicSettings:
     tolerance: float = 1e-8
     max_iterations: int = 50
     output_points: int = 64
+
+
+@dataclass(frozen=True)
+class FatigueSettings:
+    """Fatigue analysis settings (``kind: fatigue``; see :mod:`moorline.fatigue_analysis`):
+    Miner damage and life from the run's preceding dynamics or stochastic analysis.
+
+    Attributes
+    ----------
+    source
+        ``auto`` (the latest of the two), ``dynamics`` or ``stochastic``.
+    curves
+        Per line type: ``{"curve": name, "MBL": ..., "diameter": ..., "area": ...}``; the
+        curve a key of ``moorline/data/tn_curves.yaml``; ``MBL`` the reference breaking
+        strength of API T-N curves [force] (default: the line type's ``MBL`` where line
+        types have one); ``diameter`` (chain, nominal area
+        ``2 pi d^2 / 4``) or ``area`` for DNV S-N curves [length, area]. Line types not
+        listed get no damage (NaN).
+    spectral
+        Frequency-domain methods: ``narrow_band`` and/or ``dirlik``.
+    residue
+        Rainflow residue: ``half`` cycles (ASTM E1049-85) or ``repeat`` (closed).
+    skip
+        Start-up time discarded from the histories [time]; ``None``: the dynamics'
+        ``ramp_time``.
+    safety_factor
+        Design fatigue factor: the life is the duration over ``safety_factor * damage``.
+    """
+
+    kind: Literal["fatigue"] = "fatigue"
+    source: Literal["auto", "dynamics", "stochastic"] = "auto"
+    curves: dict | None = None
+    spectral: tuple[str, ...] = ("narrow_band", "dirlik")
+    residue: Literal["half", "repeat"] = "half"
+    skip: float | None = None
+    safety_factor: float = 1.0
+
+
+@dataclass(frozen=True)
+class ExtremesSettings:
+    """Extremes analysis settings (``kind: extremes``; see :mod:`moorline.extremes_analysis`):
+    most probable maximum tensions from the run's preceding dynamics or stochastic analysis.
+
+    Attributes
+    ----------
+    source
+        ``auto`` (the latest of the two), ``dynamics`` or ``stochastic``.
+    duration
+        Exposure of the most probable maximum [time] (default 3 h).
+    method
+        Time domain: ``weibull`` (fit of the peaks over the mean) or ``gumbel`` (fit of the
+        maxima of the realizations, each cut into ``blocks``).
+    percentiles
+        Tension percentiles reported [%].
+    seeds
+        Wave seeds of further realizations: the preceding dynamics is run again with each
+        (time domain; the case's own seed is the first realization).
+    blocks
+        Gumbel: blocks each realization is cut into.
+    skip
+        Start-up time discarded from the histories [time]; ``None``: the dynamics'
+        ``ramp_time``.
+    """
+
+    kind: Literal["extremes"] = "extremes"
+    source: Literal["auto", "dynamics", "stochastic"] = "auto"
+    duration: float = 10800.0
+    method: Literal["weibull", "gumbel"] = "weibull"
+    percentiles: tuple[float, ...] = (50.0, 90.0, 99.0)
+    seeds: tuple[int, ...] = ()
+    blocks: int = 1
+    skip: float | None = None
