@@ -2,13 +2,18 @@
 
 MoorDyn v2 body (MoorDyn documentation, ``docs/inputs.rst``, "Bodies list"): ``ID Attachment
 X0 Y0 Z0 r0 p0 y0 Mass CG I Volume CdA Ca``: mass at the centre of gravity ``CG`` (body
-frame), inertia diagonal ``I`` about the centre of gravity, buoyancy ``rho g Volume`` at the
-body's reference point, added mass ``Ca rho Volume`` in translation only, drag ``CdA``. Points
-attached to body ``k`` have attachment ``Body<k>`` and body-frame coordinates.
+frame), inertia diagonal ``I`` about the centre of gravity, added mass ``Ca rho Volume`` in
+translation only, drag ``CdA``. Points attached to body ``k`` have attachment ``Body<k>`` and
+body-frame coordinates. MoorDyn-C 2.7 applies the body's buoyancy ``rho g Volume`` at its
+centre of gravity, not at its reference point (the documentation does not say; found from its
+net body moment, :func:`moorline.compare.moordyn_runner.run_moordyn`'s body state against a
+hand moment balance: a pitched body with ``CG = (0, 0, -2)`` was 1.43e5 N m out of balance
+with the buoyancy at the reference point, 4e3 N m with it at the centre of gravity).
 
 A moorline body is written only when MoorDyn can express it: no initial rotation, a diagonal
-inertia, no hydrostatic stiffness (buoyancy: a constant ``volume`` at the body origin), added
-mass ``a I3`` in translation with ``a = Ca rho V`` and none in rotation, no radiation damping,
+inertia, no hydrostatic stiffness (buoyancy: a constant ``volume``), added
+mass ``a I3`` in translation with ``a = Ca rho V`` and none in rotation, the centre of
+buoyancy at the centre of gravity (MoorDyn's model, above), no radiation damping,
 drag, external force, force history or wave loads. Anything else is an error listed by
 :func:`body_problems`.
 """
@@ -61,8 +66,10 @@ def body_problems(system: System) -> list[str]:
             (hs.kind == "matrix" and hs.stiffness is not None
              and bool(np.any(np.asarray(hs.stiffness, dtype=float))),
              "hydrostatic stiffness"),
-            (hs.kind == "matrix" and any(hs.center_of_buoyancy),
-             "a centre of buoyancy away from the body origin"),
+            (hs.kind == "matrix" and hs.volume != 0.0
+             and tuple(hs.center_of_buoyancy) != tuple(body.center_of_gravity),
+             "a centre of buoyancy away from the centre of gravity (MoorDyn applies the "
+             "body's buoyancy there)"),
             (math.isnan(_added_mass_ca(body, rho)),
              "added mass other than Ca rho V in translation"),
             (body.damping is not None and bool(np.any(np.asarray(body.damping))),

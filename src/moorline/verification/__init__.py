@@ -28,5 +28,6 @@ register("tuah-ex5-random", "tuah_ex5_random:run")
 register("tcheou-t2", "tcheou_t2:run")
 register("moorpy-statics", "moorpy_statics:run")  # other codes ([compare] extra)
 register("moordyn-dynamics", "moordyn_dynamics:run")  # other codes ([compare] extra)
+register("moordyn-body", "moordyn_body:run")  # other codes ([compare] extra)
 
 __all__ = ["CASES", "Row", "register", "run_cases"]
