@@ -8,10 +8,15 @@ from moorline.verification import core
 pytestmark = pytest.mark.compare
 
 
-def _check(rows: list[core.Row]) -> None:
+def _check(rows: list[core.Row], not_reproduced: tuple[str, ...] = ()) -> None:
+    """Every row compares with another code and passes, except the named rows the case
+    declares not reproduced (with a reason)."""
     assert rows
     for row in rows:
         assert row.kind == "other code", row
+        if any(name in row.quantity for name in not_reproduced):
+            assert row.status == "not reproduced" and row.note, row
+            continue
         assert row.status == "pass", (row.quantity, row.reference, row.computed, row.error,
                                       row.tolerance)
 
@@ -29,16 +34,17 @@ def test_moorpy_statics_rows_pass():
 def test_moordyn_dynamics_quick_rows_pass():
     pytest.importorskip("moordyn")
     rows = core.run_case("moordyn-dynamics", quick=True)
-    _check(rows)
+    _check(rows, not_reproduced=("pull first-harmonic phase",))
     quantities = " ".join(r.quantity for r in rows)
-    for part in ("OC3 surge", "first-harmonic", "cross current", "side force"):
+    for part in ("OC3 surge", "first-harmonic", "cross current", "side force",
+                 "dragged on the seabed"):
         assert part in quantities
 
 
 @pytest.mark.slow
 def test_moordyn_dynamics_full_rows_pass():
     pytest.importorskip("moordyn")
-    _check(core.run_case("moordyn-dynamics"))
+    _check(core.run_case("moordyn-dynamics"), not_reproduced=("pull first-harmonic phase",))
 
 
 def test_moordyn_body_quick_rows_pass():
