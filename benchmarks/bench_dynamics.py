@@ -1,8 +1,9 @@
 """Dynamics benchmark: the OC3-Hywind three-line system against MoorDyn, in one run.
 
-All three fairleads surge 5 m at 10 s (ramped in over 10 s, :mod:`oc3_system`); 300 s are
-simulated. The accuracy metric is the set of fairlead-tension extremes: the largest and the
-smallest end-B tension of each line over ``t`` in [100, 300] s (six numbers); a run's *error* is
+All three fairleads surge 5 m at 10 s (ramped in over 10 s,
+:mod:`moorline.verification.oc3_system`); 300 s are simulated. The accuracy metric is the set
+of fairlead-tension extremes: the largest and the smallest end-B tension of each line over
+``t`` in [100, 300] s (six numbers); a run's *error* is
 the largest relative difference of its six numbers from those of a converged reference run of
 the same code. Tensions are sampled at every moorline step and every 0.05 s for MoorDyn (its
 coupling interval; MoorDyn sub-steps within it and moves the fairleads linearly).
@@ -58,7 +59,6 @@ import argparse
 import dataclasses
 import json
 import math
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -71,9 +71,7 @@ from moorline.errors import ConvergenceError
 from moorline.model import DynamicsSettings
 from moorline.solvers.dynamics import simulate
 from moorline.solvers.statics import solve_statics
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from oc3_system import oc3_one_line, oc3_three_lines  # noqa: E402
+from moorline.verification.oc3_system import oc3_one_line, oc3_three_lines
 
 TOLERANCE = 0.01  # "within 1 %"
 COUPLING = 0.05  # MoorDyn coupling and output interval [s]

@@ -12,19 +12,7 @@ import time
 import numpy as np
 
 from moorline.solvers.statics import solve_statics
-from moorline.verification.oc3_line import (
-    ANCHOR_R,
-    DEPTH,
-    DIAMETER,
-    EA,
-    FAIR_R,
-    FAIR_Z,
-    LENGTH,
-    MASS,
-    RHO,
-    G,
-    oc3_system,
-)
+from moorline.verification.oc3_line import oc3_system
 
 
 def best_of(func, repeat: int = 5) -> float:
@@ -38,21 +26,18 @@ def best_of(func, repeat: int = 5) -> float:
 
 
 def moorpy_solver(segments: int):
-    """A callable solving the OC3 line with MoorPy, or None without MoorPy."""
+    """A callable building and solving the OC3 line with MoorPy (the same moorline system,
+    :func:`moorline.compare.moorpy_runner.solve_moorpy`), or None without MoorPy."""
     try:
-        import moorpy as mp
+        import moorpy  # noqa: F401
     except ImportError:
         return None
+    from moorline.compare.moorpy_runner import solve_moorpy
+
+    system = oc3_system(segments)
 
     def solve():
-        ms = mp.System(depth=DEPTH, rho=RHO, g=G)
-        ms.setLineType(dnommm=DIAMETER * 1000, name="chain", mass=MASS, d_vol=DIAMETER, EA=EA)
-        ms.addPoint(1, [-ANCHOR_R, 0, -DEPTH])
-        ms.addPoint(1, [-FAIR_R, 0, FAIR_Z])
-        ms.addLine(LENGTH, "chain", nSegs=segments, pointA=1, pointB=2)
-        ms.initialize()
-        ms.solveEquilibrium()
-        return ms.lineList[0].TB
+        return solve_moorpy(system).lineList[0].TB
 
     return solve
 

@@ -4,8 +4,6 @@ item 9). The internal damping is the same fixed BA in both codes (1.56e6 N s: wh
 OC3 example's damping ratio 0.8 gives at 80 segments; a ratio would change the system with
 the mesh). Runs about a minute: marked slow (``make verify``)."""
 
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,9 +11,7 @@ import pytest
 from moorline.model import DynamicsSettings
 from moorline.solvers.dynamics import simulate
 from moorline.solvers.statics import solve_statics
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-from oc3_system import oc3_one_line  # noqa: E402
+from moorline.verification.oc3_system import oc3_one_line
 
 pytestmark = [pytest.mark.compare, pytest.mark.slow]
 BA, DURATION, WINDOW = 1.56e6, 100.0, (50.0, 100.0)

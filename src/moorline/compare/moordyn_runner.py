@@ -118,10 +118,44 @@ def _coupled_points(system: System, prescribed: Mapping[str, Motion | Kinematics
 
 def _check_system(system: System) -> None:
     errors, omissions = unsupported_features(system)
-    dynamic = [o for o in omissions if o in ("current", "waves") or "force_history" in o]
+    dynamic = [o for o in omissions if o == "waves" or "force_history" in o]
     if errors or dynamic:
         raise CaseError("MoorDyn comparison cannot represent: " + "; ".join(errors + dynamic),
                         file=system.source)
+
+
+def current_profile_rows(system: System) -> list[tuple[float, float, float]] | None:
+    """The system's current as MoorDyn's steady profile rows ``(z, ux, uy)``, or None.
+
+    A uniform current gives two rows (seabed and surface); a profile its own levels (MoorDyn
+    interpolates linearly in ``z`` between rows, as moorline does)."""
+    cur = system.environment.current
+    if cur.speeds:
+        return [(float(z), s * math.cos(math.radians(h)), s * math.sin(math.radians(h)))
+                for z, s, h in zip(cur.z_levels, cur.speeds, cur.headings_deg, strict=True)]
+    if not cur.speed:
+        return None
+    ux = cur.speed * math.cos(math.radians(cur.heading_deg))
+    uy = cur.speed * math.sin(math.radians(cur.heading_deg))
+    depth = system.environment.depth
+    bottom = -depth if math.isfinite(depth) else -1.0e4
+    return [(bottom, ux, uy), (0.0, ux, uy)]
+
+
+def _write_current(system: System, folder: Path) -> dict[str, object]:
+    """Write ``current_profile.txt`` next to the deck (MoorDyn option ``Currents 1``: a
+    steady profile read from the deck's folder) and return the options that select it.
+    MoorDyn applies the current after its initial-condition solve: the run starts from the
+    still-water equilibrium with the current switched on at t = 0."""
+    rows = current_profile_rows(system)
+    if rows is None:
+        return {}
+    text = ["--- MoorDyn steady currents file (written by moorline) ---",
+            "Tabulated water current components",
+            "z (m), ux (m/s), uy (m/s), uz (m/s)"]
+    text += [f"{z!r} {ux!r} {uy!r} 0.0" for z, ux, uy in sorted(rows)]
+    (folder / "current_profile.txt").write_text("\n".join(text) + "\n", encoding="utf-8")
+    return {"WaveKin": 0, "Currents": 1}
 
 
 def _steps(duration: float, step: float, what: str) -> int:
@@ -146,6 +180,8 @@ class _Recorder:
         self.end_force = np.full((capacity, len(self.lines), 2, 3), np.nan)
         self.fair_ten = np.full((capacity, len(self.lines)), np.nan)
         self.point_force = np.full((capacity, len(coupled), 3), np.nan)
+        self.bodies = [moordyn.GetBody(md, i) for i in range(1, len(system.bodies) + 1)]
+        self.body_state = np.full((capacity, len(self.bodies), 6), np.nan)
         self.count = 0
 
     def record(self, t: float, point_forces: Any | None = None) -> bool:
@@ -159,6 +195,8 @@ class _Recorder:
         if point_forces is None:
             point_forces = [c for p in self.points for c in md.GetPointForce(p)]
         self.point_force[k] = np.asarray(point_forces, dtype=float).reshape(-1, 3)
+        for j, body in enumerate(self.bodies):
+            self.body_state[k, j] = md.GetBodyState(body)[0]
         self.count += 1
         return bool(np.isfinite(self.end_force[k]).all() and np.isfinite(self.point_force[k]).all())
 
@@ -167,13 +205,17 @@ def run_moordyn(system: System, duration: float, dt: float, output_every: float,
                 prescribed: Mapping[str, Motion | Kinematics] | None = None, *,
                 coupling_dt: float | None = None, tmax_ic: float = 1000.0,
                 thresh_ic: float = 1.0e-5, time_scheme: str | None = None,
+                extra_options: Mapping[str, object] | None = None,
                 workdir: str | Path | None = None, quiet: bool = True) -> dict[str, Any]:
     """Simulate ``system`` with MoorDyn from its static equilibrium.
 
     Parameters
     ----------
     system
-        The problem (fixed, free and prescribed points, lines; no current or waves).
+        The problem (fixed, free and prescribed points, lines; a steady current, no waves).
+        The current is written as MoorDyn's steady profile (:func:`current_profile_rows`);
+        MoorDyn switches it on at t = 0 after its still-water initial condition, so compare
+        with a moorline run started from the still-water statics with no current ramp.
     duration
         Simulated time [s]; a multiple of the coupling interval.
     dt
@@ -196,6 +238,9 @@ def run_moordyn(system: System, duration: float, dt: float, output_every: float,
         MoorDyn initial-condition options (see :func:`~moorline.io.moordyn.write_moordyn`).
     time_scheme
         MoorDyn ``tScheme`` (default ``RK2``).
+    extra_options
+        More MoorDyn option rows (e.g. ``FricDamp``), see
+        :func:`~moorline.io.moordyn.write_moordyn`.
     workdir
         Directory to write the deck (and MoorDyn's outputs) into and keep; default: a
         temporary directory, removed afterwards.
@@ -209,7 +254,9 @@ def run_moordyn(system: System, duration: float, dt: float, output_every: float,
         points A and B; ``fairlead_tension`` (n_t, n_lines): ``|end_force[..., 1, :]|`` (as
         moorline's ``fairlead_tension``); ``fairlead_tension_segment`` (n_t, n_lines):
         MoorDyn's ``FairTen`` (top segment); ``point_force``: ``{name: (n_t, 3)}`` force on
-        each coupled point; ``lines``, ``coupled_points``: names in order; ``success``,
+        each coupled point; ``body_state``: ``{name: (n_t, 6)}`` MoorDyn's body position and
+        orientation (its Euler angles [rad]); ``lines``, ``coupled_points``: names in order;
+        ``success``,
         ``message``; ``wall_time_loop`` (the stepping loop only), ``wall_time_init``
         (``Create`` + ``Init``: reading and the static solve), ``wall_time_total`` (deck
         writing to ``Close``); ``dtM``, ``coupling_dt``, ``n_steps`` (MoorDyn steps),
@@ -236,7 +283,9 @@ def run_moordyn(system: System, duration: float, dt: float, output_every: float,
             stack.enter_context(tempfile.TemporaryDirectory(prefix="moorline-moordyn-")))
         folder.mkdir(parents=True, exist_ok=True)
         deck = write_moordyn(system, folder / "moorline.dat", dt, tmax_ic=tmax_ic,
-                             thresh_ic=thresh_ic, time_scheme=time_scheme)
+                             thresh_ic=thresh_ic, time_scheme=time_scheme,
+                             extra_options={**_write_current(system, folder),
+                                            **dict(extra_options or {})})
         result = _simulate(moordyn, system, deck, coupled, n_couple, stride, coupling_dt, quiet)
     if result["ic_residual"] > 10.0 * thresh_ic:
         logger.warning("MoorDyn's initial condition did not converge: residual %.3g m/s^2 "
@@ -344,6 +393,8 @@ def _collect(system: System, coupled: list[_Coupled], recorder: _Recorder, messa
         "fairlead_tension": np.linalg.norm(end_force[:, :, 1], axis=-1),
         "fairlead_tension_segment": recorder.fair_ten[:k],
         "point_force": {c.name: recorder.point_force[:k, i] for i, c in enumerate(coupled)},
+        "body_state": {name: recorder.body_state[:k, i]
+                       for i, name in enumerate(system.bodies)},
         "lines": list(system.lines),
         "coupled_points": [c.name for c in coupled],
         "success": message == "completed",

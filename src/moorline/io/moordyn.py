@@ -50,6 +50,7 @@ from typing import Literal
 from ..errors import CaseError
 from ..model import Environment, Line, LineType, Point, Seabed, System
 from .files import MAX_CASE_BYTES, file_problem
+from .moordyn_bodies import body_attachment, body_problems, body_section
 from .schema import check_number
 from .topology import geometry_problem
 
@@ -517,6 +518,7 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
     for ln in system.lines.values():
         if ln.initial_shape is not None:
             omissions.append(f"line {ln.name}: initial_shape")
+    errors += body_problems(system)
     return errors, omissions
 
 
@@ -536,7 +538,8 @@ def _point_rows(system: System) -> list[str]:
                            "points have no force input)", p.name, p.force[2], volume - p.volume)
         cda = p.Cd * p.drag_area
         values = [*p.position, p.mass, volume, cda, p.Ca]
-        rows.append(f"{i:<4d} {kinds[p.kind]:<8s} " + " ".join(_fmt(v) for v in values)
+        kind = body_attachment(system, p.body) if p.kind == "body" else kinds[p.kind]
+        rows.append(f"{i:<4d} {kind:<8s} " + " ".join(_fmt(v) for v in values)
                     + f"   # {p.name}")
     return rows
 
@@ -586,6 +589,8 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
     Fixed points become ``Fixed``, prescribed points ``Coupled`` (driven through MoorDyn's
     coupling interface) and free points ``Free`` (``CdA = Cd * drag_area``). A vertical
     constant point force becomes extra ``Volume`` (MoorDyn points have no force column).
+    Bodies that MoorDyn can express (:mod:`moorline.io.moordyn_bodies`) become ``BODIES``
+    rows and their points ``Body<k>`` points; the reader does not read them back.
 
     Parameters
     ----------
@@ -625,6 +630,8 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
         raise CaseError("cannot be written as a MoorDyn deck: " + "; ".join(errors),
                         file=str(path))
     for omission in omissions:
+        if omission == "current" and "Currents" in (extra_options or {}):
+            continue  # written by the caller as a current file (moordyn_runner)
         logger.warning("MoorDyn deck %s: %s not written", path, omission)
     settings: dict[str, object] = {"dtIC": float(dt_ic), "TmaxIC": float(tmax_ic),
                                    "threshIC": float(thresh_ic), "writeLog": 0,
@@ -639,6 +646,7 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
         f"written by moorline for case {system.name!r} ({system.units} units)",
         _rule("LINE TYPES"), "TypeName   " + " ".join(head), "(name)     " + " ".join(units),
         *_line_type_rows(system),
+        *([_rule("BODIES"), *body_section(system)] if system.bodies else []),
         _rule("POINTS"), "ID   Attachment  X  Y  Z  Mass  Volume  CdA  Ca",
         "(#)  (-)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)", *_point_rows(system),
         _rule("LINES"), "ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs",

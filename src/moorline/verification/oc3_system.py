@@ -1,4 +1,4 @@
-"""The OC3-Hywind three-line mooring system of the dynamics benchmarks.
+"""The OC3-Hywind three-line mooring system (dynamics benchmarks, the other-code cases).
 
 Geometry and line properties: J. Jonkman (2010), NREL/TP-500-47535, table 4-1 (depth 320 m,
 anchors at radius 853.87 m on the seabed at 0, 120 and 240 deg, fairleads at radius 5.2 m and
@@ -13,11 +13,9 @@ from __future__ import annotations
 
 import math
 
-from moorline.model import Environment, Line, LineType, Motion, Point, Seabed, System
+from ..model import Environment, Line, LineType, Motion, Point, Seabed, System
+from .oc3_line import ANCHOR_R, DEPTH, DIAMETER, EA, FAIR_R, FAIR_Z, LENGTH, MASS, RHO, G
 
-DEPTH, ANCHOR_R, FAIR_R, FAIR_Z = 320.0, 853.87, 5.2, -70.0
-LENGTH, DIAMETER, MASS, EA = 902.2, 0.09, 77.7066, 384.243e6
-RHO, G = 1025.0, 9.80665
 HEADINGS_DEG = (0.0, 120.0, 240.0)
 AMPLITUDE, PERIOD = (5.0, 0.0, 0.0), 10.0
 
@@ -39,16 +37,18 @@ def surge(ramp_time: float = 10.0) -> Motion:
     return Motion("harmonic", amplitude=AMPLITUDE, period=PERIOD, ramp_time=ramp_time)
 
 
-def oc3_three_lines(segments: int, ramp_time: float = 10.0, BA: float = -0.8) -> System:
+def oc3_three_lines(segments: int, ramp_time: float = 10.0, BA: float = -0.8,
+                    motion: Motion | None = None) -> System:
     """The three OC3 lines, ``segments`` elements each, all fairleads in harmonic surge.
 
     ``BA``: internal axial damping [N s], or minus a damping ratio of each segment's axial mode
     (MoorDyn's convention, the default -0.8: then the damping coefficient is proportional to
-    the segment length and changes with the mesh).
+    the segment length and changes with the mesh). ``motion``: the fairleads' motion (default
+    :func:`surge`).
     """
     points: dict[str, Point] = {}
     lines: dict[str, Line] = {}
-    motion = surge(ramp_time)
+    motion = surge(ramp_time) if motion is None else motion
     for k, heading in enumerate(HEADINGS_DEG, start=1):
         c, s = math.cos(math.radians(heading)), math.sin(math.radians(heading))
         anchor, fair = f"anchor{k}", f"fairlead{k}"
