@@ -49,6 +49,7 @@ bench: $(COMPARE)
 	$(BIN)/python benchmarks/bench_dynamics.py $(BENCH_ARGS)
 	$(BIN)/python benchmarks/bench_kernels.py $(BENCH_ARGS)
 	$(BIN)/python benchmarks/bench_stream.py
+	$(BIN)/python benchmarks/bench_coupling.py
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks
