@@ -29,6 +29,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from . import __version__
+from .envelope import ENVELOPE_VARIABLES, TensionEnvelope, envelope_start, line_coords
 
 FloatArray = NDArray[np.float64]
 
@@ -68,6 +69,14 @@ VARIABLES: dict[str, dict[str, tuple[str, str]]] = {
         "position": ("length", "node position"),
         "tension": ("force", "element tension"),
         "point_position": ("length", "point position"),
+        "node_line": ("1", "line of the node (empty: a point ending several lines, or none)"),
+        "node_arc_length": ("length", "unstretched arc length of the node from end a of its "
+                                      "line"),
+        "element_arc_length": ("length", "unstretched arc length of the element midpoint "
+                                         "from end a of its line"),
+        "line_nodes": ("1", "nodes of the line in order from end a to end b (-1 past end b)"),
+        "line_arc_length": ("length", "unstretched arc length from end a of the line's nodes "
+                                      "(line_nodes; NaN past end b)"),
         **_BODY,
     },
     "statics": {
@@ -84,6 +93,15 @@ VARIABLES: dict[str, dict[str, tuple[str, str]]] = {
         "end_tension": ("force", "tension at the line end"),
         "fairlead_tension": ("force", "tension at end b of the line (the fairlead)"),
         "wave_elevation": ("length", "free-surface elevation at x = y = 0"),
+        "tension_min": ("force", "smallest element tension over the records from "
+                                 "envelope_start"),
+        "tension_max": ("force", "largest element tension over the records from "
+                                 "envelope_start"),
+        "tension_mean": ("force", "mean element tension over the records from envelope_start"),
+        "tension_std": ("force", "standard deviation of the element tension over the records "
+                                 "from envelope_start"),
+        "tension_static": ("force", "element tension of the state the run starts from (its "
+                                    "statics)"),
     },
     "modal": {
         "omega": ("rad/s", "natural circular frequency (negative: unstable mode)"),
@@ -315,24 +333,36 @@ def record_variables(mesh: Any) -> tuple[RecordVariable, ...]:
 
 
 def mesh_coords(mesh: Any) -> tuple[dict[str, Any], dict[str, Any]]:
-    """The time-independent variables (``element_nodes``, ``point_node``) and coordinates
-    (``xyz``, ``end``, ``line``, ``point``, ``point_kind``, ``element_line``; ``body``,
-    ``dof`` with bodies) of a dynamics group."""
+    """The time-independent variables (``element_nodes``, ``point_node``, ``line_nodes``,
+    ``line_arc_length``) and coordinates (``xyz``, ``end``, ``line``, ``point``,
+    ``point_kind``, ``element_line``, ``node_line``, ``node_arc_length``,
+    ``element_arc_length``; ``body``, ``dof`` with bodies) of a dynamics group (the
+    along-line ones: :func:`moorline.envelope.line_coords`)."""
+    along, along_coords = line_coords(mesh)
     data = {"element_nodes": (("element", "pair"), np.asarray(mesh.elements, dtype=np.int64)),
-            "point_node": (("point",), np.asarray(mesh.point_node, dtype=np.int64))}
+            "point_node": (("point",), np.asarray(mesh.point_node, dtype=np.int64)), **along}
     coords: dict[str, Any] = {
         "xyz": ["x", "y", "z"], "end": ["a", "b"], "line": list(mesh.line_names),
         "point": list(mesh.point_names), "point_kind": (("point",), list(mesh.point_kind)),
-        "element_line": (("element",), [mesh.line_names[i] for i in mesh.element_line])}
+        "element_line": (("element",), [mesh.line_names[i] for i in mesh.element_line]),
+        **along_coords}
     if mesh.body_names:
         coords.update(body=list(mesh.body_names), dof=list(BODY_DOFS))
     return data, coords
 
 
 def dynamics_dataset(mesh: Any, time: FloatArray, records: Mapping[str, Any],
-                     attrs: Mapping[str, Any]) -> xr.Dataset:
+                     attrs: Mapping[str, Any],
+                     static_tension: FloatArray | None = None) -> xr.Dataset:
     """The dynamics group from stacked records (leading axis ``time``; ``records`` may be
-    empty with ``time`` of length 0: the group a stream starts from)."""
+    empty with ``time`` of length 0: the group a stream starts from).
+
+    With the tension envelope (:class:`moorline.envelope.TensionEnvelope`, from
+    ``envelope_start`` of the settings in ``attrs``): ``tension_min``, ``tension_max``,
+    ``tension_mean``, ``tension_std``, ``tension_static`` (element; the static value:
+    ``static_tension``, default the first record's) with CF ``cell_methods``, and the group
+    attributes ``envelope_start`` and ``envelope_records``.
+    """
     data, coords = mesh_coords(mesh)
     n_t = len(time)
     for var in record_variables(mesh):
@@ -342,7 +372,17 @@ def dynamics_dataset(mesh: Any, time: FloatArray, records: Mapping[str, Any],
             values = np.zeros((0, *(_size(mesh, d) for d in var.dims)))
         data[var.name] = (("time", *var.dims), values)
     coords["time"] = np.asarray(time, dtype=float)
-    return build_dataset("dynamics", data, coords, attrs)
+    envelope = TensionEnvelope(mesh.n_elements, envelope_start(attrs), static_tension)
+    if n_t:
+        envelope.add_records(coords["time"], np.asarray(records["tension"], dtype=float))
+    data.update({k: (("element",), v) for k, v in envelope.values().items()})
+    ds = build_dataset("dynamics", data, coords,
+                       {**attrs, "envelope_start": envelope.start,
+                        "envelope_records": envelope.count})
+    for name, method in ENVELOPE_VARIABLES:
+        if method:
+            ds[name].attrs["cell_methods"] = method
+    return ds
 
 
 def _size(mesh: Any, dim: str) -> int:

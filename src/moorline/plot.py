@@ -21,6 +21,8 @@ from matplotlib.text import Text
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from numpy.typing import NDArray
 
+from .plot_envelope import plot_tension_envelope
+
 __all__ = ["plot_configuration", "plot_mode_shapes", "plot_motion_history",
            "plot_tension_history"]
 
@@ -673,8 +675,10 @@ def plot_statics_group(dataset: xr.Dataset, directory: str | Path,
 
 def plot_dynamics_group(dataset: xr.Dataset, directory: str | Path,
                         prefix: str = "") -> list[Path]:
-    """``tension_history.png``, ``motion_history.png`` and, with bodies, ``body_motion.png``
-    and ``snapshots_3d.png`` of a dynamics group (nothing without records)."""
+    """``tension_history.png``, ``motion_history.png``, ``tension_envelope.png`` (with the
+    envelope variables: :func:`moorline.plot_envelope.plot_tension_envelope`) and, with
+    bodies, ``body_motion.png`` and ``snapshots_3d.png`` of a dynamics group (nothing without
+    records)."""
     if not dataset.sizes.get("time", 0):
         return []
     directory = Path(directory)
@@ -682,6 +686,9 @@ def plot_dynamics_group(dataset: xr.Dataset, directory: str | Path,
              directory / f"{prefix}motion_history.png"]
     plot_tension_history(dataset, files[0])
     plot_motion_history(dataset, files[1])
+    if "tension_max" in dataset.variables:
+        files.append(directory / f"{prefix}tension_envelope.png")
+        _save(plot_tension_envelope(dataset), files[-1])
     if "body_pose" in dataset.variables:
         files += [directory / f"{prefix}body_motion.png", directory / f"{prefix}snapshots_3d.png"]
         plot_body_motion(dataset, files[-2])

@@ -10,6 +10,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from .datasets import BODY_DOFS, build_dataset, dynamics_dataset, group_attrs
+from .envelope import line_coords, line_profile
 from .mesh import Mesh
 from .status import Status
 
@@ -17,7 +18,7 @@ FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
 
 __all__ = ["BODY_DOFS", "DynamicResult", "HarmonicResult", "ModalResult", "StaticResult",
-           "Status", "StochasticResult", "StrummingResult"]
+           "Status", "StochasticResult", "StrummingResult", "line_profile"]
 
 
 def _settle_status(result: Any, ok: Status) -> None:
@@ -168,7 +169,10 @@ class StaticResult:
 
         ``max_tension`` is the largest tension of each line, its end tensions included (as in
         the ``--json`` summary); the attribute ``seabed_z`` (``-inf`` without seabed) and the
-        coordinate ``point_kind`` are there for the plots. Attributes: those of every group
+        coordinate ``point_kind`` are there for the plots. Along the lines
+        (:func:`moorline.envelope.line_coords`): ``line_nodes``, ``line_arc_length`` and the
+        coordinates ``node_line``, ``node_arc_length``, ``element_arc_length``
+        (:func:`line_profile` gives one line in order). Attributes: those of every group
         (:func:`moorline.datasets.group_attrs`), ``converged`` (= ``success``), ``method``.
         """
         m = self.mesh
@@ -189,10 +193,13 @@ class StaticResult:
             "element_nodes": (("element", "pair"), m.elements),
             "unstretched_length": (("element",), m.length0),
         }
+        along, along_coords = line_coords(m)
+        data.update(along)
         coords: dict[str, Any] = {
             "xyz": ["x", "y", "z"], "end": ["a", "b"], "line": list(m.line_names),
             "point": list(m.point_names), "point_kind": (("point",), list(m.point_kind)),
             "element_line": (("element",), [m.line_names[i] for i in m.element_line]),
+            **along_coords,
         }
         if m.body_names:
             data["body_pose"] = (("body", "dof"), self.body_pose)
@@ -231,6 +238,10 @@ class DynamicResult:
     status
         ``completed``, ``failed`` or ``interrupted`` (set from ``success`` when not given); a
         failed or interrupted run holds the records up to its last completed step.
+    static_tension
+        Element tensions of the static equilibrium the run started from (n_elements,);
+        empty when it started from positions: the envelope's static value is then the
+        first record's.
     """
 
     success: bool
@@ -250,6 +261,7 @@ class DynamicResult:
     body_mooring_force: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
     wave_elevation: FloatArray = field(default_factory=lambda: np.zeros(0))
     status: str = ""
+    static_tension: FloatArray = field(default_factory=lambda: np.zeros(0))
 
     def __post_init__(self) -> None:
         _settle_status(self, Status.COMPLETED)
@@ -294,9 +306,12 @@ class DynamicResult:
 
         The same variables, coordinates and attributes as the ``dynamics`` group that
         :class:`~moorline.io.stream.HistoryWriter` streams: both come from
-        :data:`moorline.datasets.DYNAMIC_VARIABLES`.
+        :data:`moorline.datasets.DYNAMIC_VARIABLES`, with the tension envelope
+        (``tension_min``, ``tension_max``, ``tension_mean``, ``tension_std``,
+        ``tension_static``; :mod:`moorline.envelope`) and the along-line coordinates.
         """
-        return dynamics_dataset(self.mesh, self.time, self.records(), self.dataset_attrs())
+        return dynamics_dataset(self.mesh, self.time, self.records(), self.dataset_attrs(),
+                                self.static_tension)
 
 
 @dataclass(frozen=True)

@@ -146,7 +146,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     first_step: list[float] = []
     started = time.monotonic()
     try:
-        with _history_writer(context, mesh, settings, label) as writer, \
+        with _history_writer(context, mesh, settings, label,
+                             initial.tension if initial is not None else None) as writer, \
                 _progress(f"{label} of {system.name}", settings.duration,
                           context.quiet) as advance:
             def progress(t: float) -> None:
@@ -196,9 +197,10 @@ def _note_compilation(seconds: float, quiet: bool) -> None:
 
 
 @contextmanager
-def _history_writer(context: RunContext, mesh: Any, settings: Any,
-                    label: str) -> Iterator[Any]:
-    """A :class:`~moorline.io.stream.HistoryWriter` on group ``label`` of the results file."""
+def _history_writer(context: RunContext, mesh: Any, settings: Any, label: str,
+                    static_tension: Any = None) -> Iterator[Any]:
+    """A :class:`~moorline.io.stream.HistoryWriter` on group ``label`` of the results file
+    (``static_tension``: the envelope's static tensions, those of the run's statics)."""
     from .datasets import group_attrs
     from .design import line_attrs
     from .io.stream import HistoryWriter
@@ -211,7 +213,8 @@ def _history_writer(context: RunContext, mesh: Any, settings: Any,
                                "output_every": float(max(system.output.every, settings.dt)),
                                **line_attrs(system)})
     add_analysis(context.results, label)
-    with HistoryWriter(context.results, mesh, attrs, group=label) as writer:
+    with HistoryWriter(context.results, mesh, attrs, group=label,
+                       static_tension=static_tension) as writer:
         yield writer
 
 

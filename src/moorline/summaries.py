@@ -121,8 +121,12 @@ def history_summary(ds: Any, settings: Any, success: bool, message: str,
         ``{"converged", "status", "message", "duration", "dt", "records", "time_start",
         "time_end",
         "lines": {id: {"end_a": {"max", "min", "mean", "std"}, "end_b": ...}},
-        "points": {id: {"kind", "min": [x, y, z], "max": [x, y, z]}}, "counters"}``;
-        statistics over the output records, in the case's units.
+        "points": {id: {"kind", "min": [x, y, z], "max": [x, y, z]}}, "counters",
+        "envelope": {"start", "records", "max_element_tension": {"tension", "line",
+        "arc_length"}}}``; statistics over the output records, in the case's units; the
+        envelope's largest element tension (from ``envelope_start``, element midpoints: the
+        end tensions are in ``lines``), on which line and where (unstretched arc length from
+        end a), when the group has the envelope (:mod:`moorline.envelope`).
     """
     time = np.asarray(ds["time"].values, dtype=float)
     tension = np.linalg.norm(np.asarray(ds["end_force"].values, dtype=float), axis=-1)
@@ -145,7 +149,23 @@ def history_summary(ds: Any, settings: Any, success: bool, message: str,
             "records": int(len(time)),
             "time_start": float(time[0]) if len(time) else None,
             "time_end": float(time[-1]) if len(time) else None,
-            "lines": lines, "points": points, "counters": counters}
+            "lines": lines, "points": points, "counters": counters,
+            **_envelope_summary(ds)}
+
+
+def _envelope_summary(ds: Any) -> dict[str, Any]:
+    """``{"envelope": ...}`` of :func:`history_summary` (empty without the envelope)."""
+    if "tension_max" not in ds:
+        return {}
+    largest = np.asarray(ds["tension_max"].values, dtype=float)
+    where = None
+    if np.isfinite(largest).any():
+        e = int(np.nanargmax(largest))
+        where = {"tension": float(largest[e]), "line": str(ds["element_line"].values[e]),
+                 "arc_length": float(ds["element_arc_length"].values[e])}
+    return {"envelope": {"start": float(ds.attrs.get("envelope_start", 0.0)),
+                         "records": int(ds.attrs.get("envelope_records", 0)),
+                         "max_element_tension": where}}
 
 
 def _stats(values: np.ndarray) -> dict[str, float]:

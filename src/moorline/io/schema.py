@@ -452,6 +452,7 @@ class DynamicsSpec(_Spec):
     rayleigh_frequencies: Annotated[list[quantity("dimensionless", ge=0.0)],
                                     AfterValidator(lambda v: _pair(v))] = Field(
         default_factory=lambda: [0.0, 0.0])
+    envelope_start: quantity("time", ge=0.0) | None = None
 
 
 def _band(values: list[float]) -> list[float]:

@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..datasets import dynamics_dataset, record_variables
+from ..envelope import TensionEnvelope
 from ..mesh import Mesh
 from ..signals import Terminated, signals_deferred
 from ..status import Status
@@ -50,7 +51,10 @@ class HistoryWriter:
     :meth:`moorline.results.DynamicResult.to_xarray`
     (:func:`moorline.datasets.dynamics_dataset`, :data:`~moorline.datasets.DYNAMIC_VARIABLES`):
     the same variables, dimensions, coordinates, ``units`` and ``long_name``, with an unlimited
-    ``time`` dimension that each record extends.
+    ``time`` dimension that each record extends. The tension envelope
+    (:class:`moorline.envelope.TensionEnvelope`: ``tension_min`` ... ``tension_static`` and
+    the attribute ``envelope_records``) is accumulated from the records as they come and
+    rewritten with every block, so the file holds the envelope of the records it holds.
 
     Parameters
     ----------
@@ -71,6 +75,9 @@ class HistoryWriter:
         fewer when a block would take more than :data:`BLOCK_BYTES`).
     group
         Name of the group to write (e.g. ``"dynamics"``); ``None``: the root group.
+    static_tension
+        The envelope's static element tensions (the statics the run starts from); ``None``:
+        the first record's.
 
     Raises
     ------
@@ -80,7 +87,8 @@ class HistoryWriter:
 
     def __init__(self, path: str | Path, mesh: Mesh, attrs: dict[str, Any],
                  units: str | None = None, block_records: int | None = None,
-                 group: str | None = None) -> None:
+                 group: str | None = None,
+                 static_tension: FloatArray | None = None) -> None:
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.group = group
@@ -99,12 +107,14 @@ class HistoryWriter:
                     raise ValueError(f"{self.path} already has a group {group!r}")
         start = {**attrs, "units": units or attrs.get("units", "SI"), "success": 0,
                  "complete": 0, "status": str(Status.RUNNING)}
-        skeleton = dynamics_dataset(mesh, np.zeros(0), {}, start)
+        skeleton = dynamics_dataset(mesh, np.zeros(0), {}, start, static_tension)
         skeleton.to_netcdf(self.path, mode="a" if append else "w", group=group,
                            engine="netcdf4", unlimited_dims=["time"],
                            encoding=_chunking(skeleton))
         self.root = netCDF4.Dataset(self.path, "a")
         self.ds = self.root if group is None else self.root.groups[group]
+        self.envelope = TensionEnvelope(mesh.n_elements, skeleton.attrs["envelope_start"],
+                                        static_tension)
 
     def append(self, t: float, record: dict[str, FloatArray]) -> None:
         """Buffer one output record at time ``t`` (copied into the block buffer); write the
@@ -133,9 +143,17 @@ class HistoryWriter:
             for var in self.variables:
                 self.ds[var.name][i:i + n] = var.derive(block)
             self.ds["time"][i:i + n] = self._times[:n]
+            self._write_envelope(self._times[:n], block["tension"])
             self.root.sync()
             self.written = self.count
             self._written_at = time.monotonic()
+
+    def _write_envelope(self, times: FloatArray, tension: FloatArray) -> None:
+        """Add a block's records to the envelope and write it."""
+        self.envelope.add_records(times, tension)
+        for name, values in self.envelope.values().items():
+            self.ds[name][:] = values
+        self.ds.setncattr("envelope_records", self.envelope.count)
 
     def _allocate(self, record: dict[str, Any]) -> None:
         """The block buffer, from the first record's shapes: ``block_records`` records, fewer

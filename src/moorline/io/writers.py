@@ -316,6 +316,13 @@ def _render_dynamics(summary: dict, units: str) -> list[RenderableType]:
         points.add_row(escape(name), point.get("kind", ""),
                        *[_num(v) for pair in zip(low, high, strict=True) for v in pair])
     out.append(points)
+    envelope = summary.get("envelope") or {}
+    largest = envelope.get("max_element_tension")
+    if largest:
+        out.append(Text(f"envelope from t = {_num(envelope.get('start'))} s "
+                        f"({envelope.get('records', 0)} records): largest element tension "
+                        f"{_num(largest['tension'])} {force} on {largest['line']} at "
+                        f"{_num(largest['arc_length'])} {length} from end a"))
     counters = summary.get("counters") or {}
     if counters:
         out.append(Text("counters: " + ", ".join(f"{k} {v}" for k, v in counters.items())))

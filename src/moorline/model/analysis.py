@@ -107,6 +107,9 @@ class DynamicsSettings:
     fast_path
         Use the compiled step (:mod:`moorline.solvers.fast_newmark`) when the model allows
         it (elastic lines, still water or uniform current, Newmark, iterative); same results.
+    envelope_start
+        Time from which the output records enter the tension envelope (min, max, mean, std
+        per element, :mod:`moorline.envelope`); ``None``: ``ramp_time`` (after the ramp).
     """
 
     kind: Literal["dynamics"] = "dynamics"
@@ -124,6 +127,7 @@ class DynamicsSettings:
     fast_path: bool = True
     rayleigh_ratio: float = 0.0
     rayleigh_frequencies: tuple[float, float] = (0.0, 0.0)
+    envelope_start: float | None = None
 
 
 ModalMass = Literal["lumped", "consistent"]

@@ -71,7 +71,8 @@ def simulate(
     """
     mesh, fluid, excitation, state, stepper = start(system, settings, initial, fluid, maxwell)
     every = max(output_every or system.output.every, settings.dt)
-    recorder = _Recorder(mesh, writer, fluid)
+    recorder = _Recorder(mesh, writer, fluid,
+                         initial.tension if isinstance(initial, StaticResult) else None)
     recorder.add(state)
     n_steps = int(round(settings.duration / settings.dt))
     next_output, cuts = every, 0
@@ -275,10 +276,13 @@ def describe_unknown(mesh: Mesh, body_dof: NDArray[np.int64], dof: int) -> str:
 class _Recorder:
     """Collects output records (and streams them when a writer is given)."""
 
-    def __init__(self, mesh: Mesh, writer, fluid=None) -> None:
+    def __init__(self, mesh: Mesh, writer, fluid=None,
+                 static_tension: FloatArray | None = None) -> None:
         self.mesh = mesh
         self.writer = writer
         self.fluid = fluid
+        self.static_tension = (np.zeros(0) if static_tension is None
+                               else np.array(static_tension, dtype=float))
         self.records: dict[str, list] = {k: [] for k in
                                          ("time", "position", "velocity", "tension",
                                           "end_force", "body_pose", "body_velocity",
@@ -315,7 +319,8 @@ class _Recorder:
                              body_pose=arrays["body_pose"],
                              body_velocity=arrays["body_velocity"],
                              body_mooring_force=arrays["body_mooring_force"],
-                             wave_elevation=arrays["wave_elevation"])
+                             wave_elevation=arrays["wave_elevation"],
+                             static_tension=self.static_tension)
 
 
 def _mooring_forces(mesh: Mesh, state: StepState) -> FloatArray:
