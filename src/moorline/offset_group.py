@@ -40,7 +40,7 @@ class OffsetGroup:
 
 
 def resolve_group(points: Mapping[str, Any], bodies: Mapping[str, Any] | None,
-                  body: str | None = None, names: Sequence[str] = ()) -> OffsetGroup:
+                  body: str | None = None, names: Sequence[str] | None = ()) -> OffsetGroup:
     """The group of a body name or point names (both empty: every prescribed point, else the
     only body).
 
