@@ -24,6 +24,7 @@ from .model.analysis import (
     FatigueSettings,
     HarmonicSettings,
     ModalSettings,
+    OffsetSettings,
     StaticsSettings,
     StochasticSettings,
     StrummingSettings,
@@ -120,6 +121,10 @@ KINDS: dict[str, AnalysisKind] = {k.name: k for k in (
                  result="moorline.extremes_analysis:ExtremesResult",
                  plot="moorline.plot:plot_extremes_group",
                  summary="moorline.summaries:extremes_summary"),
+    AnalysisKind("offset", OffsetSettings, "OffsetSpec", runner="moorline.runners:run_offset",
+                 result="moorline.offset_result:OffsetResult",
+                 plot="moorline.offset_plot:plot_offset_group",
+                 summary="moorline.summaries:offset_summary"),
 )}
 
 

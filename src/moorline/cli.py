@@ -737,3 +737,78 @@ def catalog(name: str | None, diameter: str | None, units: str, as_json: bool, q
     if props.mean_load_percent:
         _note(f"EA_dynamic at a mean load of {props.mean_load_percent:g} % MBL; the solvers "
               "use EA", quiet)
+
+
+# ----------------------------------------------------------------------------- stiffness
+
+
+@cli.command()
+@click.argument("case", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--body", "body", default=None, metavar="NAME",
+              help="The body whose mooring stiffness is printed (about its origin).")
+@click.option("--points", "points", default=None, metavar="A,B,C",
+              help="Prescribed points taken as one rigid group (default: every prescribed "
+                   "point, or the only body), about their centroid.")
+@click.option("--reference", "reference", default=None, metavar="X,Y,Z",
+              help="Reference point of the moments and rotations, in the case's length unit.")
+@_json_option
+@_common_options
+def stiffness(case: Path, body: str | None, points: str | None, reference: str | None,
+              as_json: bool, quiet: bool, verbose: bool) -> None:
+    """The 6x6 mooring stiffness of a body or of a rigid group of points of CASE.
+
+    Solves statics (the case's first statics settings), then condenses the exact tangent on
+    the group (moorline.solvers.stiffness.group_stiffness): rows and columns surge, sway,
+    heave (translations of the reference point) and roll, pitch, yaw (rotations about it);
+    the lines only (no hydrostatics). Exit 1 when the statics does not converge, 2 for an
+    unknown body or point or both --body and --points.
+    """
+    _configure_logging(verbose)
+    import numpy as np
+
+    from .datasets import BODY_DOFS
+    from .io.writers import jsonable
+    from .offset_group import OffsetGroupError, resolve_group
+    from .solvers.offset import group_reference
+    from .solvers.statics import solve_statics
+    from .solvers.stiffness import group_stiffness
+
+    system = _load(case)
+    names = tuple(n.strip() for n in points.split(",") if n.strip()) if points else ()
+    try:
+        group = resolve_group(system.points, system.bodies, body, names)
+    except OffsetGroupError as exc:
+        raise CaseError(str(exc), str(case), f"--{exc.key}") from None
+    ref = None
+    if reference is not None:
+        try:
+            ref = tuple(float(v) for v in reference.split(","))
+        except ValueError:
+            ref = ()
+        if len(ref) != 3:
+            raise CaseError(f"--reference must be three numbers X,Y,Z, got {reference!r}",
+                            str(case), "--reference")
+    with _status(f"solving statics of {system.name} ...", quiet):
+        result = solve_statics(system)
+    if not result.success:
+        _fail(f"{case}: statics failed: {result.message}", EXIT_FAILED)
+    about = group_reference(result, group, ref)
+    K = group_stiffness(result, list(group.points), about)
+    units = {"SI": ("N", "m"), "US": ("lbf", "ft")}.get(system.units, ("N", "m"))
+    if as_json:
+        click.echo(json.dumps(jsonable({
+            "case": system.name, "units": system.units, "body": group.body,
+            "points": list(group.points), "reference": about, "dofs": list(BODY_DOFS),
+            "stiffness": np.asarray(K)}), indent=2, allow_nan=False))
+        return
+    what = f"body {group.body}" if group.body else "points " + ", ".join(group.points)
+    force, length = units
+    table = Table(title=escape(f"{system.name}: mooring stiffness of {what} about "
+                               f"({', '.join(f'{v:g}' for v in about)}) {length} "
+                               f"[{force}/{length}, {force}/rad, {force}*{length}/rad]"))
+    table.add_column("")
+    for dof in BODY_DOFS:
+        table.add_column(dof, justify="right")
+    for dof, row in zip(BODY_DOFS, K, strict=True):
+        table.add_row(dof, *(f"{v:.6g}" for v in row))
+    _stdout().print(table)

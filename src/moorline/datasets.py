@@ -177,6 +177,38 @@ VARIABLES: dict[str, dict[str, tuple[str, str]]] = {
 }
 
 
+_OFFSET_STATE = {
+    "displacement": ("{length} (surge, sway, heave), rad (roll, pitch, yaw: rotation vector)",
+                     "imposed displacement of the group (reference point, rotation about it)"),
+    "restoring_force": ("{force} (surge, sway, heave), {force}*{length} (roll, pitch, yaw; "
+                        "about the moved reference point)",
+                        "force and moment of the lines on the group"),
+    "fairlead_tension": ("force", "tension at the line end on the group (the fairlead)"),
+    "anchor_tension": ("force", "tension at the other line end (the anchor)"),
+    "seabed_length": ("length", "unstretched length of the line on the seabed"),
+    "suspended_length": ("length", "unstretched length of the line off the seabed"),
+    "touchdown_distance": ("length", "horizontal distance from the anchor to the touchdown "
+                                     "point (NaN: the line does not touch the seabed)"),
+    "stiffness": ("{force}/{length} (translation rows and columns), {force}*{length}/rad "
+                  "(rotation rows and columns), {force}/rad or {force}*{length}/{length} "
+                  "(coupling)", "6x6 restoring stiffness of the group about the moved "
+                                "reference point (mooring only)"),
+    "converged": ("1", "statics converged at this offset (1) or not (0)"),
+    "iterations": ("1", "statics iterations at this offset"),
+}
+
+VARIABLES["offset"] = {
+    "heading": ("angle", "heading of the offset (from +x towards +y)"),
+    "offset": ("length", "offset of the reference point along the heading"),
+    "yaw": ("angle", "yaw angle of the group about the vertical through the reference point"),
+    "dof_column": ("1", "rigid-body degree of freedom of the displacement (stiffness column)"),
+    "fairlead_end": ("1", "end of the line on the group (a or b)"),
+    "reference": ("length", "reference point of the group at the undisplaced state"),
+    **_OFFSET_STATE,
+    **{f"yaw_{k}": (u, f"{n} (yaw sweep)") for k, (u, n) in _OFFSET_STATE.items()},
+}
+
+
 def describe(kind: str, name: str, units: str) -> dict[str, str]:
     """``{"units", "long_name"}`` of variable ``name`` of a ``kind`` group in the unit system
     ``units`` (``SI`` or ``US``).

@@ -299,6 +299,16 @@ def run_harmonic(settings: Any, context: RunContext, label: str) -> Outcome:
         context.system, settings, _statics_of(context)), context, label)
 
 
+def run_offset(settings: Any, context: RunContext, label: str) -> Outcome:
+    """Offset curves of a body or a rigid group of prescribed points from the preceding
+    statics result (:mod:`moorline.solvers.offset`): group ``label`` of the results file and
+    ``offset.png``."""
+    from .solvers.offset import solve_offset
+
+    return _solve_and_write("offset", "offset analysis", lambda: solve_offset(
+        context.system, settings, _statics_of(context)), context, label)
+
+
 def _solve_and_write(kind: str, what: str, solve: Callable[[], Any], context: RunContext,
                      label: str) -> Outcome:
     """Run ``solve()``, add its dataset as group ``label`` of the results file, draw the

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 __all__ = ["dynamics_summary", "extremes_summary", "fatigue_summary", "harmonic_summary",
+           "offset_summary",
            "history_summary", "modal_summary", "statics_summary", "stochastic_summary",
            "strumming_summary"]
 
@@ -256,3 +257,50 @@ def extremes_summary(result: Any) -> dict[str, Any]:
             "percentiles": {f"{q:g}": _per_line(result.percentile[i], names)
                             for i, q in enumerate(result.percentiles)},
             "max_element_mpm": float(np.nanmax(result.element_mpm))}
+
+
+def offset_summary(result: Any) -> dict[str, Any]:
+    """The ``--json`` object of an :class:`~moorline.offset_result.OffsetResult`.
+
+    Returns
+    -------
+    dict
+        ``{"case", "converged", "status", "message", "body", "points", "reference",
+        "stiffness" (6x6 at the undisplaced state, ``None`` when not computed),
+        "headings": [{"heading", "offsets", "restoring_force" (along the heading, positive
+        pulling back), "fairlead_tension": {line: [...]}, "anchor_tension": {line: [...]},
+        "max_fairlead_tension": {line: v}}], "yaw"?: {"angles", "yaw_moment",
+        "max_fairlead_tension"}}``, in the case's units (angles in degrees; NaN as ``None``
+        in JSON).
+    """
+    from .offset_result import along
+
+    names = list(result.line_names)
+
+    def per_line(values: np.ndarray) -> dict[str, list[float]]:
+        return {n: [float(v) for v in values[:, j]] for j, n in enumerate(names)}
+
+    def largest(values: np.ndarray) -> dict[str, float | None]:
+        return {n: (float(np.nanmax(values[:, j])) if np.isfinite(values[:, j]).any()
+                    else None) for j, n in enumerate(names)}
+
+    headings = []
+    for heading, sweep in zip(result.headings, result.sweeps, strict=True):
+        headings.append({
+            "heading": heading, "offsets": [float(v) for v in result.offsets],
+            "restoring_force": [float(v) for v in along(sweep.restoring_force, heading)],
+            "fairlead_tension": per_line(sweep.fairlead_tension),
+            "anchor_tension": per_line(sweep.anchor_tension),
+            "max_fairlead_tension": largest(sweep.fairlead_tension)})
+    stiffness = result.stiffness_at_rest()
+    summary: dict[str, Any] = {
+        "case": result.case, **_outcome(result), "body": result.group.body,
+        "points": list(result.group.points),
+        "reference": [float(v) for v in result.reference],
+        "stiffness": stiffness.tolist() if np.isfinite(stiffness).all() else None,
+        "headings": headings}
+    if result.yaw is not None:
+        summary["yaw"] = {"angles": [float(v) for v in result.yaw_angles],
+                          "yaw_moment": [float(-v) for v in result.yaw.restoring_force[:, 5]],
+                          "max_fairlead_tension": largest(result.yaw.fairlead_tension)}
+    return summary

@@ -298,6 +298,13 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             if viscous:
                 fail(f"harmonic balance needs elastic lines (line type {viscous[0]!r} is "
                      f"viscoelastic: its state has a history)", f"analyses[{k}].kind")
+        if analysis.kind == "offset":
+            from ..offset_group import OffsetGroupError, resolve_group
+
+            try:
+                resolve_group(spec.points, spec.bodies, analysis.body, analysis.points or ())
+            except OffsetGroupError as exc:
+                fail(str(exc), f"analyses[{k}].{exc.key}")
         if isinstance(analysis, StochasticSpec):
             if env.waves.kind != "random":
                 fail("a stochastic analysis needs a random sea (environment.waves kind: "

@@ -34,7 +34,7 @@ from .units import UnitParseError, to_system
 __all__ = ["MAX_COUNT", "MAX_ITERATIONS", "MAX_MAGNITUDE", "MIN_MAGNITUDE", "AnalysisSpec",
            "CaseSpec", "DesignSpec", "DynamicsSpec", "ExtremesSpec", "FatigueCurveSpec",
            "FatigueSpec", "ForceHistorySpec", "HarmonicSpec", "LineSpec", "LineTypeSpec",
-           "ModalSpec", "MotionSpec", "PointSpec", "StaticsSpec",
+           "ModalSpec", "MotionSpec", "OffsetSpec", "PointSpec", "StaticsSpec",
            "StochasticSpec", "StrummingSpec", "check_number", "describe_errors", "quantity"]
 
 MAX_MAGNITUDE = 1.0e30
@@ -568,6 +568,43 @@ class ExtremesSpec(_Spec):
     seeds: list[Annotated[int, Field(ge=0)]] = []
     blocks: PositiveInt = 1
     skip: quantity("time", ge=0.0) | None = None
+
+
+MAX_OFFSET_STEPS = 1001
+"""Largest number of offsets per heading of an offset analysis (each one a static solve)."""
+
+
+def _odd_steps(value: Any) -> int:
+    """``steps`` of an offset analysis: an odd integer from 3 to :data:`MAX_OFFSET_STEPS` (the
+    middle offset is the undisplaced state)."""
+    n = _positive_int(value, MAX_OFFSET_STEPS)
+    if n < 3 or n % 2 == 0:
+        raise _fail(f"must be an odd integer >= 3 (the middle offset is zero), got {_show(value)}")
+    return n
+
+
+class OffsetSpec(_Spec):
+    """``analyses[i]`` with ``kind: offset`` (see :class:`moorline.model.OffsetSettings`): a
+    body or a rigid group of prescribed points moved through offsets along headings [deg]
+    from ``-max_offset`` to ``+max_offset`` in ``steps`` (odd) steps."""
+
+    kind: Literal["offset"]
+    headings: Annotated[list[quantity("angle")], Field(min_length=1)] = [0.0]
+    max_offset: quantity("length", gt=0.0)
+    steps: Annotated[int, PlainValidator(_odd_steps)] = 21
+    yaw: bool = False
+    max_yaw: quantity("angle", gt=0.0, le=180.0) = 10.0
+    body: str | None = None
+    points: Annotated[list[str], Field(min_length=1)] | None = None
+    reference: Vector3 | None = None
+    stiffness: bool = True
+
+    @field_validator("headings")
+    @classmethod
+    def _distinct(cls, value: list[float]) -> list[float]:
+        if len(set(value)) != len(value):
+            raise _fail(f"headings must be distinct, got {value}")
+        return value
 
 
 # ``analyses[i]``: one model per row of the table of analysis kinds (moorline.analyses.KINDS,

@@ -377,8 +377,41 @@ def _render_extremes(summary: dict, units: str) -> list[RenderableType]:
     return out
 
 
+def _render_offset(summary: dict, units: str) -> list[RenderableType]:
+    """Heading, the stiffness at the undisplaced state, then per heading the restoring force
+    along it and the fairlead tension of every line at each offset."""
+    force, length = _unit("force", units), _unit("length", units)
+    group = (f"body {summary.get('body')}" if summary.get("body")
+             else "points " + ", ".join(summary.get("points", [])))
+    out: list[RenderableType] = [Text(f"offset ({group}): {_status(summary.get('converged'))}: "
+                                      f"{summary.get('message', '')}", style="bold")]
+    stiffness = summary.get("stiffness")
+    if stiffness is not None:
+        about = ", ".join(_fmt(summary.get("reference", [])))
+        table = Table(title=escape(f"Stiffness at zero offset about ({about}) "
+                                   f"[{force}/{length}, {force}/rad, {force}*{length}/rad]"))
+        for name in ("", "surge", "sway", "heave", "roll", "pitch", "yaw"):
+            table.add_column(name, justify="left" if not name else "right")
+        for name, row in zip(("surge", "sway", "heave", "roll", "pitch", "yaw"), stiffness,
+                             strict=True):
+            table.add_row(name, *_fmt(row))
+        out.append(table)
+    for entry in summary.get("headings", []):
+        lines = list(entry.get("fairlead_tension", {}))
+        table = Table(title=escape(f"Heading {_num(entry.get('heading'))} deg: restoring force "
+                                   f"along the heading and fairlead tensions [{force}]"))
+        for name in (f"offset [{length}]", "restoring force", *lines):
+            table.add_column(escape(name), justify="right")
+        for k, offset in enumerate(entry.get("offsets", [])):
+            table.add_row(_num(offset), _num(entry["restoring_force"][k]),
+                          *(_num(entry["fairlead_tension"][n][k]) for n in lines))
+        out.append(table)
+    return out
+
+
 _RENDERERS = {"statics": _render_statics, "dynamics": _render_dynamics,
-              "fatigue": _render_fatigue, "extremes": _render_extremes}
+              "fatigue": _render_fatigue, "extremes": _render_extremes,
+              "offset": _render_offset}
 
 
 def _lines_table(lines: dict, force: str, length: str) -> Table:

@@ -390,3 +390,49 @@ class ExtremesSettings:
     seeds: tuple[int, ...] = ()
     blocks: int = 1
     skip: float | None = None
+
+
+@dataclass(frozen=True)
+class OffsetSettings:
+    """Offset analysis settings (``kind: offset``; see :mod:`moorline.solvers.offset`): a
+    body, or a rigid group of points, moved through horizontal offsets along headings (and
+    optionally turned in yaw), the lines in static equilibrium at each offset.
+
+    Attributes
+    ----------
+    headings
+        Directions of the offsets in the horizontal plane [deg], from +x towards +y.
+    max_offset
+        Largest offset [length]; the offsets run from ``-max_offset`` to ``+max_offset``.
+    steps
+        Offsets per heading, an odd number (the middle one is the undisplaced state).
+    yaw
+        Also turn the group about the vertical axis through the reference point, from
+        ``-max_yaw`` to ``+max_yaw`` in ``steps`` steps.
+    max_yaw
+        Largest yaw angle [deg].
+    body
+        The body moved (held at each offset pose: all six dofs prescribed); ``None``: the
+        ``points``.
+    points
+        Prescribed points moved rigidly together (like fairleads on a vessel); empty: every
+        prescribed point of the case (or its only body when it has one and no prescribed
+        point).
+    reference
+        Reference point of the moments and of the yaw [length]; ``None``: the body origin, or
+        the centroid of the points.
+    stiffness
+        Store the 6x6 stiffness (:func:`moorline.solvers.stiffness.group_stiffness`) at
+        every offset.
+    """
+
+    kind: Literal["offset"] = "offset"
+    headings: tuple[float, ...] = (0.0,)
+    max_offset: float = 10.0
+    steps: int = 21
+    yaw: bool = False
+    max_yaw: float = 10.0
+    body: str | None = None
+    points: tuple[str, ...] = ()
+    reference: tuple[float, float, float] | None = None
+    stiffness: bool = True
