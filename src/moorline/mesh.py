@@ -13,6 +13,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .model import System
+from .physics import element
+from .physics.load_strain import StrainLaws, StrainTable, dynamic_strain_law, strain_laws
 from .physics.rigid_body import rotation_matrix
 
 FloatArray = NDArray[np.float64]
@@ -34,8 +36,9 @@ class Mesh:
     length0
         Unstretched element lengths (n_elements,).
     EA, EA1, tau, slack_ratio, slack_smoothing
-        Axial stiffness [force], viscoelastic extra stiffness and time, slack stiffness ratio
-        and the strain band of the smooth slack transition.
+        Axial stiffness [force] (of an element with a tension-strain table: its reference
+        stiffness, see :class:`~moorline.model.LineType`), viscoelastic extra stiffness and
+        time, slack stiffness ratio and the strain band of the smooth slack transition.
     BA
         Internal axial damping [force*time] (a negative line-type value, a damping ratio, is
         resolved here: ``BA = zeta L0 sqrt(EA m)``).
@@ -76,6 +79,13 @@ class Mesh:
         The rigid bodies (:class:`~moorline.model.Body`), in ``body_names`` order.
     point_motion, point_force_history
         Per point: its prescribed motion and its force history (``None`` when it has none).
+    strain_laws
+        Tabulated tension-strain laws per element (:mod:`moorline.physics.load_strain`);
+        ``None``: every element is linear (``EA``).
+    strain_offset
+        Strain offset of each element's law (:func:`dynamic_mesh`); ``None``: zero.
+    EAd, EAd_Lm
+        Fibre-rope dynamic stiffness per element (``EAd`` NaN where none).
     """
 
     node_position: FloatArray
@@ -123,6 +133,28 @@ class Mesh:
     bodies: tuple = ()
     point_motion: tuple = ()
     point_force_history: tuple = ()
+    strain_laws: StrainLaws | None = None
+    strain_offset: FloatArray | None = None
+    EAd: FloatArray | None = None
+    EAd_Lm: FloatArray | None = None
+
+    @property
+    def axial_law(self) -> dict:
+        """Keyword arguments of the non-linear element law
+        (:func:`moorline.physics.element.axial_tension`): ``laws`` and ``offset``."""
+        return {"laws": self.strain_laws, "offset": self.strain_offset}
+
+    def axial_law_of(self, index: IntArray) -> dict:
+        """:attr:`axial_law` of the elements ``index``."""
+        laws, offset = self.strain_laws, self.strain_offset
+        return {"laws": None if laws is None else laws.take(index),
+                "offset": None if offset is None else offset[index]}
+
+    @property
+    def linear_axial(self) -> bool:
+        """Whether every element follows ``EA eps`` (no table, no strain offset)."""
+        return ((self.strain_laws is None or not self.strain_laws.active)
+                and self.strain_offset is None)
 
     @property
     def n_nodes(self) -> int:
@@ -177,6 +209,13 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
             props[key].append(value)
     out = {k: np.asarray(v, dtype=float)[line_of_element] for k, v in props.items()}
     out["viscoelastic"] = out["viscoelastic"] > 0.5
+    types = [system.line_types[line.line_type] for line in lines]
+    tables = {lt.name: StrainTable(lt.EA_table) for lt in types if lt.EA_table is not None}
+    out["strain_laws"] = strain_laws([tables.get(lt.name) for lt in types], line_of_element)
+    if any(lt.EAd is not None for lt in types):
+        out["EAd"] = np.array([np.nan if lt.EAd is None else lt.EAd
+                               for lt in types])[line_of_element]
+        out["EAd_Lm"] = np.array([lt.EAd_Lm for lt in types], dtype=float)[line_of_element]
     return out
 
 
@@ -282,6 +321,30 @@ def with_loads_of(mesh: Mesh, system: System) -> Mesh:
     arrays = _body_arrays(system, list(system.points.values()))
     return replace(mesh, bodies=arrays["bodies"], point_motion=arrays["point_motion"],
                    point_force_history=arrays["point_force_history"])
+
+
+def dynamic_mesh(mesh: Mesh, positions: FloatArray) -> Mesh:
+    """``mesh`` for a dynamic analysis about the static state ``positions``: elements of fibre
+    ropes with a dynamic stiffness (``EAd``) take the linear law ``EA_d (eps - eps_0)`` about
+    their static tension (:func:`moorline.physics.load_strain.dynamic_strain_law`); other
+    elements, and meshes without ``EAd``, are returned unchanged."""
+    if mesh.EAd is None:
+        return mesh
+    fibre = np.isfinite(mesh.EAd)
+    length, _ = element.element_geometry(positions, mesh.elements)
+    tension, _ = element.axial_tension(length, mesh.length0, mesh.EA, mesh.slack_ratio,
+                                       mesh.slack_smoothing, **mesh.axial_law)
+    strain = length / mesh.length0 - 1.0
+    if mesh.strain_offset is not None:
+        strain = strain - mesh.strain_offset
+    EA_d, eps0 = dynamic_strain_law(strain, tension, np.where(fibre, mesh.EAd, 1.0),
+                                    mesh.EAd_Lm)
+    laws = mesh.strain_laws
+    if laws is not None:
+        laws = StrainLaws(laws.tables, np.where(fibre, -1, laws.ids))
+    base = np.zeros(mesh.n_elements) if mesh.strain_offset is None else mesh.strain_offset
+    return replace(mesh, EA=np.where(fibre, EA_d, mesh.EA), strain_laws=laws,
+                   strain_offset=np.where(fibre, base + eps0, base), EAd=None, EAd_Lm=None)
 
 
 def _body_arrays(system: System, points: list) -> dict:

@@ -70,9 +70,9 @@ def moorpy_system(system: System, body_points: Sequence[str] = (),
         raise CaseError("the MoorPy translation does not handle current", file=system.source)
     ms = mp.System(depth=env.depth, rho=env.water_density, g=env.gravity)
     for lt in system.line_types.values():
-        if lt.material != "elastic":
-            raise CaseError(f"line type {lt.name}: MoorPy needs an elastic material",
-                            file=system.source)
+        if lt.material != "elastic" or lt.EA_table is not None:
+            raise CaseError(f"line type {lt.name}: the MoorPy translation needs an elastic "
+                            "material with a constant EA", file=system.source)
         ms.setLineType(dnommm=lt.diameter * 1000.0, name=lt.name, mass=lt.mass_per_length,
                        d_vol=lt.diameter, EA=lt.EA)
     body = 0

@@ -167,7 +167,7 @@ def _load(text: str, file: str, source: str | None) -> System:
     except ValidationError as exc:
         field, reason = describe_errors(exc)
         raise CaseError(reason, file=file, field=field) from None
-    line_types = resolve_line_types(spec.line_types, units, file)
+    line_types = resolve_line_types(spec.line_types, units, file, source)
     _cross_check(spec, file)
     system = _build(spec, source, line_types)
     logger.debug("loaded case %r from %s", system.name, file)

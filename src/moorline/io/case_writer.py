@@ -79,9 +79,14 @@ def write_case(system: System, path: str | Path, header: str = "") -> Path:
 def _line_type(lt: LineType) -> dict[str, Any]:
     data = asdict(lt)
     data.pop("name")
-    for key in ("displaced_area", "MBL", "EA_dynamic", "catalog", "nominal_diameter"):
+    for key in ("displaced_area", "MBL", "EA_dynamic", "catalog", "nominal_diameter", "EAd"):
         if data[key] is None:
             data.pop(key)
+    table = data.pop("EA_table")
+    if table is not None:  # the table is the law; EA (its largest tangent) follows from it
+        data["EA"] = {"table": [list(row) for row in table]}
+    if "EAd" not in data:
+        data.pop("EAd_Lm")
     return data
 
 

@@ -3,11 +3,15 @@ or by hand, as :class:`~moorline.model.LineType` objects in the case's units."""
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 from moorline.catalog import CatalogError, in_units, line_properties
 from moorline.errors import CaseError
 from moorline.model import LineType
+from moorline.physics.load_strain import StrainTable
+
+from .strain_table import read_strain_table
 
 __all__ = ["FOOT", "REQUIRED", "resolve_line_types"]
 
@@ -18,7 +22,8 @@ FOOT = 0.3048
 """One foot in metres (exact, by the international yard of 1959)."""
 
 
-def resolve_line_types(specs: dict[str, Any], units: str, file: str) -> dict[str, LineType]:
+def resolve_line_types(specs: dict[str, Any], units: str, file: str,
+                       source: str | None = None) -> dict[str, LineType]:
     """The line types of a validated case, catalogue values filled in.
 
     Parameters
@@ -29,6 +34,9 @@ def resolve_line_types(specs: dict[str, Any], units: str, file: str) -> dict[str
         The case's unit system (``SI`` or ``US``): catalogue values are converted to it.
     file
         The case file, for messages.
+    source
+        The case file's path (``EA_table`` files are relative to it; ``None``: the working
+        directory).
 
     Returns
     -------
@@ -66,9 +74,40 @@ def resolve_line_types(specs: dict[str, Any], units: str, file: str) -> dict[str
             raise CaseError("nominal_diameter needs a catalog entry (moorline catalog lists "
                             "them); without one give diameter, mass_per_length and EA",
                             file=file, field=f"{where}.nominal_diameter")
+        _strain_law(values, spec, source, file, where)
         for key in REQUIRED:
             if values[key] is None:
                 raise CaseError(f"missing required key {key!r} (or give catalog and "
                                 f"nominal_diameter)", file=file, field=f"{where}.{key}")
         out[name] = LineType(name=name, **values)
     return out
+
+
+def _strain_law(values: dict, spec: Any, source: str | None, file: str, where: str) -> None:
+    """Resolve ``EA: {table: ...}`` or ``EA_table: file`` into ``EA_table`` points and the
+    reference ``EA`` (the table's largest tangent), in place."""
+    points = None
+    if isinstance(values["EA"], dict):
+        if spec.EA_table is not None:
+            raise CaseError("give EA as a table or EA_table, not both", file=file,
+                            field=f"{where}.EA_table")
+        points, field = values["EA"]["table"], f"{where}.EA"
+    elif spec.EA_table is not None:
+        if "EA" in spec.model_fields_set:
+            raise CaseError("give EA or EA_table, not both", file=file,
+                            field=f"{where}.EA_table")
+        base = Path(source).parent if source else Path.cwd()
+        field = f"{where}.EA_table"
+        try:
+            points = read_strain_table(base / spec.EA_table)
+        except ValueError as exc:
+            raise CaseError(str(exc), file=file, field=field) from None
+    if points is None:
+        values["EA_table"] = None
+        return
+    try:
+        table = StrainTable(points)
+    except ValueError as exc:
+        raise CaseError(str(exc), file=file, field=field) from None
+    values["EA_table"] = tuple((float(e), float(t)) for e, t in table.points)
+    values["EA"] = table.max_slope

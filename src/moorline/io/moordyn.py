@@ -11,7 +11,9 @@ Supported (v2 names first, v1 names in parentheses):
 
 - ``LINE TYPES`` (``LINE DICTIONARY``): v2 rows ``Name Diam MassDen EA BA/-zeta EI Cd Ca CdAx
   CaAx [Cl dF cF]``; v1 rows (nine columns) ``Name Diam MassDen EA BA/-zeta Can Cat Cdn Cdt``.
-  MoorDyn's ``CdAx`` is relative to the surface ``pi d l`` like moorline's ``Ct``.
+  MoorDyn's ``CdAx`` is relative to the surface ``pi d l`` like moorline's ``Ct``. ``EA`` may
+  be the name of a strain-tension table file (MoorDyn's non-linear EA; relative to the deck's
+  folder), read as the line type's ``EA_table``; the writer writes such a file back.
 - ``POINTS`` (``POINT PROPERTIES``, ``CONNECTION PROPERTIES``, ``NODE PROPERTIES``): v2 rows
   ``ID Attachment X Y Z Mass Volume CdA Ca``; v1 rows (twelve columns) ``ID Type X Y Z M V FX FY
   FZ CdA Ca``. ``Fixed``/``Anchor`` points become ``fixed``, ``Coupled``/``Vessel`` become
@@ -49,14 +51,18 @@ from typing import Literal
 
 from ..errors import CaseError
 from ..model import Environment, Line, LineType, Point, Seabed, System
+from ..physics.load_strain import StrainTable
 from .files import MAX_CASE_BYTES, file_problem
 from .moordyn_bodies import body_attachment, body_problems, body_section
 from .schema import check_number
+from .strain_table import read_strain_table
 from .topology import geometry_problem
 
 logger = logging.getLogger(__name__)
 
 Version = Literal["v1", "v2"]
+MOORDYN_CURVE_POINTS = 30
+"""Most points MoorDyn-C v2.7 reads from a curve file (its ``nCoef``)."""
 _COMMENT = re.compile(r"[!#%]")
 _NAME = re.compile(r"^[A-Za-z_][\w.\-]*$")
 _INF_DEPTH_TAG = "moorline: no seabed"
@@ -304,11 +310,15 @@ def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineTyp
         if name in types:
             raise reader.fail(f"line type {name!r} is defined twice", row, sec.title)
         for index, what in ((2, "EA"), (3, "BA/-zeta")):
-            if "|" in tok[index] or not _is_number(tok[index]):
-                raise reader.fail(f"{what} {tok[index]!r}: only a constant {what} is supported "
-                                  "(no viscoelastic pairs or stress-strain tables)", row, sec.title)
+            if "|" in tok[index] or (index == 3 and not _is_number(tok[index])):
+                raise reader.fail(f"{what} {tok[index]!r}: only a constant {what} or an EA "
+                                  "table file is supported (no viscoelastic pairs or "
+                                  "damping tables)", row, sec.title)
+        table = None if _is_number(tok[2]) else _ea_table(tok[2], row, sec.title, reader)
         values = [_number(t, f"column {i + 2}", row, sec.title, reader)
-                  for i, t in enumerate(tok)]
+                  for i, t in enumerate(tok) if i != 2 or table is None]
+        if table is not None:
+            values.insert(2, table.max_slope)
         if version == "v2":
             d, m, EA, BA, EI, Cd, Ca, Ct, Cat = values[:9]
             if EI:
@@ -320,9 +330,19 @@ def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineTyp
         for what, value in (("Diam", d), ("MassDen", m), ("EA", EA)):
             if value <= 0:
                 raise reader.fail(f"{what} must be positive, got {value:g}", row, sec.title)
+        points = None if table is None else tuple(map(tuple, table.points.tolist()))
         types[name] = LineType(name=name, diameter=d, mass_per_length=m, EA=EA, Cd=Cd, Ca=Ca,
-                               Ct=Ct, Cat=Cat, BA=BA)
+                               Ct=Ct, Cat=Cat, BA=BA, EA_table=points)
     return types, version
+
+
+def _ea_table(token: str, row: _Row, section: str, reader: _Reader) -> StrainTable:
+    """MoorDyn's non-linear EA: a strain-tension table file, relative to the deck's folder
+    (MoorDyn-C's convention), read by :func:`moorline.io.strain_table.read_strain_table`."""
+    try:
+        return StrainTable(read_strain_table(Path(reader.file).parent / token))
+    except ValueError as exc:
+        raise reader.fail(f"EA table {token!r}: {exc}", row, section) from None
 
 
 def _is_number(token: str) -> bool:
@@ -507,6 +527,12 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
     for lt in system.line_types.values():
         if lt.material != "elastic":
             errors.append(f"line type {lt.name}: {lt.material} material")
+        if lt.EA_table is not None and len(lt.EA_table) > MOORDYN_CURVE_POINTS:
+            errors.append(f"line type {lt.name}: an EA table of {len(lt.EA_table)} points "
+                          f"(MoorDyn-C reads at most {MOORDYN_CURVE_POINTS})")
+        if lt.EAd is not None:
+            omissions.append(f"line type {lt.name}: dynamic stiffness EAd (MoorDyn's EA_s|EA_Dc|"
+                             "EA_D_Lm is another, viscoelastic, model)")
         if lt.displaced_area is not None and not math.isclose(
                 lt.displaced_area, math.pi * lt.diameter**2 / 4.0):
             omissions.append(f"line type {lt.name}: displaced_area (MoorDyn uses pi d^2 / 4)")
@@ -544,12 +570,27 @@ def _point_rows(system: System) -> list[str]:
     return rows
 
 
-def _line_type_rows(system: System) -> list[str]:
+def _line_type_rows(system: System, path: Path) -> list[str]:
     rows = []
     for lt in system.line_types.values():
         values = [lt.diameter, lt.mass_per_length, lt.EA, lt.BA, 0.0, lt.Cd, lt.Ca, lt.Ct, lt.Cat]
-        rows.append(f"{lt.name:<10s} " + " ".join(_fmt(v) for v in values))
+        cells = [_fmt(v) for v in values]
+        if lt.EA_table is not None:
+            cells[2] = _write_ea_table(lt, path.with_name(f"{path.stem}_{lt.name}_EA.dat"))
+        rows.append(f"{lt.name:<10s} " + " ".join(cells))
     return rows
+
+
+def _write_ea_table(lt: LineType, path: Path) -> str:
+    """Write a line type's tension-strain table as MoorDyn's EA file (three header lines, then
+    ``strain tension`` rows; no final newline: MoorDyn-C v2.7 reads an empty last line as a
+    bad curve point). MoorDyn interpolates the table linearly and holds the last tension beyond
+    it, moorline's law is the monotone cubic through the same points (extrapolated linearly):
+    write tables dense enough for the two to agree. Returns the file name."""
+    rows = [f"---- {lt.name} tension-strain table (moorline) ----", "Strain Tension", "(-) (N)"]
+    rows += [f"{_fmt(e)} {_fmt(t)}" for e, t in lt.EA_table]
+    path.write_text("\n".join(rows), encoding="utf-8")
+    return path.name
 
 
 def _line_rows(system: System) -> list[str]:
@@ -645,7 +686,7 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
         _rule("MoorDyn v2 input file"),
         f"written by moorline for case {system.name!r} ({system.units} units)",
         _rule("LINE TYPES"), "TypeName   " + " ".join(head), "(name)     " + " ".join(units),
-        *_line_type_rows(system),
+        *_line_type_rows(system, Path(path)),
         *([_rule("BODIES"), *body_section(system)] if system.bodies else []),
         _rule("POINTS"), "ID   Attachment  X  Y  Z  Mass  Volume  CdA  Ca",
         "(#)  (-)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)", *_point_rows(system),

@@ -194,6 +194,29 @@ def _internal_damping(value: Any, info: ValidationInfo) -> float:
     return quantity("force*time", ge=0.0).__metadata__[0].func(value, info)
 
 
+def _stiffness(value: Any, info: ValidationInfo) -> float | dict:
+    """``EA``: an axial stiffness [force], or ``{table: [[strain, tension], ...]}``, a
+    tension-strain law (plain numbers, tension in the case's force unit;
+    :mod:`moorline.physics.load_strain` checks its shape)."""
+    if value is None:
+        return None
+    if not isinstance(value, dict):
+        return quantity("force", gt=0.0).__metadata__[0].func(value, info)
+    rows = value.get("table")
+    if set(value) != {"table"} or not isinstance(rows, list) or not all(
+            isinstance(r, list) and len(r) == 2 for r in rows):
+        raise _fail("a table EA must be {table: [[strain, tension], ...]}")
+    out = []
+    for row in rows:
+        if not all(isinstance(x, int | float) and not isinstance(x, bool) for x in row):
+            raise _fail(f"table rows must be two plain numbers, got {row!r}")
+        problem = next((p for p in map(check_number, map(float, row)) if p), None)
+        if problem is not None:
+            raise _fail(f"table row {row!r}: {problem}")
+        out.append((float(row[0]), float(row[1])))
+    return {"table": out}
+
+
 class _Spec(BaseModel):
     """Base of all case-file sections: unknown keys are errors."""
 
@@ -263,13 +286,20 @@ class LineTypeSpec(_Spec):
     catalogue ``diameter``, ``mass_per_length`` and ``EA`` are required (checked by
     :mod:`moorline.io.case`). ``MBL`` (minimum breaking load) enables the design checks;
     ``EA_dynamic`` (fibre ropes) is stored, the solvers use ``EA``.
+    ``EA`` may be a tension-strain table (``{table: [[strain, tension], ...]}``) or
+    ``EA_table`` a table file (CSV or MoorDyn's EA table file, relative to the case file);
+    ``EAd`` and ``EAd_Lm`` give the fibre-rope dynamic stiffness ``EA_d = EAd + EAd_Lm T_mean``
+    used about the static state in dynamic analyses.
     """
 
     catalog: str | None = None
     nominal_diameter: quantity("length", gt=0.0) | None = None
     diameter: quantity("length", gt=0.0) | None = None
     mass_per_length: quantity("mass/length", gt=0.0) | None = None
-    EA: quantity("force", gt=0.0) | None = None
+    EA: Annotated[Any, PlainValidator(_stiffness)] = None
+    EA_table: str | None = None
+    EAd: quantity("force", gt=0.0) | None = None
+    EAd_Lm: quantity("dimensionless", ge=0.0) = 0.0
     EA_dynamic: quantity("force", gt=0.0) | None = None
     MBL: quantity("force", gt=0.0) | None = None
     displaced_area: quantity("area", gt=0.0) | None = None

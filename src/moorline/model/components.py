@@ -46,6 +46,15 @@ class LineType:
     catalog, nominal_diameter
         The line catalogue entry and nominal diameter [length] the properties came from
         (:mod:`moorline.catalog`), ``None`` for a line type given by hand.
+    EA_table
+        Tension-strain law as ``(strain, tension)`` points [-, force]
+        (:mod:`moorline.physics.load_strain`); ``None``: the linear law ``EA eps``. With a
+        table, ``EA`` is a reference stiffness (the table's largest tangent, for scales and
+        the slack regularization).
+    EAd, EAd_Lm
+        Fibre-rope dynamic stiffness ``EA_d = EAd + EAd_Lm T_mean`` [force, -] used about the
+        static state in dynamic analyses (Del Vecchio 1992; MoorPy's ``EAd``/``EAd_Lm``);
+        ``None``: the static law in dynamics too.
     """
 
     name: str
@@ -67,6 +76,9 @@ class LineType:
     EA_dynamic: float | None = None
     catalog: str | None = None
     nominal_diameter: float | None = None
+    EA_table: tuple[tuple[float, float], ...] | None = None
+    EAd: float | None = None
+    EAd_Lm: float = 0.0
 
     @property
     def area_displaced(self) -> float:

@@ -19,12 +19,21 @@ consistent tangent, so we derive it here and check it against finite differences
 
 Slack elements (eps < 0) keep ``slack_ratio * EA`` in compression, so the tangent stays usable
 (Tuah sec. 6.2: "the modulus E for the slack element is set to a very small value").
+
+Non-linear laws: elements with a tabulated tension-strain law (``laws``,
+:mod:`moorline.physics.load_strain`) take ``T = f(g(eps))``, ``dT/deps = f'(g) g'`` with
+``g`` the slack-regularized strain of the linear law (``T = EA g``: ``g = eps`` when taut,
+``(eps + s)^2 / (4 s)`` in the band, ``slack_ratio (eps + s)`` when slack); ``f`` is linear
+(``EA``) for ``g < 0``. A strain ``offset`` (the dynamic stiffness of fibre ropes) shifts the
+strain of any law: ``eps = l / L0 - 1 - offset``.
 """
 
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import NDArray
+
+from .load_strain import StrainLaws
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -55,7 +64,8 @@ def element_geometry(
 
 def axial_tension(
     length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray,
-    smoothing: FloatArray | float = 0.0,
+    smoothing: FloatArray | float = 0.0, laws: StrainLaws | None = None,
+    offset: FloatArray | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """Tension of an elastic element that carries (almost) no compression.
 
@@ -65,13 +75,15 @@ def axial_tension(
     plain no-compression law. The band exists for Newton's sake: an element that switches
     between slack and taut inside an iteration makes the residual kink, and implicit steps
     then cycle instead of converging (seen on chain lying on the seabed being pushed).
+    ``laws`` and ``offset``: a tabulated law per element and a strain offset (module
+    docstring).
 
     Returns
     -------
     tension, dtension_dlength
         Tension and its derivative with respect to the current length.
     """
-    strain = length / length0 - 1.0
+    strain = _strain(length, length0, offset)
     s = np.broadcast_to(np.asarray(smoothing, dtype=float), strain.shape)
     taut = strain >= s
     band = ~taut & (strain > -s)
@@ -80,11 +92,24 @@ def axial_tension(
     tension = np.where(taut, EA * strain,
                        np.where(band, EA * shifted**2 / (4 * safe_s), slack_ratio * EA * shifted))
     slope = np.where(taut, EA, np.where(band, EA * shifted / (2 * safe_s), slack_ratio * EA))
+    if laws is not None and laws.active:
+        ratio = np.broadcast_to(np.asarray(slack_ratio, dtype=float), strain.shape)
+        g = np.where(taut, strain, np.where(band, shifted**2 / (4 * safe_s), ratio * shifted))
+        dg = np.where(taut, 1.0, np.where(band, shifted / (2 * safe_s), ratio))
+        f, df = laws.evaluate(g, np.broadcast_to(EA, strain.shape))
+        table = laws.ids >= 0
+        tension, slope = np.where(table, f, tension), np.where(table, df * dg, slope)
     return tension, slope / length0
 
 
+def _strain(length: FloatArray, length0: FloatArray, offset: FloatArray | None) -> FloatArray:
+    strain = length / length0 - 1.0
+    return strain if offset is None else strain - offset
+
+
 def dashpot_share(
-    length: FloatArray, length0: FloatArray, smoothing: FloatArray | float = 0.0
+    length: FloatArray, length0: FloatArray, smoothing: FloatArray | float = 0.0,
+    offset: FloatArray | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """Fraction of an element's Kelvin-Voigt dashpot that acts, and its derivative with
     respect to the strain.
@@ -92,9 +117,10 @@ def dashpot_share(
     A slack cable transmits no damping force either. Switching the dashpot on at a strain
     threshold would make the tension jump by ``BA deps/dt`` (an implicit Newton iteration
     cannot converge across a jump), so it blends in linearly over the same band as the
-    tension law of :func:`axial_tension`: 0 below ``-s``, 1 above ``s``.
+    tension law of :func:`axial_tension`: 0 below ``-s``, 1 above ``s`` (of the strain less
+    ``offset``).
     """
-    strain = length / length0 - 1.0
+    strain = _strain(length, length0, offset)
     s = np.broadcast_to(np.asarray(smoothing, dtype=float), strain.shape)
     safe_s = np.where(s > 0, s, 1.0)
     share = np.where(s > 0, np.clip((strain + s) / (2 * safe_s), 0.0, 1.0),
@@ -105,11 +131,16 @@ def dashpot_share(
 
 def strain_energy(
     length: FloatArray, length0: FloatArray, EA: FloatArray, slack_ratio: FloatArray,
-    smoothing: FloatArray | float = 0.0,
+    smoothing: FloatArray | float = 0.0, laws: StrainLaws | None = None,
+    offset: FloatArray | None = None,
 ) -> FloatArray:
     """Elastic energy stored in each element, ``L0 * integral of T d(eps)`` for the law of
-    :func:`axial_tension` (its derivative with respect to ``l`` is the tension)."""
-    strain = length / length0 - 1.0
+    :func:`axial_tension` (its derivative with respect to ``l`` is the tension).
+
+    For a tabulated law the taut part is exact, ``F(eps) - F(s) + E_band``; inside the band
+    (width ``s`` ~ 1e-5) ``f`` is replaced by its linear part ``EA g`` (energy error of order
+    ``f'' s^3``, the merit of the static line search only)."""
+    strain = _strain(length, length0, offset)
     s = np.broadcast_to(np.asarray(smoothing, dtype=float), strain.shape)
     safe_s = np.where(s > 0, s, 1.0)
     shifted = strain + s
@@ -117,6 +148,10 @@ def strain_energy(
         strain >= s, EA * (strain**2 / 2 + s**2 / 6),
         np.where(strain > -s, EA * shifted**3 / (12 * safe_s),
                  0.5 * slack_ratio * EA * shifted**2))
+    if laws is not None and laws.active:
+        EA = np.broadcast_to(EA, strain.shape)
+        taut = laws.energy(np.maximum(strain, s), EA) - laws.energy(s, EA) + EA * s**2 * 2 / 3
+        energy = np.where((laws.ids >= 0) & (strain >= s), taut, energy)
     return energy * length0
 
 

@@ -70,7 +70,8 @@ class DynamicModel:
     kernel
         ``numba``: the element loads of a system without viscoelastic elements are computed by
         the compiled kernel :class:`moorline.physics.fused.FusedLoads` (same results to
-        round-off, much faster); systems with viscoelastic elements, and ``numpy``, use the
+        round-off, much faster); systems with viscoelastic elements or non-linear
+        tension-strain laws (tables, fibre-rope dynamic stiffness), and ``numpy``, use the
         numpy path (the reference). ``self.kernel`` is the one in use.
     """
 
@@ -97,7 +98,7 @@ class DynamicModel:
         if kernel not in ("numpy", "numba"):
             raise ValueError(f"kernel must be 'numpy' or 'numba', got {kernel!r}")
         self._fused = None
-        if kernel == "numba" and not self.any_viscoelastic:
+        if kernel == "numba" and not self.any_viscoelastic and m.linear_axial:
             from ..physics import fused  # imports numba only when used
 
             self._fused = fused.FusedLoads(
@@ -160,7 +161,7 @@ class DynamicModel:
         m = self.mesh
         strain = length / m.length0 - 1.0
         T, dT_deps = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
-                                                m.slack_smoothing)
+                                           m.slack_smoothing, **m.axial_law)
         dT_deps = dT_deps * m.length0
         maxwell = previous.maxwell
         if self.any_viscoelastic:
@@ -169,7 +170,8 @@ class DynamicModel:
             T[ve], maxwell[ve], dT_deps[ve] = self._viscoelastic(
                 strain[ve], previous.strain[ve], previous.maxwell[ve], dt, m.EA[ve], m.EA1[ve],
                 m.tau[ve], m.slack_ratio[ve])
-        share, dshare = element.dashpot_share(length, m.length0, m.slack_smoothing)
+        share, dshare = element.dashpot_share(length, m.length0, m.slack_smoothing,
+                                              m.strain_offset)
         strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0
         T = T + m.BA * share * strain_rate
         dT_deps = dT_deps + m.BA * dshare * strain_rate

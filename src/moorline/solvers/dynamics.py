@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ConvergenceError
-from ..mesh import Mesh, discretize, with_loads_of
+from ..mesh import Mesh, discretize, dynamic_mesh, with_loads_of
 from ..model import DynamicsSettings, StaticsSettings, System
 from ..results import DynamicResult, StaticResult
 from .bodies import BodyState
@@ -123,6 +123,7 @@ def start(system: System, settings: DynamicsSettings,
             raise ConvergenceError(f"static equilibrium before dynamics failed: "
                                    f"{initial.message}", time=0.0)
     x0 = initial.positions if isinstance(initial, StaticResult) else np.asarray(initial, float)
+    mesh = dynamic_mesh(mesh, x0)
     fluid = fluid if fluid is not None else _fluid(
         system, settings, ramp_current=not getattr(initial, "current_drag", False))
     model = DynamicModel(mesh, fluid, settings.viscoelastic_update,

@@ -74,7 +74,8 @@ class StaticModel:
         """All nodal forces at positions ``x`` (n_nodes, 3) with the loads scaled by ``lam``."""
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
-        tension, _ = element.axial_tension(length, m.length0, m.EA, *self._law())
+        tension, _ = element.axial_tension(length, m.length0, m.EA, *self._law(),
+                                           **m.axial_law)
         el_forces = element.nodal_forces(tension, unit)
         nodal = lam * self.external
         nodal = nodal + hydro.sum_to_nodes(el_forces, m.elements, m.n_nodes)
@@ -94,7 +95,8 @@ class StaticModel:
         nodes, elems, first = self._friction_map
         normal, d_normal, _ = self._seabed(x)
         tension, dT = element.axial_tension(length[elems], m.length0[elems], m.EA[elems],
-                                            *[a[elems] for a in self._law()])
+                                            *[a[elems] for a in self._law()],
+                                            **m.axial_law_of(elems))
         sign = np.where(first, 1.0, -1.0)[:, None]
         f, df = seabed.static_friction(normal[nodes], d_normal[nodes], tension, dT,
                                        sign * unit[elems], length[elems], self.friction)
@@ -152,11 +154,12 @@ class StaticModel:
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
         tension, dT = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
-                                            0.0 if self.exact_cable else m.slack_smoothing)
+                                            0.0 if self.exact_cable else m.slack_smoothing,
+                                            **m.axial_law)
         if self.exact_cable:
             tension = np.maximum(tension, 0.0)
         if taut_axial:
-            tension, dT = np.maximum(tension, 0.0), m.EA / m.length0
+            tension, dT = np.maximum(tension, 0.0), self._taut_stiffness(length)
         blocks = element.tangent_blocks(length, unit, tension, dT)
         if self.current is not None:
             blocks = blocks - self._current_drag(x)[1]
@@ -169,6 +172,17 @@ class StaticModel:
         pattern = pattern or self.pattern
         diagonal = np.full(pattern.n, shift) if shift else None
         return pattern.assemble(blocks, node_blocks, diagonal)
+
+    def _taut_stiffness(self, length: FloatArray) -> FloatArray:
+        """``dT/dl`` of every element as if taut: ``EA / L0``, or a non-linear law's tangent
+        at ``max(eps, 0)`` (at the strain offset for a dynamic law)."""
+        m = self.mesh
+        if m.linear_axial:
+            return m.EA / m.length0
+        offset = 0.0 if m.strain_offset is None else m.strain_offset
+        taut = m.length0 * (1.0 + np.maximum(length / m.length0 - 1.0, offset))
+        zero = np.zeros_like(m.EA)
+        return element.axial_tension(taut, m.length0, m.EA, zero, zero, **m.axial_law)[1]
 
     def _seabed(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         zero = np.zeros(self.mesh.n_nodes)
@@ -191,7 +205,8 @@ class StaticModel:
         """
         m = self.mesh
         length, _ = element.element_geometry(x, m.elements)
-        energy = float(element.strain_energy(length, m.length0, m.EA, *self._law()).sum())
+        energy = float(element.strain_energy(length, m.length0, m.EA, *self._law(),
+                                             **m.axial_law).sum())
         if np.isfinite(m.seabed_z):
             energy += seabed.contact_energy(x[:, 2] - m.seabed_z, self.node_seabed_stiffness,
                                             self.seabed_ramp)

@@ -43,6 +43,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..errors import MoorlineError
+from ..mesh import dynamic_mesh
 from ..model import HarmonicSettings, System
 from ..results import HarmonicResult, StaticResult
 from .assembly import BlockPattern, factorize, gather_free, scatter_free
@@ -100,7 +101,7 @@ class HarmonicBalance:
         if not (settings.period > 0 and settings.harmonics >= 1):
             raise MoorlineError("harmonic balance needs period > 0 and harmonics >= 1")
         statics = equilibrium_for(system, statics, "harmonic balance")
-        mesh = statics.mesh
+        mesh = dynamic_mesh(statics.mesh, statics.positions)
         if mesh.body_names:
             raise MoorlineError(f"harmonic balance of {system.name}: systems with bodies are "
                                 "not supported")

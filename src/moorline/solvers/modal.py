@@ -38,7 +38,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..errors import ConvergenceError, MoorlineError
-from ..mesh import Mesh, with_loads_of
+from ..mesh import Mesh, dynamic_mesh, with_loads_of
 from ..model import ModalSettings, System
 from ..physics import element, hydro
 from ..results import BODY_DOFS, ModalResult, StaticResult
@@ -100,7 +100,7 @@ def solve_modes(
     """
     settings = settings or _default_settings(system)
     statics = equilibrium_for(system, statics, "modal analysis")
-    mesh = statics.mesh
+    mesh = dynamic_mesh(statics.mesh, statics.positions)
     if mesh.n_dofs == 0 and not mesh.body_names:
         raise MoorlineError(f"modal analysis of {system.name}: the model has no free node")
     K, M, P, problem = system_matrices(mesh, statics.positions, statics.body_pose, settings)

@@ -69,7 +69,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..errors import MoorlineError
-from ..mesh import Mesh, with_loads_of
+from ..mesh import Mesh, dynamic_mesh, with_loads_of
 from ..model import ModalSettings, StochasticSettings, System
 from ..physics import element
 from ..results import StaticResult, StochasticResult
@@ -144,7 +144,7 @@ class _LinearModel:
 
     def __init__(self, system: System, statics: StaticResult,
                  settings: StochasticSettings) -> None:
-        mesh = with_loads_of(statics.mesh, system)
+        mesh = dynamic_mesh(with_loads_of(statics.mesh, system), statics.positions)
         self.mesh, self.rho = mesh, float(mesh.water_density)
         modal = ModalSettings(mass=settings.mass, added_mass=settings.added_mass)
         K, M, P, problem = system_matrices(mesh, statics.positions, statics.body_pose, modal)
@@ -391,7 +391,7 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         raise MoorlineError(f"stochastic method must be 'foss' or 'direct', not "
                             f"{settings.method!r}")
     statics = equilibrium_for(system, statics, "stochastic analysis")
-    mesh = statics.mesh
+    mesh = dynamic_mesh(statics.mesh, statics.positions)
     if mesh.n_dofs == 0 and not mesh.body_names:
         raise MoorlineError(f"stochastic analysis of {system.name}: no free node")
     rho = float(mesh.water_density)
@@ -456,7 +456,7 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
                    f"converge in {settings.max_iterations} iterations (last change "
                    f"{history[-1]:.3g}); the last iterate is returned")
     _, dT = element.axial_tension(length, mesh.length0, mesh.EA, mesh.slack_ratio,
-                                  mesh.slack_smoothing)
+                                  mesh.slack_smoothing, **mesh.axial_law)
     H_T = dT[None] * np.einsum("wei,ei->we", U[:, b] - U[:, a], t)
     u_std = np.sqrt(np.einsum("w,wnc->nc", power, np.abs(U) ** 2))
     T_std = np.sqrt(np.einsum("w,we->e", power, np.abs(H_T) ** 2))
