@@ -167,3 +167,46 @@ def test_convert_deck_with_point_aliases_and_wavekin(tmp_path):
     assert statics.exit_code == 0, statics.output
     assert _comparable(load_case(out)).points == _comparable(
         read_moordyn(DECKS / "oc3.dat")).points
+
+
+PUBLIC = DECKS / "public"
+#: Bodies- and rods-free decks of MoorPy and MoorDyn (origins in tests/data/moordyn/public/
+#: README.md) that the issue-14 reader converts; statics with the case defaults.
+PUBLIC_DECKS = [
+    "MoorPy/tests/case1.dat", "MoorPy/tests/case2.dat", "MoorPy/tests/case3.dat",
+    "MoorPy/tests/case4.dat", "MoorPy/tests/case5.dat", "MoorPy/examples/volturn_chain.dat",
+    "MoorDyn/lines.txt", "MoorDyn/WD0050_Chain.txt", "MoorDyn/WD0200_Chain.txt",
+    "MoorDyn/WD0600_Chain.txt", "MoorDyn/lifting.txt", "MoorDyn/pendulum.txt",
+    "MoorDyn/time_schemes.txt", "MoorDyn/local_euler/hanging.txt",
+    "MoorDyn/local_euler/duplicated.txt", "MoorDyn/polyester/simple.txt",
+    "MoorDyn/lowe_and_langley_2006/line.txt", "MoorDyn/wavekin_4/hanging_lines.txt",
+    "MoorDyn/wave_surface/wave_surface.txt", "MoorDyn/viv/viv.txt",
+    "MoorDyn/wavekin_2/wavekin_2.txt", "MoorDyn/BeamSimplySupported.txt",
+    pytest.param("MoorPy/tests/case6.dat", marks=pytest.mark.xfail(
+        strict=True, reason="hard statics (issue 14, Deliver 5): a W-shaped line with a "
+        "buoy and seabed contact; the default Newton stalls, relaxation converges in 1606 "
+        "steps")),
+    pytest.param("MoorDyn/tripod.txt", marks=pytest.mark.xfail(
+        strict=True, reason="hard statics (issue 14, Deliver 5): 11 lines, 9 free points "
+        "and floats; Newton (also with 10 load steps) and relaxation fail")),
+]
+
+
+@pytest.mark.parametrize("deck", PUBLIC_DECKS)
+def test_public_decks_convert_and_reach_equilibrium(deck, tmp_path):
+    """`moorline convert` then `moorline statics` with the defaults: exit 0 both; the
+    decks with `Currents 1` (viv, wavekin_2) carry MoorDyn's steady profile."""
+    import json
+
+    path = PUBLIC / deck
+    out = tmp_path / "case.yaml"
+    runner = CliRunner()
+    result = runner.invoke(cli, ["convert", str(path), "--out", str(out), "--quiet"])
+    assert result.exit_code == 0, result.output
+    system = load_case(out)
+    if deck.startswith(("MoorDyn/viv", "MoorDyn/wavekin_2")):
+        assert len(system.environment.current.z_levels) > 2
+    statics = runner.invoke(cli, ["statics", str(out), "--out", str(tmp_path / "o"),
+                                  "--json", "--quiet"])
+    assert statics.exit_code == 0, statics.output
+    assert json.loads(statics.stdout)["converged"] is True

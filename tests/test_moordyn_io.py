@@ -400,7 +400,7 @@ def test_outputs_section_is_carried() -> None:
     ("L2N3Ten", ("line", 2, 3, "T")), ("Line2N0PZ", ("line", 2, 0, "PZ")),
     ("L1NBFX", ("line", 1, "B", "FX")), ("L4NAT", ("line", 4, "A", "T")),
     ("Point4FX", ("point", 4, None, "FX")), ("P2VZ", ("point", 2, None, "VZ")),
-    ("Con4Fx", ("point", 4, None, "FX")),
+    ("Con4Fx", ("point", 4, None, "FX")), ("POINT1T", ("point", 1, None, "T")),
 ])
 def test_channel_names_read_like_moordyn(name: str, parsed: tuple) -> None:
     from moorline.io.moordyn_outputs import parse_channel
@@ -560,3 +560,34 @@ def test_current_profile_statics_match_moordyn_settled_in_the_current(tmp_path: 
         assert np.abs(ours - force).max() < 1e-3 * size
         dry = still.end_force(f"line{k}", "b")
         assert abs(np.linalg.norm(dry) / size - 1) > 1e-3  # the current matters here
+
+
+def test_bodies_and_rods_are_named_at_once(tmp_path: Path) -> None:
+    """A deck with bodies, rod types and rods: one error naming all three (the first at its
+    line), before the missing-section checks."""
+    text = OC3.read_text().replace("---------------------- POINTS", "\n".join([
+        "---------------------- ROD TYPES ----", "Name Diam Mass Cd Ca CdEnd CaEnd",
+        "(-) (m) (kg/m) (-) (-) (-) (-)", "rod 1.0 100 1 1 1 1",
+        "---------------------- BODIES ----", "ID Attachment X0 Y0 Z0 r0 p0 y0 M CG I V CdA Ca",
+        "(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m2) (m3) (m2) (-)",
+        "1 Free 0 0 0 0 0 0 1e3 0 0 1 0 0",
+        "---------------------- RODS ----", "ID RodType Attachment Xa Ya Za Xb Yb Zb NumSegs",
+        "(#) (-) (-) (m) (m) (m) (m) (m) (m) (-)", "1 rod Body1 0 0 -1 0 0 -5 4",
+        "---------------------- POINTS"]))
+    path = tmp_path / "bodies.dat"
+    path.write_text(text)
+    with pytest.raises(CaseError) as info:
+        read_moordyn(path)
+    assert info.value.reason == (f"bodies are not supported; also rods (line "
+                                 f"{_line_of(text, '1 rod Body1')}); rod types (line "
+                                 f"{_line_of(text, 'rod 1.0 100')})")
+    assert info.value.field == f"line {_line_of(text, '1 Free 0 0 0')}, BODIES"
+
+
+def test_is_moordyn_deck() -> None:
+    from moorline.io.moordyn import is_moordyn_deck
+
+    root = Path(__file__).resolve().parents[1]
+    assert is_moordyn_deck(OC3) and is_moordyn_deck(DATA / "oc3_v1.dat")
+    assert not is_moordyn_deck(root / "cases" / "oc3_line.yaml")
+    assert not is_moordyn_deck(DATA / "absent.dat")

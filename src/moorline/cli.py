@@ -660,7 +660,11 @@ def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
     """Convert a MoorDyn input file DECK into a moorline case file (YAML).
 
     The case is validated before it is written: a deck whose values a case may not hold
-    (negative coefficients, volumes, seabed stiffness) exits 2 and writes nothing.
+    (negative coefficients, volumes, seabed stiffness) exits 2 and writes nothing. The
+    reading notes (dropped options and channels), how TMax/dtM/dtOut were used and the line
+    output flags are comments at the top of the case; the OUTPUTS channels are
+    output.channels (a dynamics run writes them as moordyn_channels.csv). `statics` and
+    `run` also take a deck directly and convert it on the fly (with a note).
     """
     _configure_logging(verbose)
     from .io.case_writer import write_case

@@ -35,8 +35,12 @@ names are ``point<ID>`` and ``line<ID>``. :func:`write_moordyn` writes names tha
 ``read_moordyn(write_moordyn(system))`` gives back the same names.
 
 Missing ``WtrDpth``: MoorDyn-C starts from 0 and lowers the seabed to any point defined below
-it; the reader does the same (with a warning). Bodies, rods, seabed files and wave or current
-files are not supported (``CaseError``).
+it; the reader does the same (with a warning). Bodies, rods and seabed files are not supported
+(``CaseError``, naming every unsupported section at once). ``WaveKin`` and ``Currents`` are
+warnings naming what is dropped; ``Currents`` 1 or 3 with a ``current_profile.txt`` next to
+the deck becomes the case's current (:mod:`moorline.io.moordyn_kinematics`). ``TMax``,
+``dtOut`` and the ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and
+``output.channels`` (:mod:`moorline.io.moordyn_outputs`).
 """
 
 from __future__ import annotations
@@ -180,8 +184,9 @@ def read_moordyn(path: str | Path) -> System:
     Returns
     -------
     System
-        SI units, named after the file; ``source`` is the path. The analyses are the default
-        (one static analysis): MoorDyn's time step and IC settings do not carry over (see
+        SI units, named after the file; ``source`` is the path. The analyses: one static
+        analysis (with current drag when the deck's current was read), then a dynamics
+        analysis when the deck gives ``TMax``; MoorDyn's IC settings do not carry over (see
         :func:`read_moordyn_deck` for them).
 
     Raises
@@ -215,16 +220,21 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     except OSError as exc:
         raise CaseError(f"cannot read MoorDyn file: {exc.strerror or exc}", file=str(path)) from exc
     sections = _split_sections(text.splitlines(), reader)
+    unsupported = [(sections[kind], what) for kind, what in
+                   (("bodies", "bodies"), ("rods", "rods"), ("rodtypes", "rod types"))
+                   if kind in sections and sections[kind].rows]
+    if unsupported:
+        first = unsupported[0][0]
+        others = "; ".join(f"{what} (line {sec.rows[0].lineno})" for sec, what in unsupported[1:])
+        raise reader.fail(f"{unsupported[0][1]} are not supported"
+                          + (f"; also {others}" if others else ""),
+                          row=first.rows[0], section=first.title)
     for kind, title in (("types", "LINE TYPES"), ("points", "POINTS"), ("lines", "LINES")):
         if kind not in sections:
             raise reader.fail(f"missing section {title} (a '--- {title} ---' header line)")
         if not sections[kind].rows:
             raise reader.fail(f"section {sections[kind].title} has no entries",
                               lineno=sections[kind].lineno, section=sections[kind].title)
-    for kind, what in (("bodies", "bodies"), ("rods", "rods"), ("rodtypes", "rod types")):
-        if kind in sections and sections[kind].rows:
-            raise reader.fail(f"{what} are not supported", row=sections[kind].rows[0],
-                              section=sections[kind].title)
     types, v_types = _parse_line_types(sections["types"], reader)
     points, ids, v_points = _parse_points(sections["points"], reader)
     lines, line_ids, v_lines = _parse_lines(sections["lines"], types, ids, v_points, reader)
@@ -258,8 +268,8 @@ def _line_flags(row: _Row) -> str:
 
 
 def is_moordyn_deck(path: str | Path) -> bool:
-    """Whether a file reads as a MoorDyn deck: dashed section headers naming line types (or a
-    line dictionary) and points (or connections, nodes). Never raises."""
+    """Whether a file reads as a MoorDyn deck: dashed section headers naming at least two of
+    MoorDyn's tables (line types, rod types, bodies, rods, points, lines). Never raises."""
     try:
         path = Path(path)
         if file_problem(path, MAX_CASE_BYTES) is not None:
@@ -269,7 +279,7 @@ def is_moordyn_deck(path: str | Path) -> bool:
         return False
     kinds = {_section_kind(" ".join(line.strip().strip("- \t").upper().split()))
              for line in text.splitlines() if line.strip().startswith("--")}
-    return {"types", "points"} <= kinds
+    return len(kinds & {"types", "rodtypes", "bodies", "rods", "points", "lines"}) >= 2
 
 
 def _section_kind(title: str) -> str:

@@ -21,9 +21,9 @@ read like MoorDyn (leading letters, number, letters, number, letters; case-insen
 - ``L<n>N<m>FX|FY|FZ`` at an end node: the end-point force components (the force the line
   exerts on the point, moorline's convention).
 - ``P<n>`` / ``Point<n>`` (and v1 ``Con<n>``) with ``PX..VZ``: point position and velocity;
-  ``FX|FY|FZ``: the sum of the forces of the lines on the point (MoorDyn's net point force
-  also holds the point's own weight, buoyancy and drag: the same for points without mass,
-  volume or drag, as fairleads and anchors usually are).
+  ``FX|FY|FZ`` (``T``: its magnitude): the sum of the forces of the lines on the point
+  (MoorDyn's net point force also holds the point's own weight, buoyancy and drag: the same
+  for points without mass, volume or drag, as fairleads and anchors usually are).
 
 Line and point numbers are MoorDyn's: the n-th line and n-th point of the case, in order.
 """
@@ -49,7 +49,7 @@ DEFAULT_DT = 0.05
 CHANNELS_FILE = "moordyn_channels.csv"
 _WORD = re.compile(r"^([A-Z]*)(\d*)([A-Z]*)(\d*)([A-Z]*)$")
 _NODE_QUANTITIES = {"PX", "PY", "PZ", "VX", "VY", "VZ", "T", "TEN", "FX", "FY", "FZ"}
-_POINT_QUANTITIES = {"PX", "PY", "PZ", "VX", "VY", "VZ", "FX", "FY", "FZ"}
+_POINT_QUANTITIES = {"PX", "PY", "PZ", "VX", "VY", "VZ", "FX", "FY", "FZ", "T", "TEN"}
 
 
 def _option(raw: Mapping[str, str], key: str) -> float | None:
@@ -149,7 +149,7 @@ def parse_channel(name: str) -> Channel | None:
         return Channel(name, "line", number, node, quantity) if quantity in \
             _NODE_QUANTITIES else None
     if let1 in ("P", "POINT", "CON", "CONNECT") and not num2 and let2 in _POINT_QUANTITIES:
-        return Channel(name, "point", number, None, let2)
+        return Channel(name, "point", number, None, "T" if let2 == "TEN" else let2)
     return None
 
 
@@ -174,13 +174,15 @@ def channel_series(channel: Channel, ds: Any, system: System) -> np.ndarray:
             node = int(ds["point_node"].values[list(ds["point"].values).index(name)])
             var = "position" if channel.quantity[0] == "P" else "velocity"
             return np.asarray(ds[var].values)[:, node, xyz.index(channel.quantity[1])]
-        total = np.zeros(ds.sizes["time"])
+        total = np.zeros((ds.sizes["time"], 3))
         end_force = np.asarray(ds["end_force"].values)
         for k, ln in enumerate(ds["line"].values):
             for j, end in enumerate((system.lines[str(ln)].end_a, system.lines[str(ln)].end_b)):
                 if end == name:
-                    total = total + end_force[:, k, j, xyz.index(channel.quantity[1])]
-        return total
+                    total = total + end_force[:, k, j]
+        if channel.quantity == "T":
+            return np.linalg.norm(total, axis=-1)
+        return total[:, xyz.index(channel.quantity[1])]
     line = list(system.lines)[channel.number - 1]
     nodes, elements = _line_nodes(ds, system, line)
     n_seg = len(elements)
