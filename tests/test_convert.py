@@ -79,3 +79,134 @@ def test_convert_refuses_bad_numbers(tmp_path, deck, message):
     assert result.exit_code == 2, result.output
     assert result.stderr.startswith(f"error: {path}: ") and message in result.stderr
     assert not out.exists()
+
+
+# --------------------------------------------------------------------------- issue 14
+
+DECKS = ROOT / "tests" / "data" / "moordyn"
+
+
+def test_statics_converts_a_moordyn_deck_on_the_fly(tmp_path):
+    """`moorline statics deck.dat`: not "the top level must be a mapping" but the deck read
+    as `convert` reads it, with a note saying so; the same equilibrium as the converted
+    case."""
+    import json
+
+    deck = DECKS / "oc3.dat"
+    runner = CliRunner()
+    direct = runner.invoke(cli, ["statics", str(deck), "--out", str(tmp_path / "a"), "--json"])
+    assert direct.exit_code == 0, direct.output
+    assert (f"{deck} is a MoorDyn deck: converted on the fly (`moorline convert {deck}` "
+            "writes it as a case file)") in direct.stderr
+    case = tmp_path / "oc3.yaml"
+    assert runner.invoke(cli, ["convert", str(deck), "--out", str(case), "-q"]).exit_code == 0
+    converted = runner.invoke(cli, ["statics", str(case), "--out", str(tmp_path / "b"),
+                                    "--json"])
+    assert converted.exit_code == 0, converted.output
+    assert "MoorDyn deck" not in converted.stderr
+    a, b = (json.loads(r.stdout)["lines"]["line1"]["end_b"]["tension"] for r in (direct,
+                                                                              converted))
+    assert a == pytest.approx(b, rel=1e-12)
+
+
+def test_a_file_that_is_neither_case_nor_deck_keeps_the_mapping_error(tmp_path):
+    path = tmp_path / "list.yaml"
+    path.write_text("- a\n- b\n")
+    result = CliRunner().invoke(cli, ["statics", str(path), "--out", str(tmp_path)])
+    assert result.exit_code == 2
+    assert "the top level must be a mapping" in result.stderr
+    assert "MoorDyn" not in result.stderr
+
+
+def test_a_broken_deck_given_to_statics_names_the_deck_problem(tmp_path):
+    """A deck that is recognised but does not read: MoorDyn's own error (file, line,
+    section), not the YAML one."""
+    text = (DECKS / "oc3.dat").read_text().replace("3     main       3", "3     wire       3")
+    path = tmp_path / "bad.dat"
+    path.write_text(text)
+    result = CliRunner().invoke(cli, ["statics", str(path), "--out", str(tmp_path)])
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"error: {path}: ") and "unknown line type 'wire'" in \
+        result.stderr
+
+
+def test_convert_keeps_time_settings_outputs_and_notes(tmp_path):
+    """oc3_outputs.dat: TMax/dtOut become a dynamics analysis and output.every, OUTPUTS
+    output.channels; the notes (dropped channel, time settings, line output flags) are
+    comments at the top of the case."""
+    out = tmp_path / "oc3_outputs.yaml"
+    result = CliRunner().invoke(cli, ["convert", str(DECKS / "oc3_outputs.dat"), "--out",
+                                      str(out), "--quiet"])
+    assert result.exit_code == 0, result.output
+    text = out.read_text()
+    head = [line for line in text.splitlines() if line.startswith("#")]
+    assert any("TMax = 1 s: a dynamics analysis of 1 s with dt = 0.05 s" in h for h in head)
+    assert any("channel 'L1T20'" in h for h in head)
+    assert any("line output flags" in h and "line1 pt" in h for h in head)
+    system = load_case(out)
+    assert [a.kind for a in system.analyses] == ["statics", "dynamics"]
+    assert system.analyses[1].duration == 1.0 and system.output.every == 0.1
+    assert system.output.channels[:3] == ("FairTen1", "AnchTen1", "L1N19T")
+    assert _comparable(system) == _comparable(read_moordyn(DECKS / "oc3_outputs.dat"))
+
+
+def test_convert_deck_with_point_aliases_and_wavekin(tmp_path):
+    """A deck with `Fix`/`Ves` point types and WaveKin 3 converts (a warning names the
+    option) and its statics converge."""
+    text = (DECKS / "oc3.dat").read_text().replace("Fixed   ", "Fix     ").replace(
+        "Coupled ", "Ves     ").replace("0.001         threshIC", "3  WaveKin\n0.001 threshIC")
+    deck = tmp_path / "alias.dat"
+    deck.write_text(text)
+    out = tmp_path / "alias.yaml"
+    runner = CliRunner()
+    result = runner.invoke(cli, ["convert", str(deck), "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "WaveKin = 3" in result.stderr and "waves are dropped" in result.stderr
+    statics = runner.invoke(cli, ["statics", str(out), "--out", str(tmp_path / "o"), "-q",
+                                  "--no-plots"])
+    assert statics.exit_code == 0, statics.output
+    assert _comparable(load_case(out)).points == _comparable(
+        read_moordyn(DECKS / "oc3.dat")).points
+
+
+PUBLIC = DECKS / "public"
+#: Bodies- and rods-free decks of MoorPy and MoorDyn (origins in tests/data/moordyn/public/
+#: README.md) that the issue-14 reader converts; statics with the case defaults.
+PUBLIC_DECKS = [
+    "MoorPy/tests/case1.dat", "MoorPy/tests/case2.dat", "MoorPy/tests/case3.dat",
+    "MoorPy/tests/case4.dat", "MoorPy/tests/case5.dat", "MoorPy/examples/volturn_chain.dat",
+    "MoorDyn/lines.txt", "MoorDyn/WD0050_Chain.txt", "MoorDyn/WD0200_Chain.txt",
+    "MoorDyn/WD0600_Chain.txt", "MoorDyn/lifting.txt", "MoorDyn/pendulum.txt",
+    "MoorDyn/time_schemes.txt", "MoorDyn/local_euler/hanging.txt",
+    "MoorDyn/local_euler/duplicated.txt", "MoorDyn/polyester/simple.txt",
+    "MoorDyn/lowe_and_langley_2006/line.txt", "MoorDyn/wavekin_4/hanging_lines.txt",
+    "MoorDyn/wave_surface/wave_surface.txt", "MoorDyn/viv/viv.txt",
+    "MoorDyn/wavekin_2/wavekin_2.txt", "MoorDyn/BeamSimplySupported.txt",
+    pytest.param("MoorPy/tests/case6.dat", marks=pytest.mark.xfail(
+        strict=True, reason="hard statics (issue 14, Deliver 5): a W-shaped line with a "
+        "buoy and seabed contact; the default Newton stalls, relaxation converges in 1606 "
+        "steps")),
+    pytest.param("MoorDyn/tripod.txt", marks=pytest.mark.xfail(
+        strict=True, reason="hard statics (issue 14, Deliver 5): 11 lines, 9 free points "
+        "and floats; Newton (also with 10 load steps) and relaxation fail")),
+]
+
+
+@pytest.mark.parametrize("deck", PUBLIC_DECKS)
+def test_public_decks_convert_and_reach_equilibrium(deck, tmp_path):
+    """`moorline convert` then `moorline statics` with the defaults: exit 0 both; the
+    decks with `Currents 1` (viv, wavekin_2) carry MoorDyn's steady profile."""
+    import json
+
+    path = PUBLIC / deck
+    out = tmp_path / "case.yaml"
+    runner = CliRunner()
+    result = runner.invoke(cli, ["convert", str(path), "--out", str(out), "--quiet"])
+    assert result.exit_code == 0, result.output
+    system = load_case(out)
+    if deck.startswith(("MoorDyn/viv", "MoorDyn/wavekin_2")):
+        assert len(system.environment.current.z_levels) > 2
+    statics = runner.invoke(cli, ["statics", str(out), "--out", str(tmp_path / "o"),
+                                  "--json", "--quiet"])
+    assert statics.exit_code == 0, statics.output
+    assert json.loads(statics.stdout)["converged"] is True

@@ -40,12 +40,17 @@ def test_csv_time_table_drives_a_prescribed_point(tmp_path):
     system = load_case(path)
     motion = system.points["top"].motion
     assert motion.times == (0.0, 2.0, 4.0)
+    # The cubic Hermite interpolant (issue 14), by hand: y has knot derivatives 0 (next to
+    # the constant interval) and (3 * 0.25 - 0) / 2 = 0.375 at the end; at t = 3 (s = 1/2)
+    # y = 0.5 h01 + 2 * 0.375 h11 = 0.25 - 0.09375, y' = (1.5 * 0.5 - 0.25 * 0.75) / 2.
+    # x: derivatives 0.75 and 0 on [0, 2]; held (1, derivative 0) on [2, 4].
     d, v, _ = motion_value(motion, 3.0)
-    assert np.allclose(d, [1.0, 0.25, 0.0]) and np.allclose(v, [0.0, 0.25, 0.0])
+    assert np.allclose(d, [1.0, 0.15625, 0.0]) and np.allclose(v, [0.0, 0.28125, 0.0])
     result = simulate(system, system.analyses[1], output_every=0.5)
     top = result.point_history("top")
     assert np.allclose(top[-1], np.array([0.0, 0.0, -10.0]) + [1.0, 0.5, 0.0], atol=1e-12)
-    assert np.allclose(top[result.time == 1.0][0], [0.5, 0.0, -10.0], atol=1e-12)
+    # t = 1 (s = 1/2): x = 2 * 0.75 h10 + h01 = 0.1875 + 0.5
+    assert np.allclose(top[result.time == 1.0][0], [0.6875, 0.0, -10.0], atol=1e-12)
 
 
 def test_bad_csv_table_is_a_case_error(tmp_path):

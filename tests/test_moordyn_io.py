@@ -272,3 +272,322 @@ def test_largest_stable_dt_brackets_the_limit() -> None:
     assert found["dt"] < found["unstable_dt"] <= 1.5 * found["dt"] + 1e-12
     stable = {t["dt"]: t["stable"] for t in found["trials"]}
     assert stable[found["dt"]] and not stable[found["unstable_dt"]]
+
+
+# --------------------------------------------------------------------------- issue 14
+
+
+def _edited(tmp_path: Path, old: str, new: str, name: str = "deck.dat",
+            source: Path = OC3) -> Path:
+    text = source.read_text()
+    assert old in text
+    path = tmp_path / name
+    path.write_text(text.replace(old, new))
+    return path
+
+
+@pytest.mark.parametrize(("word", "kind"), [
+    ("Fix", "fixed"), ("fixed", "fixed"), ("ANCHOR", "fixed"), ("Fixed1", "fixed"),
+    ("Ves", "prescribed"), ("vessel", "prescribed"), ("Cpld", "prescribed"),
+    ("COUPLED", "prescribed"), ("Fairlead", "prescribed"),
+    ("Con", "free"), ("connect", "free"), ("Free", "free"), ("Point", "free"),
+])
+def test_point_type_aliases(word: str, kind: str, tmp_path: Path) -> None:
+    """MoorDyn-C v2.7 (source/MoorDyn2.cpp, point list) compares the leading letters of the
+    attachment word, upper-cased, with ANCHOR/FIXED/FIX, FAIRLEAD/VESSEL/VES/COUPLED/CPLD
+    and POINT/CONNECT/CON/FREE."""
+    path = _edited(tmp_path, "4     Coupled", f"4     {word:<8s}")
+    assert read_moordyn(path).points["fairlead1"].kind == kind
+
+
+def test_unknown_point_type_lists_the_aliases(tmp_path: Path) -> None:
+    path = _edited(tmp_path, "4     Coupled", "4     Moored ")
+    with pytest.raises(CaseError, match=r"'Moored'.*Fix, Anchor.*Ves, Cpld, Fairlead"):
+        read_moordyn(path)
+
+
+@pytest.mark.parametrize(("option", "fragment"), [
+    ("3  WaveKin", "WaveKin = 3 (waves from a wave-elevation time series (grid)) is not read"),
+    ("1  WaveKin", "WaveKin = 1 (wave kinematics set through the coupling API) is not read"),
+    ("2  Currents", "Currents = 2 (a time-varying current profile"),
+    ("1  Currents", "Currents = 1: no current_profile.txt next to the deck, the current is "
+                    "dropped"),
+    ("1  WaterKin", "WaterKin = 1 (line 32): MoorDyn v1 water kinematics files"),
+])
+def test_kinematics_options_are_warnings_not_refusals(option: str, fragment: str,
+                                                      tmp_path: Path) -> None:
+    path = _edited(tmp_path, "0.001         threshIC", f"{option}\n0.001 threshIC")
+    deck = read_moordyn_deck(path)
+    assert any(fragment in note for note in deck.notes), deck.notes
+    assert deck.system.environment.current.speed == 0.0
+    assert not deck.system.environment.current.z_levels
+    assert deck.system.environment.waves.kind == "none"
+
+
+def test_seafloor_file_is_still_refused(tmp_path: Path) -> None:
+    path = _edited(tmp_path, "0.001         threshIC", "floor.txt  SeafloorFile\n0.001 threshIC")
+    with pytest.raises(CaseError, match="SeafloorFile = floor.txt: seabed"):
+        read_moordyn(path)
+
+
+PROFILE = """--------------------- MoorDyn steady currents File ------------------------
+Tabulated file with the water currents components
+z (m), ux (m/s), uy (m/s), uz (m/s)
+-320.0 0.0 0.0 0.0
+-100.0 0.3 0.4 0.0
+0.0 0.6 0.8 0.0
+"""
+
+
+def test_steady_current_profile_becomes_the_case_current(tmp_path: Path) -> None:
+    """Currents 1 with MoorDyn's current_profile.txt (three header lines, then z ux uy uz,
+    in the deck's folder as MoorDyn-C reads it): speed hypot(ux, uy), heading
+    atan2(uy, ux); the zero-speed level takes its neighbour's heading; statics with the
+    current drag."""
+    (tmp_path / "current_profile.txt").write_text(PROFILE)
+    path = _edited(tmp_path, "0.001         threshIC", "1  Currents\n0.001 threshIC")
+    deck = read_moordyn_deck(path)
+    current = deck.system.environment.current
+    assert current.z_levels == (-320.0, -100.0, 0.0)
+    assert current.speeds == pytest.approx((0.0, 0.5, 1.0), rel=1e-15)
+    heading = math.degrees(math.atan2(0.8, 0.6))
+    assert current.headings_deg == pytest.approx((heading,) * 3, rel=1e-15)
+    assert deck.system.analyses[0].current_drag is True
+    assert any("current_profile.txt is read" in n for n in deck.notes)
+
+
+def test_turning_or_vertical_current_is_warned(tmp_path: Path) -> None:
+    (tmp_path / "current_profile.txt").write_text(
+        PROFILE.replace("-100.0 0.3 0.4 0.0", "-100.0 0.5 0.0 0.1"))
+    path = _edited(tmp_path, "0.001         threshIC", "3  Currents\n0.001 threshIC")
+    notes = " ".join(read_moordyn_deck(path).notes)
+    assert "uz is dropped" in notes and "the current turns with depth" in notes
+
+
+def test_time_settings_make_a_dynamics_analysis() -> None:
+    """TMax 1, dtOut 0.1, dtM 0.002 (tests/data/moordyn/oc3_outputs.dat): statics then a
+    1 s dynamics with dt = min(dtOut, 0.05), output every dtOut; said in the comments."""
+    from moorline.model import DynamicsSettings, StaticsSettings
+
+    deck = read_moordyn_deck(DATA / "oc3_outputs.dat")
+    s = deck.system
+    assert s.analyses == (StaticsSettings(), DynamicsSettings(duration=1.0, dt=0.05))
+    assert s.output.every == 0.1
+    assert any("TMax = 1 s" in c and "dtM = 0.002 s" in c for c in deck.comments)
+    assert deck.line_outputs == {"line1": "pt", "line2": "-", "line3": "-"}
+
+
+def test_without_tmax_statics_only_with_a_comment() -> None:
+    deck = read_moordyn_deck(OC3)
+    assert [a.kind for a in deck.system.analyses] == ["statics"]
+    assert deck.comments == ("dtM = 0.002 s: no TMax, so no dynamics analysis is made "
+                             "(statics only; dtOut, if given, is the case's output interval)",)
+
+
+def test_outputs_section_is_carried() -> None:
+    deck = read_moordyn_deck(DATA / "oc3_outputs.dat")
+    expected = ("FairTen1", "AnchTen1", "L1N19T", "L1N10T", "L1NBFX", "L1N20FZ", "Point4FX",
+                "Con1FX", "L1N10PZ", "FairSegTen1", "L1T20")
+    assert deck.outputs == expected and deck.system.output.channels == expected
+    assert [n for n in deck.notes if "OUTPUTS" in n] == [
+        "OUTPUTS: channel 'L1T20' (line 40) is not supported by moorline and will not be "
+        "written"]
+
+
+@pytest.mark.parametrize(("name", "parsed"), [
+    ("FairTen3", ("line", 3, "B", "T")), ("anchten2", ("line", 2, "A", "T")),
+    ("FairSegTen1", ("line", 1, "B", "SEGTEN")), ("L1N10T", ("line", 1, 10, "T")),
+    ("L2N3Ten", ("line", 2, 3, "T")), ("Line2N0PZ", ("line", 2, 0, "PZ")),
+    ("L1NBFX", ("line", 1, "B", "FX")), ("L4NAT", ("line", 4, "A", "T")),
+    ("Point4FX", ("point", 4, None, "FX")), ("P2VZ", ("point", 2, None, "VZ")),
+    ("Con4Fx", ("point", 4, None, "FX")), ("POINT1T", ("point", 1, None, "T")),
+])
+def test_channel_names_read_like_moordyn(name: str, parsed: tuple) -> None:
+    from moorline.io.moordyn_outputs import parse_channel
+
+    channel = parse_channel(name)
+    assert channel is not None
+    assert (channel.what, channel.number, channel.node, channel.quantity) == parsed
+
+
+@pytest.mark.parametrize("name", ["L1T20", "FairTen", "Body1PX", "R1N2T", "L1N3XX"])
+def test_unsupported_channel_names(name: str) -> None:
+    from moorline.io.moordyn_outputs import parse_channel
+
+    assert parse_channel(name) is None
+
+
+@pytest.fixture(scope="module")
+def channel_run(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict[str, np.ndarray]]:
+    """oc3_outputs.dat converted and run (statics, 1 s of dynamics at rest): the directory and
+    the columns of its moordyn_channels.csv."""
+    import csv
+
+    from click.testing import CliRunner
+
+    from moorline.cli import cli
+
+    tmp = tmp_path_factory.mktemp("channels")
+    case = tmp / "oc3_outputs.yaml"
+    runner = CliRunner()
+    result = runner.invoke(cli, ["convert", str(DATA / "oc3_outputs.dat"), "--out", str(case),
+                                 "--quiet"])
+    assert result.exit_code == 0, result.output
+    result = runner.invoke(cli, ["run", str(case), "--out", str(tmp / "out"), "--no-plots",
+                                 "--quiet"])
+    assert result.exit_code == 0, result.output
+    directory = tmp / "out" / "oc3_outputs"
+    with (directory / "moordyn_channels.csv").open() as handle:
+        rows = list(csv.reader(handle))
+    columns = {name: np.array([float(r[i]) for r in rows[1:]]) for i, name in
+               enumerate(rows[0])}
+    return directory, columns
+
+
+def test_run_writes_the_channels_by_their_definitions(channel_run) -> None:
+    """Columns: Time then the deck's channels that moorline can write (L1T20 is not, it is
+    left out); each equals its definition on the results file (end-point force, mean of
+    the adjacent segments, node position, sum over the lines at a point)."""
+    from moorline.io.writers import read_group
+
+    directory, columns = channel_run
+    assert list(columns) == ["Time", "FairTen1", "AnchTen1", "L1N19T", "L1N10T", "L1NBFX",
+                             "L1N20FZ", "Point4FX", "Con1FX", "L1N10PZ", "FairSegTen1"]
+    ds = read_group(directory / "results.nc", "dynamics")
+    np.testing.assert_allclose(columns["Time"], ds["time"].values, rtol=0, atol=1e-12)
+    force = ds["end_force"].sel(line="line1").values
+    np.testing.assert_allclose(columns["FairTen1"], np.linalg.norm(force[:, 1], axis=-1))
+    np.testing.assert_allclose(columns["AnchTen1"], np.linalg.norm(force[:, 0], axis=-1))
+    np.testing.assert_allclose(columns["L1NBFX"], force[:, 1, 0])
+    np.testing.assert_allclose(columns["Point4FX"], force[:, 1, 0])  # one line on fairlead1
+    np.testing.assert_allclose(columns["Con1FX"], force[:, 0, 0])
+    elements = np.flatnonzero(ds["element_line"].values == "line1")
+    tension = ds["tension"].values[:, elements]
+    np.testing.assert_allclose(columns["L1N19T"], 0.5 * (tension[:, 18] + tension[:, 19]))
+    np.testing.assert_allclose(columns["FairSegTen1"], tension[:, 19])
+    nodes = ds["element_nodes"].values[elements]
+    np.testing.assert_allclose(columns["L1N10PZ"], ds["position"].values[:, nodes[10, 0], 2])
+
+
+@pytest.mark.compare
+def test_channels_match_moordyn_out_file(channel_run, tmp_path: Path) -> None:
+    """The same deck through MoorDyn-C (moordyn 2.7.2): its .out file after the IC (threshIC
+    1e-5 m/s^2, TmaxIC 500 s: converged at 180 s) against moorline's channels at rest.
+    MoorDyn's FairTen/AnchTen are the net force on the end node, so they equal moorline's
+    end-point force, not the top segment's tension (its API GetLineFairTen, 1 % lower here,
+    is moorline's FairSegTen). Tolerance 5e-4: the measured differences are 0.7e-4 at the
+    ends and 1.7-2.7e-4 inside the line, where the two seabed contact models put the
+    touchdown slightly apart (the end-to-end tension drop agrees to 1e-5); a wrong
+    definition (segment tension for FairTen, one segment for L1N19T) is off by >= 0.5 %."""
+    moordyn = pytest.importorskip("moordyn")
+    import shutil
+
+    deck = Path(shutil.copy(DATA / "oc3_outputs.dat", tmp_path / "oc3_outputs.dat"))
+    system = moordyn.Create(str(deck))
+    try:
+        x = np.concatenate([read_moordyn(deck).points[f"fairlead{k}"].position
+                            for k in (1, 2, 3)])
+        moordyn.Init(system, x, np.zeros(9))
+        api_fair_ten = moordyn.GetLineFairTen(moordyn.GetLine(system, 1))
+        moordyn.Step(system, x, np.zeros(9), 0.0, 0.1)
+    finally:
+        moordyn.Close(system)
+    lines = (tmp_path / "oc3_outputs.out").read_text().splitlines()
+    names, last = lines[0].split(), [float(v) for v in lines[-1].split()]
+    theirs = dict(zip(names, last, strict=True))
+    _, ours = channel_run
+    compared = [n for n in names[1:] if n in ours]
+    assert compared == ["FairTen1", "AnchTen1", "L1N19T", "L1N10T", "L1NBFX", "L1N20FZ",
+                        "Point4FX", "L1N10PZ"]  # MoorDyn skips Con1FX (v1 name) and L1T20
+    for name in compared:
+        assert ours[name][0] == pytest.approx(theirs[name], rel=5e-4), name
+    assert ours["FairSegTen1"][0] == pytest.approx(api_fair_ten, rel=5e-4)
+    assert ours["FairTen1"][0] > 1.008 * ours["FairSegTen1"][0]
+
+
+def test_dynamics_summary_has_segment_tensions_next_to_end_forces(channel_run) -> None:
+    """summary.json: per line end_a/end_b (the end-point force, MoorDyn's FairTen/AnchTen
+    channels) and segment_a/segment_b (the end segment's tension, MoorDyn's
+    GetLineFairTen), with the note saying which is which."""
+    import json
+
+    directory, columns = channel_run
+    summary = json.loads((directory / "summary.json").read_text())
+    dynamics = summary["analyses"][1]
+    line = dynamics["lines"]["line1"]
+    assert line["end_b"]["mean"] == pytest.approx(columns["FairTen1"].mean(), rel=1e-12)
+    assert line["segment_b"]["mean"] == pytest.approx(columns["FairSegTen1"].mean(), rel=1e-12)
+    assert line["segment_b"]["max"] < line["end_b"]["min"]
+    assert "GetLineFairTen" in dynamics["tension_note"]
+
+
+@pytest.mark.compare
+def test_current_profile_statics_match_moordyn_settled_in_the_current(tmp_path: Path) -> None:
+    """OC3 with Currents 1 and a sheared profile along +x (0.2 m/s at the seabed to 0.8 at
+    the surface): moorline's statics with the read profile against MoorDyn-C held at the
+    fairleads for 150 s in the same current (its IC ignores the current; the fairlead
+    forces settle to 1e-9 within 100 s). Measured: tension within 8.4e-5, components
+    within 4.9e-4 of |F| (the same IC/seabed-contact difference as without current); the
+    current itself moves the tensions by 1.1e-3 to 1.6e-3 and the components by 3e-3,
+    so the tolerances (3e-4, 1e-3) would catch a profile read wrong or not applied."""
+    moordyn = pytest.importorskip("moordyn")
+    from moorline.solvers.statics import solve_statics
+
+    (tmp_path / "current_profile.txt").write_text(PROFILE.replace(
+        "-320.0 0.0 0.0 0.0\n-100.0 0.3 0.4 0.0\n0.0 0.6 0.8 0.0",
+        "-320.0 0.2 0.0 0.0\n-100.0 0.5 0.0 0.0\n0.0 0.8 0.0 0.0"))
+    text = OC3.read_text().replace("0.001         threshIC", "1  Currents\n1.0e-5  threshIC")
+    deck = tmp_path / "current.dat"
+    deck.write_text(text.replace("100.0         TmaxIC", "500.0  TmaxIC"))
+    system = read_moordyn(deck)
+    assert system.environment.current.speeds == (0.2, 0.5, 0.8)
+    static = solve_statics(system)
+    still = solve_statics(dataclasses.replace(system, analyses=()))  # no current drag
+    md = moordyn.Create(str(deck))
+    try:
+        x = np.concatenate([system.points[f"fairlead{k}"].position for k in (1, 2, 3)])
+        moordyn.Init(md, x, np.zeros(9))
+        for k in range(150):
+            moordyn.Step(md, x, np.zeros(9), float(k), 1.0)
+        theirs = [np.array(moordyn.GetLineNodeForce(moordyn.GetLine(md, k), 20))
+                  for k in (1, 2, 3)]
+    finally:
+        moordyn.Close(md)
+    for k, force in enumerate(theirs, start=1):
+        ours = static.end_force(f"line{k}", "b")
+        size = np.linalg.norm(force)
+        assert np.linalg.norm(ours) == pytest.approx(size, rel=3e-4)
+        assert np.abs(ours - force).max() < 1e-3 * size
+        dry = still.end_force(f"line{k}", "b")
+        assert abs(np.linalg.norm(dry) / size - 1) > 1e-3  # the current matters here
+
+
+def test_bodies_and_rods_are_named_at_once(tmp_path: Path) -> None:
+    """A deck with bodies, rod types and rods: one error naming all three (the first at its
+    line), before the missing-section checks."""
+    text = OC3.read_text().replace("---------------------- POINTS", "\n".join([
+        "---------------------- ROD TYPES ----", "Name Diam Mass Cd Ca CdEnd CaEnd",
+        "(-) (m) (kg/m) (-) (-) (-) (-)", "rod 1.0 100 1 1 1 1",
+        "---------------------- BODIES ----", "ID Attachment X0 Y0 Z0 r0 p0 y0 M CG I V CdA Ca",
+        "(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m2) (m3) (m2) (-)",
+        "1 Free 0 0 0 0 0 0 1e3 0 0 1 0 0",
+        "---------------------- RODS ----", "ID RodType Attachment Xa Ya Za Xb Yb Zb NumSegs",
+        "(#) (-) (-) (m) (m) (m) (m) (m) (m) (-)", "1 rod Body1 0 0 -1 0 0 -5 4",
+        "---------------------- POINTS"]))
+    path = tmp_path / "bodies.dat"
+    path.write_text(text)
+    with pytest.raises(CaseError) as info:
+        read_moordyn(path)
+    assert info.value.reason == (f"bodies are not supported; also rods (line "
+                                 f"{_line_of(text, '1 rod Body1')}); rod types (line "
+                                 f"{_line_of(text, 'rod 1.0 100')})")
+    assert info.value.field == f"line {_line_of(text, '1 Free 0 0 0')}, BODIES"
+
+
+def test_is_moordyn_deck() -> None:
+    from moorline.io.moordyn import is_moordyn_deck
+
+    root = Path(__file__).resolve().parents[1]
+    assert is_moordyn_deck(OC3) and is_moordyn_deck(DATA / "oc3_v1.dat")
+    assert not is_moordyn_deck(root / "cases" / "oc3_line.yaml")
+    assert not is_moordyn_deck(DATA / "absent.dat")

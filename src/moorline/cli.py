@@ -147,8 +147,9 @@ def _safe_name(name: str, fallback: str) -> str:
     return cleaned or fallback
 
 
-def _load(path: Path) -> Any:
-    """Load a case file; a :class:`CaseError` without a file gets this one."""
+def _load(path: Path, quiet: bool = False) -> Any:
+    """Load a case file; a :class:`CaseError` without a file gets this one. A MoorDyn deck
+    (a file that is not a case and reads as a deck) is converted on the fly, with a note."""
     from . import io as case_io
 
     try:
@@ -156,7 +157,16 @@ def _load(path: Path) -> Any:
     except CaseError as exc:
         if not exc.file:
             exc.file = str(path)
-        raise
+        from .io.moordyn import is_moordyn_deck
+
+        if not is_moordyn_deck(path):
+            raise
+    from .io.moordyn import read_moordyn
+
+    system = read_moordyn(path)
+    _note(f"{path} is a MoorDyn deck: converted on the fly (`moorline convert {path}` writes "
+          "it as a case file)", quiet)
+    return system
 
 
 # ----------------------------------------------------------------------------- commands
@@ -189,7 +199,7 @@ def statics(case: Path, out: Path, as_json: bool, plots: bool | None, quiet: boo
     is given, nor with --no-plots).
     """
     _configure_logging(verbose)
-    system = _load(case)
+    system = _load(case, quiet)
     settings = system.first("statics")
     context = _context(system, case, out, quiet, plots=not as_json if plots is None else plots)
     _run_analyses(context, [settings], ["statics"])
@@ -212,7 +222,7 @@ def run(case: Path, out: Path, as_json: bool, plots: bool | None, quiet: bool,
     (exit code 130).
     """
     _configure_logging(verbose)
-    system = _load(case)
+    system = _load(case, quiet)
     kinds = [str(getattr(a, "kind", type(a).__name__)) for a in system.analyses] or ["statics"]
     analyses = list(system.analyses) or [None]
     unknown = sorted({k for k in kinds if k not in KINDS})
@@ -650,16 +660,29 @@ def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
     """Convert a MoorDyn input file DECK into a moorline case file (YAML).
 
     The case is validated before it is written: a deck whose values a case may not hold
-    (negative coefficients, volumes, seabed stiffness) exits 2 and writes nothing.
+    (negative coefficients, volumes, seabed stiffness) exits 2 and writes nothing. The
+    reading notes (dropped options and channels), how TMax/dtM/dtOut were used and the line
+    output flags are comments at the top of the case; the OUTPUTS channels are
+    output.channels (a dynamics run writes them as moordyn_channels.csv). `statics` and
+    `run` also take a deck directly and convert it on the fly (with a note).
     """
     _configure_logging(verbose)
     from .io.case_writer import write_case
-    from .io.moordyn import read_moordyn
+    from .io.moordyn import read_moordyn_deck
 
-    system = read_moordyn(deck)
+    read = read_moordyn_deck(deck)
+    system = read.system
     target = out if out is not None else deck.with_suffix(".yaml")
+    flags = {n: f for n, f in read.line_outputs.items() if f not in ("-", "0")}
+    header = "\n".join([
+        f"converted by moorline from the MoorDyn deck {deck}",
+        *(f"note: {n}" for n in (*read.notes, *read.comments)),
+        *([f"line output flags (MoorDyn's per-line files; moorline's results hold every node): "
+           f"{', '.join(f'{n} {f}' for n, f in flags.items())}"] if flags else []),
+        *(["OUTPUTS: output.channels, written by a dynamics run as <case>/"
+           "moordyn_channels.csv"] if read.outputs else [])])
     try:
-        write_case(system, target, header=f"converted by moorline from the MoorDyn deck {deck}")
+        write_case(system, target, header=header)
     except CaseError as exc:
         raise CaseError(f"cannot be converted, the case would not load (not written): {exc}",
                         str(deck)) from None

@@ -172,17 +172,30 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
         logger.info("dynamics of %s failed: %s", system.name, message)
     ds = read_group(context.results, label)
     summary = history_summary(ds, settings, success, message, counters, status)
+    files: list[Path] = _moordyn_channels(ds, context, label)
     summary["design"] = _design("dynamics", context, ds, summary)
     if not success:
         summary["design"]["warning"] = ("the run did not complete: the tensions are those of "
                                         "the records written")
-    files: list[Path] = []
     if context.plots:
         with _status("plotting ...", context.quiet):
-            files = KINDS["dynamics"].plot_group(ds, context.directory,
-                                                 _prefix(label, "dynamics"))
+            files += KINDS["dynamics"].plot_group(ds, context.directory,
+                                                  _prefix(label, "dynamics"))
     return Outcome("dynamics", success, message, summary, files,
                    result if success else None)
+
+
+def _moordyn_channels(ds: Any, context: RunContext, label: str) -> list[Path]:
+    """The case's MoorDyn output channels as ``<label>_moordyn_channels.csv`` (none without
+    channels), :func:`moorline.io.moordyn_outputs.write_channels`."""
+    from .io.moordyn_outputs import CHANNELS_FILE, write_channels
+
+    if not context.system.output.channels:
+        return []
+    context.directory.mkdir(parents=True, exist_ok=True)
+    path = context.directory / f"{_prefix(label, 'dynamics')}{CHANNELS_FILE}"
+    written = write_channels(ds, context.system, path)
+    return [written] if written is not None else []
 
 
 def _note_compilation(seconds: float, quiet: bool) -> None:

@@ -121,7 +121,8 @@ def history_summary(ds: Any, settings: Any, success: bool, message: str,
     dict
         ``{"converged", "status", "message", "duration", "dt", "records", "time_start",
         "time_end",
-        "lines": {id: {"end_a": {"max", "min", "mean", "std"}, "end_b": ...}},
+        "lines": {id: {"end_a": {"max", "min", "mean", "std"}, "end_b": ..., "segment_a": ...,
+        "segment_b": ...}}, "tension_note",
         "points": {id: {"kind", "min": [x, y, z], "max": [x, y, z]}}, "counters",
         "envelope": {"start", "records", "max_element_tension": {"tension", "line",
         "arc_length"}}}``; statistics over the output records, in the case's units; the
@@ -133,6 +134,7 @@ def history_summary(ds: Any, settings: Any, success: bool, message: str,
     tension = np.linalg.norm(np.asarray(ds["end_force"].values, dtype=float), axis=-1)
     lines = {str(name): {f"end_{end}": _stats(tension[:, k, j]) for j, end in enumerate("ab")}
              for k, name in enumerate(ds["line"].values)}
+    _segment_stats(ds, lines)
     position = np.asarray(ds["position"].values, dtype=float)
     kinds = ds["point_kind"].values if "point_kind" in ds.coords else [""] * ds.sizes["point"]
     points = {}
@@ -151,7 +153,7 @@ def history_summary(ds: Any, settings: Any, success: bool, message: str,
             "time_start": float(time[0]) if len(time) else None,
             "time_end": float(time[-1]) if len(time) else None,
             "lines": lines, "points": points, "counters": counters,
-            **_envelope_summary(ds)}
+            "tension_note": TENSION_NOTE, **_envelope_summary(ds)}
 
 
 def _envelope_summary(ds: Any) -> dict[str, Any]:
@@ -167,6 +169,26 @@ def _envelope_summary(ds: Any) -> dict[str, Any]:
     return {"envelope": {"start": float(ds.attrs.get("envelope_start", 0.0)),
                          "records": int(ds.attrs.get("envelope_records", 0)),
                          "max_element_tension": where}}
+
+
+#: What ``end_*`` and ``segment_*`` of a dynamics summary are, against MoorDyn's names.
+TENSION_NOTE = ("end_a/end_b: the force of the line on its end point (MoorDyn's FairTen/"
+                "AnchTen output channels, the net force on the end node); segment_a/"
+                "segment_b: the end segment's tension (MoorDyn's GetLineFairTen), lower by "
+                "the end node's share of weight, buoyancy and seabed contact (1-2 % on chain)")
+
+
+def _segment_stats(ds: Any, lines: dict[str, dict[str, Any]]) -> None:
+    """Add the end segments' tension statistics (``segment_a``, ``segment_b``) per line."""
+    if "element_line" not in ds or "tension" not in ds:
+        return
+    owner = np.asarray([str(v) for v in ds["element_line"].values])
+    tension = np.asarray(ds["tension"].values, dtype=float)
+    for name, entry in lines.items():
+        elements = np.flatnonzero(owner == name)  # from end a to end b (moorline.mesh)
+        if len(elements):
+            entry["segment_a"] = _stats(tension[:, elements[0]])
+            entry["segment_b"] = _stats(tension[:, elements[-1]])
 
 
 def _stats(values: np.ndarray) -> dict[str, float]:

@@ -586,7 +586,8 @@ def _build(spec: CaseSpec, source: str | None, line_types: dict[str, LineType]) 
         lines=lines,
         bodies=bodies,
         analyses=analyses,
-        output=OutputSettings(every=default(spec.output.every, "output_every")),
+        output=OutputSettings(every=default(spec.output.every, "output_every"),
+                              channels=tuple(spec.output.channels)),
         source=source,
         design=None if spec.design is None else DesignSettings(**spec.design.model_dump()),
     )

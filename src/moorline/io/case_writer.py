@@ -48,6 +48,8 @@ def system_to_dict(system: System) -> dict[str, Any]:
     out["lines"] = {n: _line(line) for n, line in system.lines.items()}
     out["analyses"] = [_analysis(a) for a in system.analyses]
     out["output"] = {"every": system.output.every}
+    if system.output.channels:
+        out["output"]["channels"] = list(system.output.channels)
     if system.design is not None:
         out["design"] = {k: v for k, v in asdict(system.design).items() if v is not None}
     return out

@@ -16,8 +16,10 @@ Supported (v2 names first, v1 names in parentheses):
   folder), read as the line type's ``EA_table``; the writer writes such a file back.
 - ``POINTS`` (``POINT PROPERTIES``, ``CONNECTION PROPERTIES``, ``NODE PROPERTIES``): v2 rows
   ``ID Attachment X Y Z Mass Volume CdA Ca``; v1 rows (twelve columns) ``ID Type X Y Z M V FX FY
-  FZ CdA Ca``. ``Fixed``/``Anchor`` points become ``fixed``, ``Coupled``/``Vessel`` become
-  ``prescribed`` and ``Free``/``Connect``/``Point`` become ``free``; ``CdA`` becomes
+  FZ CdA Ca``. ``Fixed``/``Fix``/``Anchor`` points become ``fixed``,
+  ``Coupled``/``Cpld``/``Vessel``/``Ves``/``Fairlead`` become ``prescribed`` and
+  ``Free``/``Connect``/``Con``/``Point`` become ``free`` (case-insensitive, trailing digits
+  ignored, as MoorDyn-C v2.7 does); ``CdA`` becomes
   ``drag_area`` with ``Cd = 1``.
 - ``LINES`` (``LINE PROPERTIES``, ``LINE LIST``): v2 rows ``ID LineType AttachA AttachB
   UnstrLen NumSegs [Outputs]``; v1 rows ``ID LineType UnstrLen NumSegs NodeAnch NodeFair
@@ -35,8 +37,12 @@ names are ``point<ID>`` and ``line<ID>``. :func:`write_moordyn` writes names tha
 ``read_moordyn(write_moordyn(system))`` gives back the same names.
 
 Missing ``WtrDpth``: MoorDyn-C starts from 0 and lowers the seabed to any point defined below
-it; the reader does the same (with a warning). Bodies, rods, seabed files and wave or current
-files are not supported (``CaseError``).
+it; the reader does the same (with a warning). Bodies, rods and seabed files are not supported
+(``CaseError``, naming every unsupported section at once). ``WaveKin`` and ``Currents`` are
+warnings naming what is dropped; ``Currents`` 1 or 3 with a ``current_profile.txt`` next to
+the deck becomes the case's current (:mod:`moorline.io.moordyn_kinematics`). ``TMax``,
+``dtOut`` and the ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and
+``output.channels`` (:mod:`moorline.io.moordyn_outputs`).
 """
 
 from __future__ import annotations
@@ -45,7 +51,7 @@ import logging
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Literal
 
@@ -54,6 +60,8 @@ from ..model import Environment, Line, LineType, Point, Seabed, System
 from ..physics.load_strain import StrainTable
 from .files import MAX_CASE_BYTES, file_problem
 from .moordyn_bodies import body_attachment, body_problems, body_section
+from .moordyn_kinematics import water_kinematics
+from .moordyn_outputs import output_channels, time_settings
 from .schema import check_number
 from .strain_table import read_strain_table
 from .topology import geometry_problem
@@ -78,17 +86,20 @@ _PHYSICAL_OPTIONS = {
     "frictioncoefficient": "FrictionCoefficient",
 }
 _NUMERICAL_OPTIONS = {
-    "dtm", "cfl", "tscheme", "dtic", "tmaxic", "cdscaleic", "threshic", "icgendynamic",
+    "dtm", "tmax", "wavekin", "currents", "cfl", "tscheme", "dtic", "tmaxic", "cdscaleic",
+    "threshic", "icgendynamic",
     "writelog", "dtout", "writeunits", "disableoutput", "disableouttime", "fileic", "fricdamp",
     "statdynfricscale", "echo", "icdfac", "icthresh", "ictmax", "dtwave", "wavekin_rampt",
     "unifycurrentgrid",
 }
-_UNSUPPORTED_OPTIONS = {"seafloorfile": "seabed (bathymetry) files",
-                        "wavekin": "MoorDyn wave kinematics", "currents": "MoorDyn currents",
-                        "waterkin": "MoorDyn water kinematics files"}
-_POINT_KINDS = {"fixed": "fixed", "anchor": "fixed", "coupled": "prescribed",
-                "vessel": "prescribed", "cpld": "prescribed", "free": "free",
-                "connect": "free", "point": "free"}
+_UNSUPPORTED_OPTIONS = {"seafloorfile": "seabed (bathymetry) files"}
+_DROPPED_OPTIONS = {"waterkin": "MoorDyn v1 water kinematics files (waves and current)"}
+#: Point attachment words, as MoorDyn-C v2.7 reads them (``source/MoorDyn2.cpp``, the point
+#: list): the leading letters of the word, upper-cased (``str::decomposeString``), one of these.
+_POINT_KINDS = {"FIXED": "fixed", "FIX": "fixed", "ANCHOR": "fixed",
+                "COUPLED": "prescribed", "CPLD": "prescribed", "VESSEL": "prescribed",
+                "VES": "prescribed", "FAIRLEAD": "prescribed",
+                "FREE": "free", "CONNECT": "free", "CON": "free", "POINT": "free"}
 
 
 @dataclass(frozen=True)
@@ -107,6 +118,16 @@ class MoorDynDeck:
         Warnings raised while reading (ignored options, defaults applied, ...).
     point_ids, line_ids
         MoorDyn's number of each point and line, by moorline name.
+    outputs
+        The ``OUTPUTS`` channel names, as written (``FairTen1``, ``L1N10T``, ``Con4Fx``, ...).
+    line_outputs
+        The line output flags of the ``LINES`` table (``p``, ``t``, ...; ``-`` for none) by
+        line name (MoorDyn writes a file per line with them; moorline's results hold every
+        node's position and every segment's tension anyway).
+    comments
+        How the deck's time settings (``dtM``, ``TMax``, ``dtOut``) were used (not warnings:
+        :func:`moorline.io.moordyn_outputs.time_settings`); ``moorline convert`` writes them
+        with the notes at the top of the case.
     """
 
     system: System
@@ -115,6 +136,9 @@ class MoorDynDeck:
     notes: tuple[str, ...] = ()
     point_ids: dict[str, int] = field(default_factory=dict)
     line_ids: dict[str, int] = field(default_factory=dict)
+    outputs: tuple[str, ...] = ()
+    line_outputs: dict[str, str] = field(default_factory=dict)
+    comments: tuple[str, ...] = ()
 
 
 @dataclass
@@ -166,8 +190,9 @@ def read_moordyn(path: str | Path) -> System:
     Returns
     -------
     System
-        SI units, named after the file; ``source`` is the path. The analyses are the default
-        (one static analysis): MoorDyn's time step and IC settings do not carry over (see
+        SI units, named after the file; ``source`` is the path. The analyses: one static
+        analysis (with current drag when the deck's current was read), then a dynamics
+        analysis when the deck gives ``TMax``; MoorDyn's IC settings do not carry over (see
         :func:`read_moordyn_deck` for them).
 
     Raises
@@ -201,31 +226,66 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     except OSError as exc:
         raise CaseError(f"cannot read MoorDyn file: {exc.strerror or exc}", file=str(path)) from exc
     sections = _split_sections(text.splitlines(), reader)
+    unsupported = [(sections[kind], what) for kind, what in
+                   (("bodies", "bodies"), ("rods", "rods"), ("rodtypes", "rod types"))
+                   if kind in sections and sections[kind].rows]
+    if unsupported:
+        first = unsupported[0][0]
+        others = "; ".join(f"{what} (line {sec.rows[0].lineno})" for sec, what in unsupported[1:])
+        raise reader.fail(f"{unsupported[0][1]} are not supported"
+                          + (f"; also {others}" if others else ""),
+                          row=first.rows[0], section=first.title)
     for kind, title in (("types", "LINE TYPES"), ("points", "POINTS"), ("lines", "LINES")):
         if kind not in sections:
             raise reader.fail(f"missing section {title} (a '--- {title} ---' header line)")
         if not sections[kind].rows:
             raise reader.fail(f"section {sections[kind].title} has no entries",
                               lineno=sections[kind].lineno, section=sections[kind].title)
-    for kind, what in (("bodies", "bodies"), ("rods", "rods"), ("rodtypes", "rod types")):
-        if kind in sections and sections[kind].rows:
-            raise reader.fail(f"{what} are not supported", row=sections[kind].rows[0],
-                              section=sections[kind].title)
     types, v_types = _parse_line_types(sections["types"], reader)
     points, ids, v_points = _parse_points(sections["points"], reader)
     lines, line_ids, v_lines = _parse_lines(sections["lines"], types, ids, v_points, reader)
     options = sections.get("options", _Section("options", "OPTIONS", 0))
     raw, env_values = _parse_options(options, reader)
     environment = _environment(env_values, points, reader)
+    current = water_kinematics(raw, path, reader.warn)
+    if current is not None:
+        environment = replace(environment, current=current)
     versions = {v_types, v_points, v_lines}
     problem = geometry_problem(points, lines)
     if problem is not None:
         raise CaseError(problem[0], file=str(path))
+    outputs = output_channels(sections.get("outputs"), reader.warn)
+    comments: list[str] = []
+    analyses, output = time_settings(raw, outputs, current is not None, comments.append)
     system = System(name=path.stem, units="SI", environment=environment, line_types=types,
-                    points=points, lines=lines, source=str(path))
+                    points=points, lines=lines, source=str(path), analyses=analyses,
+                    output=output)
+    flags = {name: _line_flags(sections["lines"].rows[i - 1])
+             for name, i in line_ids.items()}
     return MoorDynDeck(system=system, version="v1" if versions == {"v1"} else "v2",
                        options=raw, notes=tuple(reader.notes),
-                       point_ids={name: i for i, name in ids.items()}, line_ids=line_ids)
+                       point_ids={name: i for i, name in ids.items()}, line_ids=line_ids,
+                       outputs=outputs, line_outputs=flags, comments=tuple(comments))
+
+
+def _line_flags(row: _Row) -> str:
+    """The output flags column of a line row (``-`` when absent)."""
+    return row.tokens[6] if len(row.tokens) > 6 else "-"
+
+
+def is_moordyn_deck(path: str | Path) -> bool:
+    """Whether a file reads as a MoorDyn deck: dashed section headers naming at least two of
+    MoorDyn's tables (line types, rod types, bodies, rods, points, lines). Never raises."""
+    try:
+        path = Path(path)
+        if file_problem(path, MAX_CASE_BYTES) is not None:
+            return False
+        text = path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return False
+    kinds = {_section_kind(" ".join(line.strip().strip("- \t").upper().split()))
+             for line in text.splitlines() if line.strip().startswith("--")}
+    return len(kinds & {"types", "rodtypes", "bodies", "rods", "points", "lines"}) >= 2
 
 
 def _section_kind(title: str) -> str:
@@ -259,9 +319,9 @@ def _split_sections(lines: list[str], reader: _Reader) -> dict[str, _Section]:
                 reader.warn(f"section {title} (line {lineno}) is not supported and is ignored")
             sections.setdefault(kind, current)
             continue
-        if current is None or not stripped or current.kind in ("other", "ignored", "outputs"):
+        if current is None or not stripped or current.kind in ("other", "ignored"):
             continue
-        table = current.kind != "options"
+        table = current.kind not in ("options", "outputs")
         if table and len(current.header) < 2:
             current.header.append(stripped)
             continue
@@ -371,6 +431,13 @@ def _check_id(row: _Row, expected: int, section: str, reader: _Reader) -> None:
                           row, section)
 
 
+def point_word(attachment: str) -> str:
+    """The leading letters of a point attachment word, upper-cased, as MoorDyn compares them
+    (``Fixed``, ``fix2`` and ``FIX`` all give ``FIX``/``FIXED``)."""
+    match = re.match(r"[A-Za-z]*", attachment)
+    return match.group(0).upper() if match else ""
+
+
 def _parse_points(sec: _Section, reader: _Reader
                   ) -> tuple[dict[str, Point], dict[int, str], Version]:
     version: Version = "v1" if len(sec.rows[0].tokens) == 12 else "v2"
@@ -382,11 +449,12 @@ def _parse_points(sec: _Section, reader: _Reader
         _columns(row, (9,) if version == "v2" else (12,), layout, sec.title, reader)
         _check_id(row, number, sec.title, reader)
         attachment = row.tokens[1]
-        kind = _POINT_KINDS.get(attachment.lower())
+        kind = _POINT_KINDS.get(point_word(attachment))
         if kind is None:
             what = ("points attached to bodies or turbines are not supported"
                     if re.match(r"(?i)(body|turbine)\d*", attachment) else
-                    "expected Fixed, Coupled (Vessel) or Free (Connect)")
+                    "expected Fixed (Fix, Anchor), Coupled (Vessel, Ves, Cpld, Fairlead) "
+                    "or Free (Connect, Con, Point)")
             raise reader.fail(f"unknown point attachment {attachment!r}: {what}", row, sec.title)
         v = [_number(t, f"column {i + 3}", row, sec.title, reader)
              for i, t in enumerate(row.tokens[2:])]
@@ -474,6 +542,10 @@ def _parse_options(sec: _Section, reader: _Reader) -> tuple[dict[str, str], dict
             if not (_is_number(value) and float(value) == 0):
                 raise reader.fail(f"option {key} = {value}: {_UNSUPPORTED_OPTIONS[low]} are not "
                                   "supported", row, sec.title)
+        elif low in _DROPPED_OPTIONS:
+            if not (_is_number(value) and float(value) == 0):
+                reader.warn(f"option {key} = {value} (line {row.lineno}): "
+                            f"{_DROPPED_OPTIONS[low]} are not read and are dropped")
         elif low in _PHYSICAL_OPTIONS:
             canonical = _PHYSICAL_OPTIONS[low]
             if canonical == "WtrDpth" and row.comment.strip().lower() == _INF_DEPTH_TAG:

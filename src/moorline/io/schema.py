@@ -657,9 +657,11 @@ class DesignSpec(_Spec):
 
 
 class OutputSpec(_Spec):
-    """``output``: interval of written time histories (``None``: unit-system default)."""
+    """``output``: interval of written time histories (``None``: unit-system default) and
+    MoorDyn output channels written by a dynamics run (``channels``)."""
 
     every: quantity("time", gt=0.0) | None = None
+    channels: list[str] = Field(default_factory=list)
 
 
 class CaseSpec(_Spec):

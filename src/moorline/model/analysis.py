@@ -59,9 +59,12 @@ class StaticsSettings:
 
 @dataclass(frozen=True)
 class OutputSettings:
-    """What to write: output interval of time histories [time]."""
+    """What to write: output interval of time histories [time]; ``channels``: MoorDyn output
+    channel names (``FairTen1``, ``L1N10T``, ...) a dynamics run also writes as a CSV table
+    (:mod:`moorline.io.moordyn_outputs`)."""
 
     every: float = 0.1
+    channels: tuple[str, ...] = ()
 
 
 DynamicScheme = Literal["newmark", "hht"]

@@ -98,8 +98,11 @@ class Motion:
     Attributes
     ----------
     kind
-        ``harmonic``: ``amplitude * sin(2 pi t / period + phase)``; ``table``: linear
-        interpolation of ``values`` over ``times`` (held constant outside).
+        ``harmonic``: ``amplitude * sin(2 pi t / period + phase)``; ``table``: ``values``
+        at ``times``, held constant outside; a motion follows the C1 cubic Hermite
+        interpolant with central knot derivatives (its velocity and acceleration are that
+        curve's, :func:`moorline.solvers.excitation.motion_value`), a force history the
+        linear interpolation.
     amplitude, period, phase_deg
         Harmonic amplitude per direction [length or force], period [time], phase [deg].
     times, values

@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 from ..mesh import Mesh
 from ..physics import rigid_body as rb
 from .bodies import BodyDofs, BodyState, body_loads, body_mass_matrix, long_wave_geometry, skew
-from .excitation import motion_value, ramp
+from .excitation import history_value, ramp
 
 logger = logging.getLogger(__name__)
 FloatArray = NDArray[np.float64]
@@ -235,7 +235,7 @@ def _matrix(value) -> FloatArray:
 
 def _history(body, t: float) -> FloatArray:
     history = getattr(body, "force_history", None)
-    return motion_value(history, t)[0] if history is not None else np.zeros(3)
+    return history_value(history, t) if history is not None else np.zeros(3)
 
 
 def _exciting_terms(table, fluid, origin: FloatArray) -> tuple | None:

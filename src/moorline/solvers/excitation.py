@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -24,23 +25,101 @@ def ramp(t: float, ramp_time: float) -> tuple[float, float, float]:
             0.5 * w * w * math.cos(w * t))
 
 
+def knot_derivatives(times: FloatArray, values: FloatArray) -> FloatArray:
+    """Time derivatives at the knots of a table for its cubic Hermite interpolant.
+
+    Inner knots: the derivative of the parabola through the knot and its two neighbours
+    (central, second-order accurate on any spacing); the first and last knot: the one-sided
+    derivative of the parabola through the first (last) three knots; two knots: the slope. A
+    knot next to a constant interval gets derivative 0 (per component), so that a hold stays
+    exactly held and a ramp-and-hold does not overshoot into the hold.
+
+    Parameters
+    ----------
+    times
+        Knot times (n,), strictly increasing.
+    values
+        Values at the knots (n, 3).
+    """
+    h = np.diff(times)[:, None]
+    slope = np.diff(values, axis=0) / h
+    if len(times) == 2:
+        return np.vstack([slope, slope])
+    d = np.empty_like(values)
+    h0, h1 = h[:-1], h[1:]
+    d[1:-1] = (h1 * slope[:-1] + h0 * slope[1:]) / (h0 + h1)
+    d[0] = ((2 * h[0] + h[1]) * slope[0] - h[0] * slope[1]) / (h[0] + h[1])
+    d[-1] = ((2 * h[-1] + h[-2]) * slope[-1] - h[-1] * slope[-2]) / (h[-1] + h[-2])
+    flat = slope == 0.0
+    d[:-1][flat] = 0.0
+    d[1:][flat] = 0.0
+    return d
+
+
+def table_value(times: FloatArray, values: FloatArray, derivatives: FloatArray, t: float
+                ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Cubic Hermite interpolant of a table at ``t``: value, first and second derivative.
+
+    The interpolant is C1 (position and velocity continuous; the acceleration is linear
+    within an interval and may jump at a knot) and passes through the knots with the knot
+    derivatives ``derivatives`` (:func:`knot_derivatives`). Before the first and after the
+    last time the value is held: velocity and acceleration zero there. At the last time
+    itself the velocity is the end derivative (the table's end is a documented stop, not a
+    drop of the velocity to zero one knot early).
+    """
+    if t < times[0] or t > times[-1]:
+        end = values[0] if t < times[0] else values[-1]
+        return end.copy(), np.zeros(3), np.zeros(3)
+    k = int(np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2))
+    h = times[k + 1] - times[k]
+    s = (t - times[k]) / h
+    p0, p1, m0, m1 = values[k], values[k + 1], derivatives[k] * h, derivatives[k + 1] * h
+    h00, h10, h01, h11 = (2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2,
+                          s**3 - s**2)
+    d00, d10, d01, d11 = 6 * s**2 - 6 * s, 3 * s**2 - 4 * s + 1, -6 * s**2 + 6 * s, 3 * s**2 - 2 * s
+    e00, e10, e01, e11 = 12 * s - 6, 6 * s - 4, -12 * s + 6, 6 * s - 2
+    x = h00 * p0 + h10 * m0 + h01 * p1 + h11 * m1
+    v = (d00 * p0 + d10 * m0 + d01 * p1 + d11 * m1) / h
+    a = (e00 * p0 + e10 * m0 + e01 * p1 + e11 * m1) / (h * h)
+    return x, v, a
+
+
 def motion_value(motion: Motion, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Value of a history at ``t`` and its first and second time derivatives (3-vectors)."""
+    """Value of a motion at ``t`` and its first and second time derivatives (3-vectors).
+
+    A ``table`` motion is the cubic Hermite interpolant of its knots (:func:`table_value`),
+    so that the position, velocity and acceleration given to the stepper are one consistent
+    trajectory (a linear interpolation has no acceleration and a velocity that jumps at
+    every knot).
+    """
     if motion.kind == "harmonic":
         amp = np.asarray(motion.amplitude, dtype=float)
         w = 2 * np.pi / motion.period
         phase = w * t + np.radians(motion.phase_deg)
         f = (amp * np.sin(phase), amp * w * np.cos(phase), -amp * w * w * np.sin(phase))
     else:
-        times = np.asarray(motion.times, dtype=float)
-        values = np.asarray(motion.values, dtype=float).reshape(-1, 3)
-        f0 = np.array([np.interp(t, times, values[:, k]) for k in range(3)])
-        k = int(np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2))
-        inside = times[0] <= t < times[-1]
-        slope = (values[k + 1] - values[k]) / (times[k + 1] - times[k]) if inside else 0 * f0
-        f = (f0, slope, np.zeros(3))
+        f = table_value(*_table(motion), t)
     r, dr, ddr = ramp(t, motion.ramp_time)
     return r * f[0], r * f[1] + dr * f[0], r * f[2] + 2 * dr * f[1] + ddr * f[0]
+
+
+@lru_cache(maxsize=256)
+def _table(motion: Motion) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """A table motion's times, values and :func:`knot_derivatives` (once per motion)."""
+    times = np.asarray(motion.times, dtype=float)
+    values = np.asarray(motion.values, dtype=float).reshape(-1, 3)
+    return times, values, knot_derivatives(times, values)
+
+
+def history_value(history: Motion, t: float) -> FloatArray:
+    """A force history at ``t`` (3-vector): harmonic, or a ``table`` interpolated linearly
+    (a force needs no derivative; steps and ramps stay exactly as tabulated)."""
+    if history.kind == "harmonic":
+        return motion_value(history, t)[0]
+    times = np.asarray(history.times, dtype=float)
+    values = np.asarray(history.values, dtype=float).reshape(-1, 3)
+    f0 = np.array([np.interp(t, times, values[:, k]) for k in range(3)])
+    return ramp(t, history.ramp_time)[0] * f0
 
 
 class Excitation:
@@ -95,5 +174,5 @@ class Excitation:
             return None
         out = np.zeros((n_nodes, 3))
         for node, history in self._forces:
-            out[node] += motion_value(history, t)[0]
+            out[node] += history_value(history, t)
         return out

@@ -1,0 +1,235 @@
+"""A MoorDyn deck's time settings and ``OUTPUTS`` channels, and those channels from a
+moorline dynamics run.
+
+Time settings: ``TMax`` (simulated time; MoorDyn v1 decks and drivers) makes the converted case
+a statics then a dynamics analysis of that duration; ``dtOut`` becomes the output interval
+(``output.every``). ``dtM`` is MoorDyn's explicit integration step (~1e-3 s) and is not used:
+moorline's implicit Newmark step is ``min(dtOut, 0.05)`` s (0.05 s without ``dtOut``). Both
+are written as comments at the top of the converted case.
+
+Channels (MoorDyn-C v2.7, ``source/MoorDyn2.cpp`` reading ``OUTPUTS``, ``Line::GetLineOutput``,
+and the ``.out`` file of moordyn 2.7.2 checked in ``tests/test_moordyn_io.py``): names are
+read like MoorDyn (leading letters, number, letters, number, letters; case-insensitive).
+
+- ``FairTen<n>``, ``AnchTen<n>``, ``L<n>N<m>T`` at an end node, ``L<n>NBT``/``L<n>NAT``: the
+  magnitude of the net force on the line's end node. In moorline that is the end-point force
+  (the top segment's tension plus the end node's share of weight, buoyancy and seabed
+  contact). MoorDyn's API ``GetLineFairTen`` is something else: the top segment's tension,
+  ``1-2 %`` lower on a chain (written here as ``FairSegTen<n>``/``AnchSegTen<n>``).
+- ``L<n>N<m>T`` at an inner node: the mean of the two adjacent segments' tensions.
+- ``L<n>N<m>PX|PY|PZ|VX|VY|VZ``: node position and velocity (node 0 at end A, NumSegs at B).
+- ``L<n>N<m>FX|FY|FZ`` at an end node: the end-point force components (the force the line
+  exerts on the point, moorline's convention).
+- ``P<n>`` / ``Point<n>`` (and v1 ``Con<n>``) with ``PX..VZ``: point position and velocity;
+  ``FX|FY|FZ`` (``T``: its magnitude): the sum of the forces of the lines on the point
+  (MoorDyn's net point force also holds the point's own weight, buoyancy and drag: the same
+  for points without mass, volume or drag, as fairleads and anchors usually are).
+
+Line and point numbers are MoorDyn's: the n-th line and n-th point of the case, in order.
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..model import DynamicsSettings, OutputSettings, StaticsSettings
+
+if TYPE_CHECKING:
+    from ..model import System
+
+#: moorline's implicit time step when the deck asks for a dynamics run [s].
+DEFAULT_DT = 0.05
+CHANNELS_FILE = "moordyn_channels.csv"
+_WORD = re.compile(r"^([A-Z]*)(\d*)([A-Z]*)(\d*)([A-Z]*)$")
+_NODE_QUANTITIES = {"PX", "PY", "PZ", "VX", "VY", "VZ", "T", "TEN", "FX", "FY", "FZ"}
+_POINT_QUANTITIES = {"PX", "PY", "PZ", "VX", "VY", "VZ", "FX", "FY", "FZ", "T", "TEN"}
+
+
+def _option(raw: Mapping[str, str], key: str) -> float | None:
+    for k, v in raw.items():
+        if k.lower() == key:
+            try:
+                return float(v)
+            except ValueError:
+                return None
+    return None
+
+
+def time_settings(raw: Mapping[str, str], outputs: tuple[str, ...], current: bool,
+                  warn: Callable[[str], None]) -> tuple[tuple[Any, ...], OutputSettings]:
+    """The converted case's analyses and output settings from a deck's options.
+
+    Parameters
+    ----------
+    raw
+        ``OPTIONS`` rows ``{key: value}``.
+    outputs
+        The deck's ``OUTPUTS`` channels (carried in ``output.channels``).
+    current
+        The deck's current was read: statics include the current drag.
+    warn
+        Called with each note (kept in the case's header comments).
+    """
+    statics = StaticsSettings(current_drag=True) if current else StaticsSettings()
+    dtm, tmax, dtout = (_option(raw, k) for k in ("dtm", "tmax", "dtout"))
+    every = dtout if dtout and dtout > 0 else OutputSettings().every
+    output = OutputSettings(every=every, channels=outputs)
+    if tmax and tmax > 0:
+        dt = min(every, DEFAULT_DT) if dtout and dtout > 0 else DEFAULT_DT
+        note = f"TMax = {tmax:g} s: a dynamics analysis of {tmax:g} s with dt = {dt:g} s"
+        if dtm:
+            note += (f" (dtM = {dtm:g} s is MoorDyn's explicit step, not needed by moorline's "
+                     "implicit Newmark step)")
+        warn(note + (f", output every dtOut = {dtout:g} s" if dtout else ""))
+        return (statics, DynamicsSettings(duration=tmax, dt=dt)), output
+    parts = [f"dtM = {dtm:g} s" if dtm else "", f"dtOut = {dtout:g} s" if dtout else ""]
+    if any(parts):
+        warn(f"{', '.join(p for p in parts if p)}: no TMax, so no dynamics analysis is made "
+             "(statics only; dtOut, if given, is the case's output interval)")
+    return (statics,), output
+
+
+def output_channels(section: Any, warn: Callable[[str], None]) -> tuple[str, ...]:
+    """The channel names of an ``OUTPUTS`` section (``END`` and commas dropped)."""
+    if section is None:
+        return ()
+    names: list[str] = []
+    for row in section.rows:
+        for token in row.tokens:
+            for word in filter(None, token.split(",")):
+                if word.upper() == "END":
+                    continue
+                if parse_channel(word) is None:
+                    warn(f"OUTPUTS: channel {word!r} (line {row.lineno}) is not supported by "
+                         "moorline and will not be written")
+                names.append(word)
+    return tuple(names)
+
+
+@dataclass(frozen=True)
+class Channel:
+    """One MoorDyn output channel: ``what`` (``line`` or ``point``), MoorDyn's object number,
+    ``node`` (line channels: a node number, ``"A"`` or ``"B"``) and the quantity."""
+
+    name: str
+    what: str
+    number: int
+    node: int | str | None
+    quantity: str
+
+
+def parse_channel(name: str) -> Channel | None:
+    """Read a channel name as MoorDyn does; None when moorline cannot write it."""
+    match = _WORD.match(name.upper())
+    if match is None:
+        return None
+    let1, num1, let2, num2, let3 = match.groups()
+    if not num1:
+        return None
+    number = int(num1)
+    if let1 in ("FAIRTEN", "ANCHTEN", "FAIRSEGTEN", "ANCHSEGTEN") and not let2:
+        end = "B" if let1.startswith("FAIR") else "A"
+        return Channel(name, "line", number, end, "SEGTEN" if "SEG" in let1 else "T")
+    if let1 in ("L", "LINE"):
+        if let3:
+            node: int | str = int(num2)
+            quantity = let3 if let2 == "N" else ""
+        elif let2[:2] in ("NA", "NB") and not num2:
+            node, quantity = let2[1], let2[2:]
+        else:
+            return None
+        quantity = "T" if quantity == "TEN" else quantity
+        return Channel(name, "line", number, node, quantity) if quantity in \
+            _NODE_QUANTITIES else None
+    if let1 in ("P", "POINT", "CON", "CONNECT") and not num2 and let2 in _POINT_QUANTITIES:
+        return Channel(name, "point", number, None, "T" if let2 == "TEN" else let2)
+    return None
+
+
+def _line_nodes(ds: Any, system: System, line: str) -> tuple[np.ndarray, np.ndarray]:
+    """Node indices from end A to end B and the line's element indices in that order."""
+    elements = np.flatnonzero(np.asarray(ds["element_line"].values) == line)
+    pairs = np.asarray(ds["element_nodes"].values)[elements]
+    nodes = np.concatenate([[pairs[0, 0]], pairs[:, 1]])
+    points = list(ds["point"].values)
+    node_a = int(ds["point_node"].values[points.index(system.lines[line].end_a)])
+    if int(nodes[0]) != node_a:
+        nodes, elements = nodes[::-1], elements[::-1]
+    return nodes, elements
+
+
+def channel_series(channel: Channel, ds: Any, system: System) -> np.ndarray:
+    """The channel's time series from a dynamics group ``ds`` of ``system``'s run."""
+    xyz = "XYZ"
+    if channel.what == "point":
+        name = list(system.points)[channel.number - 1]
+        if channel.quantity[0] in "PV":
+            node = int(ds["point_node"].values[list(ds["point"].values).index(name)])
+            var = "position" if channel.quantity[0] == "P" else "velocity"
+            return np.asarray(ds[var].values)[:, node, xyz.index(channel.quantity[1])]
+        total = np.zeros((ds.sizes["time"], 3))
+        end_force = np.asarray(ds["end_force"].values)
+        for k, ln in enumerate(ds["line"].values):
+            for j, end in enumerate((system.lines[str(ln)].end_a, system.lines[str(ln)].end_b)):
+                if end == name:
+                    total = total + end_force[:, k, j]
+        if channel.quantity == "T":
+            return np.linalg.norm(total, axis=-1)
+        return total[:, xyz.index(channel.quantity[1])]
+    line = list(system.lines)[channel.number - 1]
+    nodes, elements = _line_nodes(ds, system, line)
+    n_seg = len(elements)
+    node = {"A": 0, "B": n_seg}.get(channel.node, channel.node)  # type: ignore[arg-type]
+    if not 0 <= int(node) <= n_seg:
+        raise IndexError(f"line {channel.number} has nodes 0..{n_seg}")
+    tension = np.asarray(ds["tension"].values)[:, elements]
+    k = list(ds["line"].values).index(line)
+    if channel.quantity == "SEGTEN":
+        return tension[:, 0 if node == 0 else -1]
+    end = 0 if node == 0 else 1 if node == n_seg else None
+    if channel.quantity == "T":
+        if end is not None:
+            return np.linalg.norm(np.asarray(ds["end_force"].values)[:, k, end], axis=-1)
+        return 0.5 * (tension[:, node - 1] + tension[:, node])
+    if channel.quantity[0] == "F":
+        if end is None:
+            return np.full(ds.sizes["time"], np.nan)
+        return np.asarray(ds["end_force"].values)[:, k, end, xyz.index(channel.quantity[1])]
+    var = "position" if channel.quantity[0] == "P" else "velocity"
+    return np.asarray(ds[var].values)[:, int(nodes[node]), xyz.index(channel.quantity[1])]
+
+
+def write_channels(ds: Any, system: System, path: Path) -> Path | None:
+    """Write ``system.output.channels`` from a dynamics group as a CSV file (``Time`` then
+    one column per channel, MoorDyn's names; unsupported or out-of-range channels skipped
+    with a warning). None when the case lists no channels."""
+    import logging
+
+    log = logging.getLogger(__name__)
+    names = system.output.channels
+    if not names:
+        return None
+    columns = {"Time": np.asarray(ds["time"].values, dtype=float)}
+    for name in names:
+        channel = parse_channel(name)
+        count = len(system.points if channel and channel.what == "point" else system.lines)
+        try:
+            if channel is None or not 1 <= channel.number <= count:
+                raise IndexError(name)
+            columns[name] = channel_series(channel, ds, system)
+        except IndexError:
+            log.warning("output channel %r not written (not supported or no such object)",
+                        name)
+    with path.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(list(columns))
+        for row in zip(*columns.values(), strict=True):
+            writer.writerow([repr(float(v)) for v in row])
+    return path
