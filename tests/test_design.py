@@ -131,3 +131,19 @@ def test_lines_without_mbl_say_so(tmp_path: Path) -> None:
     assert design["standard"] == "API-RP-2SK" and "no design settings" in design["note"]
     assert "no MBL for this line type: not checked" in design["lines"]["riser"]["note"]
     assert "no MBL: not checked" in (out / "summary.txt").read_text()
+
+
+def test_extremes_design_tension_is_the_largest_mpm_of_each_line() -> None:
+    """The extremes analysis' design tension: the largest MPM of the line's ends and elements
+    (hand-built result), the mean at the end with the larger MPM."""
+    import types
+
+    import numpy as np
+
+    from moorline.design import extremes_extremes
+
+    result = types.SimpleNamespace(
+        line_names=("a", "b"), element_line=np.array([0, 0, 1]),
+        mpm=np.array([[1.0, 5.0], [7.0, 2.0]]), element_mpm=np.array([6.0, 4.0, 3.0]),
+        mean=np.array([[0.5, 4.0], [6.0, 1.5]]))
+    assert extremes_extremes(result) == {"a": (6.0, 4.0), "b": (7.0, 6.0)}

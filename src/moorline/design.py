@@ -175,6 +175,26 @@ def dynamics_extremes(ds: Any) -> dict[str, tuple[float, float]]:
     return out
 
 
+def extremes_extremes(result: Any) -> dict[str, tuple[float, float]]:
+    """``{line: (T_MPM, T_mean)}`` of an extremes analysis
+    (:class:`~moorline.extremes_analysis.ExtremesResult`): the largest most probable maximum
+    of the line's ends and elements over the analysis' duration, and the mean tension of the
+    end with the larger MPM (the design tension of API RP 2SK's dynamic analysis is the most
+    probable maximum of the storm, not the largest sample of one record)."""
+    out: dict[str, tuple[float, float]] = {}
+    mpm = np.asarray(result.mpm, dtype=float)
+    element_mpm = np.asarray(result.element_mpm, dtype=float)
+    owner = np.asarray(result.element_line)
+    mean = np.asarray(result.mean, dtype=float)
+    for k, name in enumerate(result.line_names):
+        candidates = np.concatenate([mpm[k], element_mpm[owner == k]])
+        if not np.isfinite(candidates).any():
+            continue
+        end = int(np.nanargmax(mpm[k])) if np.isfinite(mpm[k]).any() else 0
+        out[name] = (float(np.nanmax(candidates)), float(mean[k, end]))
+    return out
+
+
 def most_probable_maximum(sigma: float, m0: float, m2: float, duration: float) -> float:
     """Most probable maximum of a zero-mean narrow-banded Gaussian process over ``duration``:
     ``sigma sqrt(2 ln N)``, ``N = duration / T_z``, ``T_z = 2 pi sqrt(m0 / m2)``: the mode of

@@ -365,7 +365,7 @@ def _solve_and_write(kind: str, what: str, solve: Callable[[], Any], context: Ru
     return Outcome(kind, bool(result.success), result.message, summary, files, result)
 
 
-_DESIGN_KINDS = ("statics", "dynamics", "stochastic")
+_DESIGN_KINDS = ("statics", "dynamics", "stochastic", "extremes")
 """The analysis kinds whose summary has the design checks (:mod:`moorline.design`)."""
 
 
@@ -376,11 +376,17 @@ def _design(kind: str, context: RunContext, result: Any, summary: dict[str, Any]
     from .design import (
         design_summary,
         dynamics_extremes,
+        extremes_extremes,
         statics_extremes,
         stochastic_extremes,
     )
 
     system = context.system
+    if kind == "extremes":
+        return design_summary(system, kind, extremes_extremes(result),
+                              f"most probable maximum over {result.duration:g} s "
+                              f"({result.method}, {result.source}), largest of each line's "
+                              "ends and elements; mean: at the end with the larger MPM")
     if kind == "statics":
         return design_summary(system, kind, statics_extremes(summary),
                               "largest tension of each line, its ends included")
