@@ -254,3 +254,34 @@ def test_report_renders_in_headless_chromium(oc3_run: tuple[Result, Path],
         # the styled header (background #14305a) is drawn, and the page is not blank
         assert rgb.getpixel((5, 5)) == (0x14, 0x30, 0x5A)
         assert len(rgb.getcolors(maxcolors=1 << 20) or []) > 100
+
+
+OFFSET = ROOT / "cases" / "oc3_offset.yaml"
+
+
+@pytest.mark.skipif(not OFFSET.is_file(), reason="cases/oc3_offset.yaml not present")
+def test_offset_run_report_has_the_group_stiffness_and_the_offset_curves(
+        tmp_path: Path) -> None:
+    """The OC3 offset case, shortened (one heading, 5 offsets): the Offset section, the
+    point group's 6x6 in the Stiffness section (the summary's values) and offset.png."""
+    text = OFFSET.read_text(encoding="utf-8")
+    text = re.sub(r"headings: \[[^]]*\]", "headings: [0]", text)
+    text = re.sub(r"steps: *\d+", "steps: 5", text).replace("yaw: true", "yaw: false")
+    case = tmp_path / "offset.yaml"
+    case.write_text(text, encoding="utf-8")
+    result = _invoke("run", case, "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    directory = tmp_path / "oc3-offset"
+    offset = json.loads((directory / "summary.json").read_text())["analyses"][1]
+    assert offset["kind"] == "offset" and len(offset["headings"]) == 1
+    page = _parse(directory / REPORT_FILE)
+    assert not page.errors
+    assert [h.strip() for h in page.h2] == [*list(SECTIONS.values())[:-1], "Offset", "Plots"]
+    assert "offset.png" in page.captions and len(page.images) == len(page.captions)
+    text = " ".join(page.text)
+    assert "6x6 stiffness at zero offset" in text
+    for row in offset["stiffness"]:
+        for value in row:
+            assert f"{value:.6g}" in text, value
+    for value in offset["headings"][0]["offsets"]:
+        assert f"{value:.6g}" in text
