@@ -29,7 +29,7 @@ $(EXTRAS): $(STAMP)
 demo: $(STAMP)
 	$(BIN)/moorline run cases/oc3_line.yaml --out out
 	$(BIN)/moorline run cases/oc3_dynamics.yaml --out out
-	@echo "results and plots written under out/oc3-line/ and out/oc3-dynamics/"
+	@echo "results, plots and reports written: out/oc3-line/report.html, out/oc3-dynamics/report.html"
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

@@ -1,9 +1,10 @@
 """The ``moorline`` command line: ``statics``, ``run``, ``verify`` and ``plot``.
 
 ``statics`` and ``run`` write ``DIR/<case>/``: one results file ``results.nc`` with a NetCDF
-group per analysis (see :mod:`moorline.io.writers`), plots, ``summary.json`` and
-``summary.txt``. The analysis kinds a case may list, with their runners, plots and summaries,
-are the table :data:`moorline.analyses.KINDS`.
+group per analysis (see :mod:`moorline.io.writers`), plots, ``summary.json``,
+``summary.txt`` and ``report.html`` (one self-contained page, :mod:`moorline.report`). The
+analysis kinds a case may list, with their runners, plots and summaries, are the table
+:data:`moorline.analyses.KINDS`.
 
 Exit codes: 0 success; 1 the analysis failed (a result with ``success`` False: no convergence,
 a time step that failed; its message is printed and what was computed is written; a
@@ -194,7 +195,7 @@ def statics(case: Path, out: Path, as_json: bool, plots: bool | None, quiet: boo
             verbose: bool) -> None:
     """Solve the static equilibrium of CASE (the method of its first statics analysis).
 
-    Writes DIR/<case>/results.nc (group statics), summary.json, summary.txt,
+    Writes DIR/<case>/results.nc (group statics), summary.json, summary.txt, report.html,
     configuration_xz.png and configuration_3d.png (the plots not with --json unless --plots
     is given, nor with --no-plots).
     """
@@ -218,8 +219,9 @@ def run(case: Path, out: Path, as_json: bool, plots: bool | None, quiet: bool,
 
     One results file, results.nc, holds a group per analysis (statics, dynamics; numbered
     when a kind repeats); each analysis adds its plots; summary.json and summary.txt cover
-    them all. The run stops after an analysis that fails. Ctrl-C keeps what was computed
-    (exit code 130).
+    them all; report.html is one self-contained page of the inputs, tables, checks and plots.
+    The run stops after an analysis that fails. Ctrl-C keeps what was computed (exit code
+    130) and the report says so.
     """
     _configure_logging(verbose)
     system = _load(case, quiet)
@@ -230,13 +232,24 @@ def run(case: Path, out: Path, as_json: bool, plots: bool | None, quiet: bool,
         raise CaseError(f"analysis kind {', '.join(map(repr, unknown))} is not supported by "
                         f"this version; supported: {', '.join(KINDS)}", str(case), "analyses")
     context = _context(system, case, out, quiet, plots=plots is not False)
-    _run_analyses(context, analyses, kinds)
+    try:
+        _run_analyses(context, analyses, kinds)
+    except _RunInterruptedError as exc:  # the report says so, with what was done before
+        status, _, message = str(exc).partition("; ")
+        _report(context, {**_run_summary(context, kinds), "status": status,
+                          "message": message}, _written(context))
+        raise
+    _finish(case, context, _run_summary(context, kinds), as_json)
+
+
+def _run_summary(context: RunContext, kinds: list[str]) -> dict[str, Any]:
+    """The summary of ``moorline run``: the case, whether every analysis succeeded, and the
+    analyses' summaries in order."""
     outcomes = context.outcomes
-    summary = {"case": system.name,
-               "converged": len(outcomes) == len(kinds) and all(o.success for o in outcomes),
-               "units": system.units,
-               "analyses": [{"kind": o.kind, **o.summary} for o in outcomes]}
-    _finish(case, context, summary, as_json)
+    return {"case": context.system.name,
+            "converged": len(outcomes) == len(kinds) and all(o.success for o in outcomes),
+            "units": context.system.units,
+            "analyses": [{"kind": o.kind, **o.summary} for o in outcomes]}
 
 
 def _context(system: Any, case: Path, out: Path, quiet: bool, plots: bool = True) -> RunContext:
@@ -244,13 +257,26 @@ def _context(system: Any, case: Path, out: Path, quiet: bool, plots: bool = True
     return RunContext(system, directory, directory / RESULTS_FILE, quiet, plots=plots)
 
 
+def _written(context: RunContext) -> list[Path]:
+    """The results file and the plots of the analyses done so far."""
+    return [context.results, *(f for o in context.outcomes for f in o.files)]
+
+
+def _report(context: RunContext, summary: dict[str, Any], files: list[Path]) -> Path:
+    """Write ``report.html`` (:mod:`moorline.report`) of the run into its directory."""
+    from .report import write_report
+
+    return write_report(summary, files, context.directory, context.system)
+
+
 def _finish(case: Path, context: RunContext, summary: dict[str, Any], as_json: bool) -> None:
-    """Write the summary, report on stdout, exit 1 when an analysis failed."""
+    """Write the summary and ``report.html``, print the summary, exit 1 when an analysis
+    failed."""
     from .io.writers import render_summary, summary_json, write_summary
 
     outcomes, quiet = context.outcomes, context.quiet
-    files = [context.results, *(f for o in outcomes for f in o.files),
-             *write_summary(summary, context.directory)]
+    files = [*_written(context), *write_summary(summary, context.directory)]
+    files.append(_report(context, summary, files))
     if as_json:
         click.echo(summary_json(summary))
     else:
