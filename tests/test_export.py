@@ -215,3 +215,30 @@ def test_offset_curves_one_table_per_heading():
     assert list(second.columns) == ["offset", "fairlead_tension[l1]", "fairlead_tension[l2]"]
     np.testing.assert_array_equal(second.columns["fairlead_tension[l2]"], tension[1, :, 1])
     np.testing.assert_array_equal(second.columns["offset"], offsets)
+
+
+def test_offset_case_tables(tmp_path):
+    """cases/oc3_offset.yaml: per heading the offset curve, each dof column in its own unit
+    (force or moment; the 6x6 stiffness entries force or moment per metre or radian)."""
+    out = tmp_path / "out"
+    run = CliRunner().invoke(cli, ["run", str(ROOT / "cases" / "oc3_offset.yaml"), "--out",
+                                   str(out), "--no-plots", "-q"])
+    assert run.exit_code == 0, run.output
+    (results,) = out.glob("*/results.nc")
+    _export(results, tmp_path / "csv")
+    with netCDF4.Dataset(results) as root:
+        group = root["offset"]
+        offsets = np.asarray(group["offset"][:])
+        force = np.asarray(group["restoring_force"][:])  # heading, offset, dof
+        n_headings = len(group["heading"][:])
+    for h in range(n_headings):
+        names, units, rows = _read(tmp_path / "csv" / f"offset_heading{h}.csv")
+        values = {n: rows[:, k].astype(float) for k, n in enumerate(names)}
+        unit = dict(zip(names, units, strict=True))
+        np.testing.assert_array_equal(values["offset"], offsets)
+        np.testing.assert_array_equal(values["restoring_force[surge]"], force[h, :, 0])
+        np.testing.assert_array_equal(values["restoring_force[yaw]"], force[h, :, 5])
+        assert (unit["restoring_force[surge]"], unit["restoring_force[pitch]"]) == ("N", "N*m")
+        assert (unit["stiffness[surge,surge]"], unit["stiffness[pitch,pitch]"],
+                unit["stiffness[surge,pitch]"], unit["stiffness[pitch,surge]"]) == \
+            ("N/m", "N*m/rad", "N/rad", "N")

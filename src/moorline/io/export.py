@@ -16,12 +16,16 @@ second (as MoorDyn's ``.out`` file), then one row per record. Per group of ``res
 - other groups, per leading dimension (``time``, ``omega``, ``mode``, ``yaw``...):
   ``<group>_<dim>.csv`` with that coordinate then every variable along it, one column per
   other index (``tension_spectrum[3]``, ``body_spectrum[box,surge]``); offset curves
-  (``heading, offset, ...``) give one ``<group>_heading<k>.csv`` per heading.
+  (``heading, offset, ...``) give one ``<group>_heading<k>.csv`` per heading (the k-th of
+  the ``heading`` coordinate, from 0). A body-dof column has its own unit (``N`` for
+  ``restoring_force[surge]``, ``N*m`` for ``[pitch]``; a 6x6 stiffness entry force or moment
+  per metre or radian).
 """
 
 from __future__ import annotations
 
 import csv
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from itertools import product
@@ -146,15 +150,16 @@ def _statics_ends(ds: xr.Dataset, name: str) -> Table:
 def _natural(ds: xr.Dataset, name: str) -> list[Table]:
     """One table per leading index dimension; offset curves one per heading."""
     tables: dict[str, Table] = {}
+    system = "US" if ds.attrs.get("units") == "US" else "SI"
     for var in ds.data_vars:
         da = ds[var]
         if len(da.dims) >= 2 and da.dims[:2] == ("heading", "offset"):
             for h in range(ds.sizes["heading"]):
                 table = _start(tables, f"{name}_heading{h}", ds, "offset")
-                _flatten(table, str(var), da.isel(heading=h))
+                _flatten(table, str(var), da.isel(heading=h), system)
         elif da.dims and da.dims[0] in INDEX_DIMS:
             table = _start(tables, f"{name}_{da.dims[0]}", ds, str(da.dims[0]))
-            _flatten(table, str(var), da)
+            _flatten(table, str(var), da, system)
     return list(tables.values())
 
 
@@ -167,7 +172,7 @@ def _start(tables: dict[str, Table], key: str, ds: xr.Dataset, dim: str) -> Tabl
     return tables[key]
 
 
-def _flatten(table: Table, name: str, da: xr.DataArray) -> None:
+def _flatten(table: Table, name: str, da: xr.DataArray, system: str) -> None:
     """Columns of ``da`` (leading dimension the table's index), one per other index."""
     values = np.asarray(da.values)
     unit = str(da.attrs.get("units", ""))
@@ -178,8 +183,36 @@ def _flatten(table: Table, name: str, da: xr.DataArray) -> None:
     labels = [[str(v) for v in da[d].values] if d in da.coords else
               [str(i) for i in range(da.sizes[d])] for d in rest]
     flat = values.reshape(values.shape[0], -1)
+    by_label = _units_by_label(unit)
+    matrix = len(rest) == 2 and all(d in ("dof", "dof_column") for d in rest)
     for j, combo in enumerate(product(*labels)):
-        table.add(f"{name}[{','.join(combo)}]", flat[:, j], unit)
+        own = next((by_label[c] for c in combo if c in by_label), unit)
+        if matrix:
+            own = _stiffness_unit(*combo, system)
+        table.add(f"{name}[{','.join(combo)}]", flat[:, j], own)
+
+
+def _stiffness_unit(row: str, column: str, system: str) -> str:
+    """Unit of a 6x6 stiffness entry: force (moment) per displacement (rotation)."""
+    force, length = (DIMENSIONS[d].unit(system) for d in ("force", "length"))
+    load = force if BODY_DOFS.index(row) < 3 else f"{force}*{length}"
+    if BODY_DOFS.index(column) >= 3:
+        return f"{load}/rad"
+    return force if load != force else f"{force}/{length}"
+
+
+def _units_by_label(unit: str) -> dict[str, str]:
+    """``"m (surge, sway, heave), rad (roll, pitch, yaw: ...)"`` -> ``{"surge": "m", ...,
+    "roll": "rad", ...}``: the unit of each body dof of a mixed-unit variable."""
+    out: dict[str, str] = {}
+    for part, names in _MIXED.findall(unit):
+        for label in re.split(r"[,:;]", names):
+            if label.strip() in BODY_DOFS:
+                out[label.strip()] = part.strip()
+    return out
+
+
+_MIXED = re.compile(r"([^,()]+?) \(([^)]*)\)")
 
 
 def write_table(table: Table, path: str | Path, text: bool = False) -> Path:
