@@ -147,7 +147,8 @@ def test_run_study_with_a_builder(wang_table):
     assert list(ds["series"].values) == ["sag_to_span", "sag_to_span"]
     assert ds["sag_to_span"].values == pytest.approx([1 / 45, 1 / 60])
     assert np.all(ds["surge"].values > 0.05) and np.all(ds["pitch"].values > 0.0)
-    # end force = top element's tension plus half its weight: close to the largest tension
+    # the largest tension includes the ends: at least the fairlead's, and close to it
+    assert np.all(ds["max_tension"].values >= ds["fairlead"].values)
     assert ds["fairlead"].values == pytest.approx(ds["max_tension"].values, rel=0.02)
     # a tauter line: higher pretension; the draft is the static body z (box centre)
     assert ds["max_tension"].values[1] > ds["max_tension"].values[0]
@@ -180,9 +181,8 @@ def test_run_study_from_a_case_file(tmp_path):
     assert list(table["status"].values) == ["ok", "ok"]
     tension = table["fairlead_tension"].values
     assert tension[1] < tension[0]  # a longer line hangs slacker
-    # the end force adds half the top element's weight to its tension
-    assert np.all(table["max_tension"].values < tension)
-    assert table["max_tension"].values == pytest.approx(tension, rel=0.05)
+    # "static tension" is the largest tension, the ends included: here the fairlead's
+    assert table["max_tension"].values == pytest.approx(tension, rel=1e-12)
     assert table["anchor_x"].values == pytest.approx([-853.87, -853.87])
 
 
@@ -326,3 +326,117 @@ def test_cli_sweep_with_workers_and_unreachable_scheduler(tmp_path, monkeypatch)
                                    "--scheduler", "tcp://127.0.0.1:9", "--quiet"])
     assert bad.exit_code == 2
     assert "Dask scheduler" in bad.output and "Traceback" not in bad.output
+
+
+# ----------------------------------------------------------------------------- issue 12
+def test_static_max_tension_is_the_summary_one(tmp_path):
+    """One meaning of "max tension": the largest of the element tensions and the end-point
+    forces' magnitudes (the summary's ``max_tension``), here from the statics result's end
+    forces computed apart."""
+    from moorline.io.case import load_case as load
+    from moorline.solvers.statics import solve_statics
+    from moorline.summaries import statics_summary
+    from moorline.sweep import set_path
+
+    study = _oc3_study(tmp_path, outputs={"quantities": {
+        "max_tension": "static tension", "max_line1": "static tension line1"}})
+    table = run_study(study)
+    assert table["max_tension"].attrs["long_name"].endswith("its end tensions included")
+    base = load(Path(study["base"]["case"]))
+    for k, length in enumerate((900.0, 905.0)):
+        static = solve_statics(set_path(base, "lines.line1.length", length))
+        ends = [float(np.linalg.norm(static.end_force("line1", e))) for e in "ab"]
+        largest = max(*ends, float(static.tension.max()))
+        assert largest == max(ends)  # on this catenary the fairlead pull is the largest
+        assert float(table["max_tension"].values[k]) == pytest.approx(largest, rel=1e-12)
+        assert float(table["max_line1"].values[k]) == pytest.approx(largest, rel=1e-12)
+        summary = statics_summary(static, with_stiffness=False)
+        assert summary["lines"]["line1"]["max_tension"] == pytest.approx(largest, rel=1e-12)
+
+
+def test_dynamic_max_tension_includes_the_ends(wang_table):
+    """``max tension`` over time is at least the largest end tension (``fairlead``)."""
+    assert np.all(wang_table["max_tension"].values >= wang_table["fairlead"].values)
+    assert "end tensions included" in wang_table["max_tension"].attrs["long_name"]
+
+
+def test_partial_results_are_kept_as_cases_finish(tmp_path):
+    """The table on disk after each finished case; a study stopped after the first case
+    keeps it (the other: ``not run``)."""
+    study = _oc3_study(tmp_path, variations={"lines.line1.length": [900.0, 905.0, 910.0]})
+    directory = tmp_path / "partial"
+    seen: list[tuple[int, int, list[str]]] = []
+
+    def progress(done: int, total: int, elapsed: float) -> None:
+        csv = pd.read_csv(directory / "table.csv")
+        seen.append((done, total, list(csv["status"])))
+        assert elapsed >= 0.0
+
+    full = run_study(study, directory=directory, progress=progress)
+    assert seen == [(1, 3, ["ok", "not run", "not run"]), (2, 3, ["ok", "ok", "not run"]),
+                    (3, 3, ["ok", "ok", "ok"])]
+    assert full.attrs["complete"] == 1
+
+    def stopped(function, cases):
+        yield function(cases[0])
+        raise KeyboardInterrupt
+
+    directory = tmp_path / "stopped"
+    with pytest.raises(KeyboardInterrupt):
+        run_study(study, mapper=stopped, directory=directory)
+    csv = pd.read_csv(directory / "table.csv")
+    assert list(csv["status"]) == ["ok", "not run", "not run"]
+    assert csv["fairlead_tension"][0] == pytest.approx(full["fairlead_tension"].values[0],
+                                                        rel=1e-12)
+    assert csv["fairlead_tension"][1:].isna().all()
+    with xr.open_dataset(directory / "table.nc") as nc:
+        assert nc.attrs["complete"] == 0 and nc.attrs["finished"] == 1
+        assert list(nc["status"].values) == ["ok", "not run", "not run"]
+    assert not list(directory.glob("*.part"))
+
+
+def test_results_in_any_order_are_matched_to_their_case(tmp_path):
+    """Dask yields the cases as they finish: the rows are matched by their parameters."""
+    study = _oc3_study(tmp_path)
+
+    def reversed_mapper(function, cases):
+        return [function(c) for c in reversed(cases)]
+
+    serial = run_study(study)
+    backwards = run_study(study, mapper=reversed_mapper)
+    np.testing.assert_array_equal(backwards["fairlead_tension"].values,
+                                  serial["fairlead_tension"].values)
+
+
+def test_eta_text():
+    from moorline.sweep import eta_text
+
+    assert eta_text(0, 4, 0.0) == "0 of 4 cases done"
+    assert eta_text(2, 5, 10.0) == "2 of 5 cases done, 5 s per case, about 15 s left"
+    assert eta_text(1, 3, 45.0) == "1 of 3 cases done, 45 s per case, about 1 min 30 s left"
+    assert eta_text(3, 3, 9.0) == "3 of 3 cases done, 3 s per case"
+    assert eta_text(1, 100, 7200.0).endswith("about 198 h 0 min left")
+
+
+def test_cli_sweep_logs_the_eta_and_writes_a_complete_table(tmp_path):
+    study = tmp_path / "oc3.yaml"
+    study.write_text(yaml.safe_dump(_oc3_study(tmp_path)))
+    result = CliRunner().invoke(cli, ["sweep", str(study), "--out", str(tmp_path / "out"),
+                                      "-v"])
+    assert result.exit_code == 0, result.output
+    assert "1 of 2 cases done" in result.stderr and "left" in result.stderr
+    assert "2 of 2 cases done" in result.stderr
+    with xr.open_dataset(tmp_path / "out" / "oc3-length" / "table.nc") as nc:
+        assert nc.attrs["complete"] == 1 and list(nc["status"].values) == ["ok", "ok"]
+
+
+def test_set_path_indexes_tuples_from_zero_and_refuses_past_the_end():
+    """``position.2`` is z, ``position.-1`` the last item; ``position.3`` is not there (an
+    input error, not an IndexError)."""
+    system = load_case(OC3_LINE)
+    assert set_path(system, "points.anchor.position.2", -300.0).points["anchor"].position[2] \
+        == -300.0
+    assert set_path(system, "points.anchor.position.-1", -310.0).points["anchor"].position \
+        == (-853.87, 0, -310.0)
+    with pytest.raises(CaseError, match="cannot step into tuple"):
+        set_path(system, "points.anchor.position.3", 1.0)

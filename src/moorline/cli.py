@@ -565,36 +565,46 @@ def sweep(study: Path, out: Path, workers: int | None, scheduler: str | None, as
     """Run the parameter study STUDY (see moorline.sweep) and gather its outputs.
 
     Writes DIR/<study>/table.csv, table.nc (one row per case: parameters, steady-state
-    outputs, status) and trends.png (each output against the varied parameter). The cases
-    run one after the other, or in parallel on Dask with --workers or --scheduler (the
-    optional [dask] extra). Exit code 1 when a case failed.
+    outputs, status) and trends.png (each output against the varied parameter). The table
+    is rewritten after every finished case, so a study stopped mid-way keeps what finished
+    (status "not run" for the rest); the progress line shows the cases done and the time
+    left (from the mean case time). The cases run one after the other, or in parallel on
+    Dask with --workers or --scheduler (the optional [dask] extra). Exit code 1 when a case
+    failed.
     """
     _configure_logging(verbose)
-    from .sweep import dask_mapper, load_study, run_study, study_cases, write_study
+    from .sweep import dask_mapper, eta_text, load_study, run_study, study_cases, write_study
 
     spec = load_study(study)
+    directory = out / _safe_name(spec.name, study.stem)
     n_cases = len(study_cases(spec))
     with _status(f"study {spec.name}: {n_cases} cases ...", quiet) as update:
+        done = {"text": ""}
+
+        def progress(finished: int, total: int, elapsed: float) -> None:
+            done["text"] = eta_text(finished, total, elapsed)
+            update(f"study {spec.name}: {done['text']}")
+            logger.info("study %s: %s", spec.name, done["text"])
 
         def counted(function: Callable[..., Any], cases: list[Any]) -> Iterator[Any]:
             for k, params in enumerate(cases):
-                update(f"study {spec.name}: run {k + 1} of {len(cases)} ({params}) ...")
+                update(f"study {spec.name}: case {k + 1} of {len(cases)} ({params})"
+                       + (f"; {done['text']}" if done["text"] else "") + " ...")
                 yield function(params)
 
         close = None
         mapper: Callable[..., Any] = counted
         if workers is not None or scheduler is not None:
             try:
-                mapper, close = dask_mapper(scheduler, workers, progress=lambda done, n: update(
-                    f"study {spec.name}: {done} of {n} cases done (Dask) ..."))
+                mapper, close = dask_mapper(scheduler, workers)
             except MoorlineError as exc:
                 _fail(f"{study}: {exc}", EXIT_BAD_INPUT)
         try:
-            table = run_study(spec, mapper=mapper)
+            table = run_study(spec, mapper=mapper, directory=directory, progress=progress)
         finally:
             if close is not None:
                 close()
-        files = write_study(table, out / _safe_name(spec.name, study.stem))
+        files = write_study(table, directory)
     rows = table.to_dataframe().reset_index()
     failed = [str(s) for s in table["status"].values if str(s) != "ok"]
     if as_json:
@@ -861,3 +871,36 @@ def stiffness(case: Path, body: str | None, points: str | None, reference: str |
     for dof, row in zip(BODY_DOFS, K, strict=True):
         table.add_row(dof, *(f"{v:.6g}" for v in row))
     _stdout().print(table)
+
+
+# ----------------------------------------------------------------------------- export
+@cli.command()
+@click.argument("results", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--csv", "as_csv", is_flag=True, help="CSV files (the default).")
+@click.option("--text", "as_text", is_flag=True, help="Fixed-width text tables (.txt).")
+@click.option("--out", "out", type=click.Path(file_okay=False, path_type=Path), default=None,
+              help="Output directory (default: the results file's directory).")
+@_common_options
+def export(results: Path, as_csv: bool, as_text: bool, out: Path | None, quiet: bool,
+           verbose: bool) -> None:
+    """Write the tables of RESULTS (a results.nc): time series and per-line tables.
+
+    One file per table (see moorline.io.export): dynamics groups give Time, FairTen<n>,
+    AnchTen<n> (MoorDyn's channel names) and Body<m>Surge...; statics a table per line
+    (node, arc length, x, y, z, tension) and the end forces; the other groups their
+    natural tables (spectra against omega, offset curves per heading). The first line
+    holds the column names, the second their units.
+    """
+    _configure_logging(verbose)
+    from .io.export import export_results
+
+    if as_csv and as_text:
+        _fail("--csv and --text: choose one", EXIT_BAD_INPUT)
+    if not results.is_file():
+        _fail(f"{results}: no such file", EXIT_BAD_INPUT)
+    try:
+        files = export_results(results, out if out is not None else results.parent,
+                               text=as_text)
+    except (KeyError, ValueError) as exc:
+        raise CaseError(f"{results}: cannot export: {exc}") from None
+    _note(f"wrote {', '.join(str(f) for f in files)}", quiet)

@@ -209,9 +209,14 @@ VARIABLES["offset"] = {
 }
 
 
+#: CF attributes beyond ``units`` and ``long_name`` (CF conventions 1.11, sec. 4.4: the time
+#: coordinate).
+CF_ATTRS: dict[str, dict[str, str]] = {"time": {"standard_name": "time", "axis": "T"}}
+
+
 def describe(kind: str, name: str, units: str) -> dict[str, str]:
     """``{"units", "long_name"}`` of variable ``name`` of a ``kind`` group in the unit system
-    ``units`` (``SI`` or ``US``).
+    ``units`` (``SI`` or ``US``), with the :data:`CF_ATTRS` of the name.
 
     Raises
     ------
@@ -231,7 +236,7 @@ def describe(kind: str, name: str, units: str) -> dict[str, str]:
     elif "{" in unit:
         unit = unit.format(**{k: DIMENSIONS[k].unit(system)
                               for k in ("length", "velocity", "force", "mass")})
-    return {"units": unit, "long_name": long_name}
+    return {"units": unit, "long_name": long_name, **CF_ATTRS.get(name, {})}
 
 
 def settings_attrs(settings: Any) -> dict[str, Any]:

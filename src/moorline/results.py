@@ -114,6 +114,13 @@ class StaticResult:
         """Element tensions along a line from end A to end B, (segments,)."""
         return self.tension[self.mesh.line_elements[self.mesh.line_index(line)]]
 
+    def max_tension(self, line: str) -> float:
+        """The largest tension of a line, its end tensions included: the larger of its
+        element tensions and the magnitudes of the forces on its two end points (the one
+        meaning of "max tension" of the summary, the results file and the sweeps)."""
+        ends = [float(np.linalg.norm(self.end_force(line, e))) for e in "ab"]
+        return float(np.nanmax([*self.line_tension(line), *ends]))
+
     def end_force(self, line: str, end: str) -> FloatArray:
         """Force the line exerts on its end point ``end`` (``"a"`` or ``"b"``), shape (3,).
 
@@ -179,8 +186,7 @@ class StaticResult:
         ends = np.array([[self.end_force(n, e) for e in "ab"] for n in m.line_names])
         ends = ends.reshape(len(m.line_names), 2, 3)
         end_tension = np.linalg.norm(ends, axis=2)
-        max_tension = [float(np.nanmax([*self.line_tension(n), *end_tension[k]]))
-                       for k, n in enumerate(m.line_names)]
+        max_tension = [self.max_tension(n) for n in m.line_names]
         data = {
             "position": (("node", "xyz"), self.positions),
             "tension": (("element",), self.tension),

@@ -48,8 +48,7 @@ def statics_summary(result: Any, with_stiffness: bool = True) -> dict[str, Any]:
             entry[f"end_{end}"] = {"force": (force + 0.0).tolist(),  # no -0.0
                                    "tension": float(np.linalg.norm(force))}
         # the largest tension is often at an end (the fairlead), not at an element midpoint
-        ends = [entry["end_a"]["tension"], entry["end_b"]["tension"]]
-        entry["max_tension"] = float(np.nanmax([*result.line_tension(name), *ends]))
+        entry["max_tension"] = result.max_tension(name)
         entry["seabed_length"] = float(result.seabed_length(name))
         lines[name] = entry
     points: dict[str, Any] = {}

@@ -38,8 +38,20 @@ Quantities
     peak-to-peak), ``mean``, ``max``, ``min``; ``static``: the value in the static state.
     Signals: ``<body>.<dof>`` (dof ``surge sway heave roll pitch yaw``: position and
     rotation vector of a body; the older ``x y z rx ry rz`` are the same),
-    ``<point>.<x|y|z>``, ``tension`` (largest element tension at each time), ``tension <line>``
-    (largest in that line), ``fairlead <line>`` (tension at end b).
+    ``<point>.<x|y|z>``, ``tension`` (the largest tension of all lines at each time, their
+    end tensions included: the summary's ``max_tension``, :meth:`StaticResult.max_tension
+    <moorline.results.StaticResult.max_tension>`), ``tension <line>`` (the same for one
+    line), ``fairlead <line>`` (tension at end b).
+Parameter paths
+    Dotted, from the :class:`~moorline.model.System`: field names of the dataclasses
+    (``environment.depth``), keys of the mappings (``lines.C1.length``), and integer
+    indices into tuples, from 0 (``points.fairlead.position.2``: its z; ``-1``: the last).
+Output
+    :func:`run_study` returns, and ``moorline sweep`` writes (``table.csv``, ``table.nc``,
+    rewritten after every finished case), one row per case: ``case`` (row number),
+    ``series`` (the varied parameter, ``grid`` or ``base``), one column per parameter, one
+    per quantity, ``status`` (``ok``, ``failed: <reason>``, or ``not run`` in a study
+    stopped before the case) and ``elapsed`` (the case's wall time [s]).
 
 The case loop is separable: :func:`study_cases` lists the parameter sets,
 :func:`run_one` runs one (a pure function of the study and the parameters, returning a
@@ -57,7 +69,7 @@ import itertools
 import logging
 import math
 import time
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import partial
@@ -79,6 +91,8 @@ BODY_DOFS = _BODY_DOFS
 #: Older names of the body dofs in study files (position and rotation-vector components).
 DOF_ALIASES = dict(zip(("x", "y", "z", "rx", "ry", "rz"), _BODY_DOFS, strict=True))
 TABLE_CSV, TABLE_NC, TRENDS_PNG = "table.csv", "table.nc", "trends.png"
+#: Status of a case not run (yet) in a partial table.
+NOT_RUN = "not run"
 #: How long to wait for a Dask scheduler to answer.
 SCHEDULER_TIMEOUT = "20s"
 
@@ -99,6 +113,22 @@ class Quantity:
             return "N"
         dof = self.target.rsplit(".", 1)[-1]
         return "rad" if DOF_ALIASES.get(dof, dof) in BODY_DOFS[3:] else "m"
+
+    @property
+    def long_name(self) -> str:
+        """What the column holds, in words (the ``long_name`` of its table variable)."""
+        what = {"amplitude": "amplitude (half the peak-to-peak) over the steady window of",
+                "mean": "mean over the steady window of", "max": "largest over the steady "
+                "window of", "min": "smallest over the steady window of",
+                "static": "static-state value of"}[self.statistic]
+        if self.signal == "tension":
+            where = f"line {self.target}" if self.target else "all lines"
+            signal = f"the largest tension of {where}, its end tensions included"
+        elif self.signal == "fairlead":
+            signal = f"the tension at end b of line {self.target} (the fairlead)"
+        else:
+            signal = f"{self.target}"
+        return f"{what} {signal}"
 
 
 @dataclass(frozen=True)
@@ -420,7 +450,8 @@ def set_path(obj: Any, path: str, value: Any) -> Any:
             raise CaseError(f"no entry {head!r} (have {', '.join(map(str, obj))})", None, path)
         new = set_path(obj[head], rest, value) if rest else _like(obj[head], value)
         return {**obj, head: new}
-    if isinstance(obj, tuple) and head.lstrip("-").isdigit() and abs(int(head)) < len(obj) + 1:
+    if isinstance(obj, tuple) and head.lstrip("-").isdigit() and \
+            -len(obj) <= int(head) < len(obj):
         items = list(obj)
         k = int(head)
         items[k] = set_path(items[k], rest, value) if rest else _like(items[k], value)
@@ -465,10 +496,11 @@ def _history(q: Quantity, result: Any) -> np.ndarray:
     if q.signal == "fairlead":
         return result.end_tension(q.target, "b")
     if q.signal == "tension":
-        tension = result.tension
-        if q.target:
-            tension = tension[:, mesh.element_line == mesh.line_index(q.target)]
-        return tension.max(axis=1)
+        lines = [q.target] if q.target else list(mesh.line_names)
+        tension = result.tension[:, np.isin(mesh.element_line,
+                                            [mesh.line_index(n) for n in lines])]
+        ends = [result.end_tension(n, e) for n in lines for e in "ab"]
+        return np.nanmax(np.column_stack([tension, *ends]), axis=1)
     owner, dof = q.target.rsplit(".", 1)
     if owner in mesh.body_names:
         return result.body_history(owner)[:, _dof(q, dof, BODY_DOFS)]
@@ -481,10 +513,8 @@ def _static_value(q: Quantity, static: Any) -> float:
     if q.signal == "fairlead":
         return float(np.linalg.norm(static.end_force(q.target, "b")))
     if q.signal == "tension":
-        tension = static.tension
-        if q.target:
-            tension = tension[mesh.element_line == mesh.line_index(q.target)]
-        return float(tension.max())
+        return max(static.max_tension(n) for n in ([q.target] if q.target
+                                                   else mesh.line_names))
     owner, dof = q.target.rsplit(".", 1)
     if owner in mesh.body_names:
         pose = static.body_pose[mesh.body_names.index(owner)]
@@ -510,7 +540,9 @@ def _known_point(q: Quantity, mesh: Any, owner: str) -> None:
 
 # ----------------------------------------------------------------------------- study
 def run_study(study: Study | Mapping[str, Any] | str | Path,
-              mapper: Callable[[Callable, Iterable], Iterable] = map) -> xr.Dataset:
+              mapper: Callable[[Callable, Iterable], Iterable] = map,
+              directory: str | Path | None = None,
+              progress: Callable[[int, int, float], None] | None = None) -> xr.Dataset:
     """Run every distinct parameter set of a study and gather the table.
 
     Parameters
@@ -518,16 +550,25 @@ def run_study(study: Study | Mapping[str, Any] | str | Path,
     study
         A :class:`Study`, its mapping, or a study file.
     mapper
-        ``map``-like: ``mapper(function, parameter_sets)`` -> results in order.
+        ``map``-like: ``mapper(function, parameter_sets)`` -> the results (each a
+        :func:`run_one` row), in order or in the order they finish (rows are matched to
+        their parameter set).
+    directory
+        When given, ``table.csv`` and ``table.nc`` are rewritten there after every finished
+        case (:func:`write_table`): a study stopped mid-way keeps the cases that finished
+        (the others have status ``not run``; attribute ``complete`` is 0).
+    progress
+        Called after every finished case with (cases finished, distinct cases, seconds
+        since the start); :func:`eta_text` makes it a progress line.
 
     Returns
     -------
     xarray.Dataset
         Dimension ``case`` (one row per series and value; a parameter set shared by several
         series is run once); coordinates ``series`` and one per parameter; a variable per
-        quantity (attribute ``units``, ``spec``), ``status`` and ``elapsed``. Attributes:
-        study name, description, ``combine``, ``variations`` (names), ``quantities``
-        (names), and the settings.
+        quantity (attributes ``units``, ``long_name``, ``spec``), ``status`` and
+        ``elapsed``. Attributes: study name, description, ``combine``, ``variations``
+        (names), ``quantities`` (names), ``finished`` and ``complete``, and the settings.
     """
     if isinstance(study, str | Path):
         study = load_study(study)
@@ -537,9 +578,47 @@ def run_study(study: Study | Mapping[str, Any] | str | Path,
     distinct: dict[tuple, dict[str, Any]] = {}
     for _, params in cases:
         distinct.setdefault(_key(params), params)
-    outputs = dict(zip(distinct, mapper(partial(run_one, study), list(distinct.values())),
-                       strict=True))
+    outputs: dict[tuple, dict[str, Any]] = {}
+    start = time.perf_counter()
+    for row in mapper(partial(run_one, study), list(distinct.values())):
+        outputs[_match(row, distinct, outputs)] = row
+        if directory is not None:
+            write_table(_table(study, cases, outputs), directory)
+        if progress is not None:
+            progress(len(outputs), len(distinct), time.perf_counter() - start)
     return _table(study, cases, outputs)
+
+
+def _match(row: Mapping[str, Any], distinct: Mapping[tuple, Mapping[str, Any]],
+           done: Mapping[tuple, Any]) -> tuple:
+    """The key of the parameter set a result row belongs to (rows may come in any order)."""
+    for key, params in distinct.items():
+        if key not in done and all(n in row for n in params) and \
+                _key({n: row[n] for n in params}) == key:
+            return key
+    raise MoorlineError(f"a study result matches no parameter set: {dict(row)}")
+
+
+def eta_text(done: int, total: int, elapsed: float) -> str:
+    """``"3 of 10 cases done, 12.5 s per case, about 1 min 28 s left"``: the estimate is the
+    mean wall time per finished case so far (with parallel workers, the elapsed time over
+    the cases done) times the cases left."""
+    if done <= 0:
+        return f"0 of {total} cases done"
+    mean = elapsed / done
+    left = mean * (total - done)
+    text = f"{done} of {total} cases done, {_duration(mean)} per case"
+    return text + (f", about {_duration(left)} left" if done < total else "")
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 60:
+        return f"{seconds:.3g} s"
+    minutes, rest = divmod(round(seconds), 60)
+    if minutes < 60:
+        return f"{minutes} min {rest} s"
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours} h {minutes} min"
 
 
 def dask_mapper(scheduler: str | None = None, workers: int | None = None,
@@ -561,8 +640,8 @@ def dask_mapper(scheduler: str | None = None, workers: int | None = None,
     Returns
     -------
     mapper, close
-        ``mapper(function, items)`` returns the results in the order of ``items``; call
-        ``close()`` when done.
+        ``mapper(function, items)`` yields the results as they finish (in any order: each
+        :func:`run_one` row names its parameters); call ``close()`` when done.
 
     Raises
     ------
@@ -586,16 +665,13 @@ def dask_mapper(scheduler: str | None = None, workers: int | None = None,
     except (OSError, TimeoutError) as exc:
         raise MoorlineError(f"cannot reach the Dask scheduler {scheduler!r}: {exc}") from None
 
-    def mapper(function: Callable, items: Iterable) -> list:
+    def mapper(function: Callable, items: Iterable) -> Iterator[Any]:
         items = list(items)
         futures = client.map(function, items, pure=False)
-        index = {f.key: k for k, f in enumerate(futures)}
-        out: list = [None] * len(items)
         for done, future in enumerate(as_completed(futures), start=1):
-            out[index[future.key]] = future.result()
             if progress is not None:
                 progress(done, len(items))
-        return out
+            yield future.result()
 
     def close() -> None:
         client.close()
@@ -607,7 +683,9 @@ def dask_mapper(scheduler: str | None = None, workers: int | None = None,
 
 def _table(study: Study, cases: list[tuple[str, dict[str, Any]]],
            outputs: Mapping[tuple, dict[str, Any]]) -> xr.Dataset:
-    rows = [outputs[_key(params)] for _, params in cases]
+    pending = {**{q.name: math.nan for q in study.quantities}, "status": NOT_RUN,
+               "elapsed": math.nan}
+    rows = [outputs.get(_key(params), pending) for _, params in cases]
     names = list(dict.fromkeys(k for _, params in cases for k in params))
     coords: dict[str, Any] = {"case": np.arange(len(cases)),
                               "series": ("case", [s for s, _ in cases])}
@@ -617,7 +695,8 @@ def _table(study: Study, cases: list[tuple[str, dict[str, Any]]],
     data: dict[str, Any] = {}
     for q in study.quantities:
         data[q.name] = ("case", np.array([float(r[q.name]) for r in rows]),
-                        {"units": q.unit, "spec": f"{q.statistic} {q.signal}"
+                        {"units": q.unit, "long_name": q.long_name,
+                         "spec": f"{q.statistic} {q.signal}"
                          + (f" {q.target}" if q.target else "")})
     data["status"] = ("case", np.array([str(r["status"]) for r in rows], dtype=object))
     data["elapsed"] = ("case", np.array([float(r["elapsed"]) for r in rows]), {"units": "s"})
@@ -626,6 +705,8 @@ def _table(study: Study, cases: list[tuple[str, dict[str, Any]]],
              "quantities": ",".join(q.name for q in study.quantities),
              "base": str(study.case or study.builder),
              "window_period": study.period, "window_periods": study.periods,
+             "finished": len(outputs),
+             "complete": int(all(_key(p) in outputs for _, p in cases)),
              **{f"statics_{k}": _attr(v) for k, v in study.statics.items()},
              **{f"dynamics_{k}": _attr(v) for k, v in study.dynamics.items()}}
     return xr.Dataset(data, coords=coords, attrs=attrs)
@@ -640,22 +721,34 @@ def _attr(value: Any) -> Any:
     return value
 
 
-def write_study(table: xr.Dataset, directory: str | Path) -> list[Path]:
-    """Write ``table.csv``, ``table.nc`` and ``trends.png`` into ``directory``."""
-    from .plot import plot_sweep_trends
-
+def write_table(table: xr.Dataset, directory: str | Path) -> list[Path]:
+    """Write ``table.csv`` and ``table.nc`` into ``directory`` (each written to a temporary
+    file and renamed, so a study stopped while writing keeps the previous table)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    csv, nc, png = directory / TABLE_CSV, directory / TABLE_NC, directory / TRENDS_PNG
-    table.to_dataframe().to_csv(csv)
+    csv, nc = directory / TABLE_CSV, directory / TABLE_NC
     out = table.copy()
     out["status"] = out["status"].astype(str)
     out["series"] = out["series"].astype(str)
-    out.to_netcdf(nc)
+    for path, write in ((csv, lambda p: table.to_dataframe().to_csv(p)),
+                        (nc, out.to_netcdf)):
+        partial_path = path.with_name(path.name + ".part")
+        write(partial_path)
+        partial_path.replace(path)
+    return [csv, nc]
+
+
+def write_study(table: xr.Dataset, directory: str | Path) -> list[Path]:
+    """Write ``table.csv``, ``table.nc`` (:func:`write_table`) and ``trends.png`` into
+    ``directory``."""
+    from .plot import plot_sweep_trends
+
+    files = write_table(table, directory)
+    png = Path(directory) / TRENDS_PNG
     plot_sweep_trends(table, png)
-    return [csv, nc, png]
+    return [*files, png]
 
 
-__all__ = ["Quantity", "Study", "build", "gather", "load_study", "parse_quantity",
+__all__ = ["Quantity", "Study", "build", "eta_text", "gather", "load_study", "parse_quantity",
            "run_one", "run_study", "set_path", "statistic", "steady_window", "study_cases",
-           "study_from_dict", "write_study"]
+           "study_from_dict", "write_study", "write_table"]

@@ -125,6 +125,16 @@ class Channel:
     quantity: str
 
 
+#: MoorDyn's channel names of the end tensions: end b (the fairlead) and end a (the anchor).
+END_TENSION_NAMES = {"b": "FairTen", "a": "AnchTen"}
+
+
+def end_tension_channel(number: int, end: str) -> str:
+    """MoorDyn's name of the tension channel at ``end`` (``"a"`` or ``"b"``) of line
+    ``number`` (from 1): ``FairTen<n>`` (end b) or ``AnchTen<n>`` (end a)."""
+    return f"{END_TENSION_NAMES[end]}{number}"
+
+
 def parse_channel(name: str) -> Channel | None:
     """Read a channel name as MoorDyn does; None when moorline cannot write it."""
     match = _WORD.match(name.upper())
@@ -134,7 +144,8 @@ def parse_channel(name: str) -> Channel | None:
     if not num1:
         return None
     number = int(num1)
-    if let1 in ("FAIRTEN", "ANCHTEN", "FAIRSEGTEN", "ANCHSEGTEN") and not let2:
+    ends = [n.upper() for n in END_TENSION_NAMES.values()]
+    if let1 in (*ends, *(n[:4] + "SEG" + n[4:] for n in ends)) and not let2:
         end = "B" if let1.startswith("FAIR") else "A"
         return Channel(name, "line", number, end, "SEGTEN" if "SEG" in let1 else "T")
     if let1 in ("L", "LINE"):
