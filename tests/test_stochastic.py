@@ -14,7 +14,7 @@ from moorline.cli import cli
 from moorline.errors import MoorlineError
 from moorline.io import load_case
 from moorline.io.case_writer import write_case
-from moorline.model import Current, StaticsSettings, StochasticSettings, Waves
+from moorline.model import StaticsSettings, StochasticSettings, Waves
 from moorline.solvers.statics import solve_statics
 from moorline.solvers.stochastic import solve_stochastic
 from moorline.verification.stochastic_riser import MID_NODE, riser_system
@@ -70,15 +70,12 @@ def test_nsa_changes_the_series_not_the_statistics(riser):
     assert not np.allclose(nsa_r.displacement, dsa_r.displacement)
 
 
-def test_needs_a_random_sea_without_current(riser):
+def test_needs_a_random_sea(riser):
+    """(A current is supported: tests/test_stochastic_current.py.)"""
     system, static = riser
     calm = replace(system, environment=replace(system.environment, waves=Waves()))
     with pytest.raises(MoorlineError, match="random sea"):
         solve_stochastic(calm, StochasticSettings(), static)
-    current = replace(system, environment=replace(system.environment,
-                                                  current=Current(speed=0.5)))
-    with pytest.raises(MoorlineError, match="zero mean"):
-        solve_stochastic(current, StochasticSettings(), static)
 
 
 def test_body_system_the_disc_follows_long_waves():

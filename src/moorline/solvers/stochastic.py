@@ -55,13 +55,30 @@ added mass and radiation damping; the wave loads on a body from its exciting-for
 domain (``wave_loads``), and its quadratic drag linearized the same way per direction.
 
 Free points with their own hydrodynamics (buoys, clump weights: volume, added mass, drag
-area) get the fluid inertia and the linearized drag of the time domain. Scope: the flow must
-have zero mean (no current), as the source assumes.
+area) get the fluid inertia and the linearized drag of the time domain.
+
+Current (beyond the source, which assumes zero-mean flow): with a steady current ``U(x)`` the
+relative velocity is ``U + u'``, ``u'`` zero-mean Gaussian, and each quadratic drag law is
+replaced by its mean plus the mean-square-optimal linear term about the mean,
+``c (E[|w| w] + G w')`` with ``G = E[d(|w| w)/dw]`` (Atalik & Utku 1976; exact Gaussian
+expectations, :mod:`moorline.solvers.drag_linearization`): per element the normal law on
+the normal plane (mean ``(I - t t^T) U``, covariance of the normal relative velocity from its
+spectra) and the tangential law in one dimension, ``2 c_t E|s| t t^T`` (``E|s|`` closed form);
+points the same in three dimensions. Without current the code is Tuah's formula above,
+unchanged. The mean state: the statics with the current's drag (``current_drag``), then the
+linearization about it, then the statics re-solved with the excess of the mean drag over the
+current's steady drag, ``E[f] - f(U)``, as node loads, repeated until the mean positions change
+by less than ``tolerance`` times the largest displacement std (two statics typically;
+``counters["mean_drag_offset"]``: how far the mean state moved from the current-only one,
+the error of a one-way analysis). Approximations: the tangent ``K`` about the mean state has
+no drag stiffness (the change of the mean drag with the element direction); bodies in a
+current are refused (the statics has no current drag on bodies).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -69,16 +86,17 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..errors import MoorlineError
-from ..mesh import Mesh, dynamic_mesh, with_loads_of
-from ..model import ModalSettings, StochasticSettings, System
+from ..mesh import Mesh, discretize, dynamic_mesh, with_loads_of
+from ..model import ModalSettings, StaticsSettings, StochasticSettings, System
 from ..physics import element
 from ..results import StaticResult, StochasticResult
 from ..waves import random_sea, wave_number
 from ..waves.transfer import kinematics_transfer
+from . import drag_linearization
 from .assembly import solve_sparse
 from .bodies import long_wave_geometry
 from .modal import system_matrices
-from .statics import equilibrium_for
+from .statics import _current_field, equilibrium_for, solve_statics
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -267,42 +285,66 @@ class _PointWaves:
     """Wave loads on free points with their own hydrodynamics (buoys, clump weights), as in
     the time domain (:meth:`moorline.solvers.dynamic_model.DynamicModel`): fluid inertia
     ``rho V (1 + Ca) a`` (the added mass ``rho Ca V`` is in ``M``) and the isotropic drag
-    ``1/2 rho Cd A |u| u`` on the relative velocity, linearized like the lines' normal drag,
-    ``1/2 rho Cd A (8/pi)^(1/2) sigma u`` with ``sigma`` the standard deviation of the
-    relative velocity vector."""
+    ``1/2 rho Cd A |u| u`` on the relative velocity, linearized like the lines' normal drag:
+    without current ``1/2 rho Cd A (8/pi)^(1/2) sigma u``, ``sigma`` the standard deviation
+    of the relative velocity vector; with a current ``U`` at the point
+    ``1/2 rho Cd A (E[|u| u] + G u')`` with the exact Gaussian expectations about the mean
+    (:func:`moorline.solvers.drag_linearization.vector_expectations`)."""
 
-    def __init__(self, mesh: Mesh, x0: FloatArray, omega: FloatArray, env, rho: float) -> None:
+    def __init__(self, mesh: Mesh, x0: FloatArray, omega: FloatArray, env, rho: float,
+                 current=None) -> None:
         self.omega = omega
         self.drag = 0.5 * rho * mesh.node_Cd * mesh.node_drag_area
         self.mass = rho * mesh.node_volume * (1.0 + mesh.node_Ca)
         self.nodes = np.flatnonzero(((self.drag > 0) | (self.mass > 0)) & mesh.free_nodes)
         self.n_nodes = mesh.n_nodes
+        self.mean = None
         if self.nodes.size:
             self.H_v, H_a = kinematics_transfer(x0[self.nodes], omega, env.waves.heading_deg,
                                                 env.depth, env.gravity)
             self.inertia = self.mass[self.nodes][None, :, None] * H_a
             self.coefficient = self.drag[self.nodes] * math.sqrt(8.0 / math.pi)
+            if current is not None:
+                self.mean = current.kinematics(x0[self.nodes], 0.0)[0]
+
+    def _relative(self, U: ComplexArray) -> ComplexArray:
+        return self.H_v - 1j * self.omega[:, None, None] * U[:, self.nodes]
 
     def sigmas(self, U: ComplexArray, power: FloatArray) -> FloatArray:
         """Standard deviation of each point's relative velocity (vector magnitude)."""
         if not self.nodes.size:
             return np.zeros(0)
-        rel = self.H_v - 1j * self.omega[:, None, None] * U[:, self.nodes]
-        return np.sqrt(np.einsum("w,wpc->p", power, np.abs(rel) ** 2))
+        return np.sqrt(np.einsum("w,wpc->p", power, np.abs(self._relative(U)) ** 2))
 
-    def add_forces(self, nodal: ComplexArray, sigma: FloatArray) -> ComplexArray:
+    def gains(self, U: ComplexArray, power: FloatArray, sigma: FloatArray
+              ) -> tuple[FloatArray, FloatArray]:
+        """Linearized drag matrices (n_points, 3, 3) and the mean drag minus the steady
+        current's drag (n_points, 3) about the response ``U``."""
+        k = self.nodes.size
+        if not k:
+            return np.zeros((0, 3, 3)), np.zeros((0, 3))
+        if self.mean is None:
+            return (self.coefficient * sigma)[:, None, None] * np.eye(3), np.zeros((k, 3))
+        R = self._relative(U)
+        cov = np.einsum("w,wpi,wpj->pij", power, R, R.conj()).real
+        e_f, gain = drag_linearization.vector_expectations(self.mean, cov,
+                                                           np.broadcast_to(np.eye(3), cov.shape))
+        c = self.drag[self.nodes]
+        steady = np.linalg.norm(self.mean, axis=1)[:, None] * self.mean
+        return c[:, None, None] * gain, c[:, None] * (e_f - steady)
+
+    def add_forces(self, nodal: ComplexArray, gain: FloatArray) -> ComplexArray:
         """Node forces plus the points' fluid inertia and linearized drag excitation."""
         if self.nodes.size:
-            nodal[:, self.nodes] += self.inertia + (self.coefficient * sigma)[None, :, None] \
-                * self.H_v
+            nodal[:, self.nodes] += self.inertia + np.einsum("pij,wpj->wpi", gain, self.H_v)
         return nodal
 
-    def damping_blocks(self, sigma: FloatArray) -> FloatArray | None:
+    def damping_blocks(self, gain: FloatArray) -> FloatArray | None:
         """Node damping blocks (n_nodes, 3, 3) of the linearized point drag."""
         if not self.nodes.size:
             return None
         blocks = np.zeros((self.n_nodes, 3, 3))
-        blocks[self.nodes] = (self.coefficient * sigma)[:, None, None] * np.eye(3)
+        blocks[self.nodes] = gain
         return blocks
 
 
@@ -354,28 +396,31 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
                      statics: StaticResult | None = None) -> StochasticResult:
     """Stochastic response of lines (and bodies) to the random sea of its environment.
 
-    Tuah (1982) sec. 5.2-5.3, steps 1-14 (see the module docstring).
+    Tuah (1982) sec. 5.2-5.3, steps 1-14 (see the module docstring); with a steady current,
+    the linearization about the mean flow and the mean state with the mean drag (module
+    docstring, "Current").
 
     Parameters
     ----------
     system
-        The problem; ``environment.waves`` must be ``kind: random`` and there must be no
-        current.
+        The problem; ``environment.waves`` must be ``kind: random``.
     settings
         Method, modes, linearization tolerance, mass model, time-series length.
     statics
-        The equilibrium to linearize about (solved when not given).
+        The equilibrium to linearize about (solved when not given); with a current, the
+        start of the mean-state iteration (re-solved with the current's drag).
 
     Returns
     -------
     StochasticResult
         ``success`` False (status ``failed``, the last iterate) when the drag linearization
-        does not converge in ``settings.max_iterations``.
+        (or, with a current, the mean-state iteration) does not converge in
+        ``settings.max_iterations``.
 
     Raises
     ------
     MoorlineError
-        Without a random sea or with a current.
+        Without a random sea, or with a current and free bodies.
     ConvergenceError
         When the statics fails.
     """
@@ -384,13 +429,34 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     if env.waves.kind != "random" or env.waves.height <= 0:
         raise MoorlineError(f"stochastic analysis of {system.name} needs a random sea "
                             "(environment.waves: {kind: random, height: Hs, period: Tp})")
-    if env.current.speed != 0 or env.current.z_levels:
-        raise MoorlineError(f"stochastic analysis of {system.name}: the flow must have zero "
-                            "mean (Tuah sec. 5.2); remove the current")
     if settings.method not in ("foss", "direct"):
         raise MoorlineError(f"stochastic method must be 'foss' or 'direct', not "
                             f"{settings.method!r}")
-    statics = equilibrium_for(system, statics, "stochastic analysis")
+    current = _current_field(system)
+    if current is not None and system.bodies:
+        raise MoorlineError(f"stochastic analysis of {system.name}: a current with bodies is "
+                            "not supported yet (the statics has no current drag on bodies)")
+    if current is None:
+        statics = equilibrium_for(system, statics, "stochastic analysis")
+        lin = _linearize(system, settings, statics, None)
+        outer: dict = {}
+    else:
+        lin, statics, outer = _mean_state(system, settings, statics, current)
+    return _result(system, settings, statics, lin, outer)
+
+
+class _Linearized:
+    """The converged (or last) statistical linearization about one static state."""
+
+    def __init__(self, **kw) -> None:
+        self.__dict__.update(kw)
+
+
+def _linearize(system: System, settings: StochasticSettings, statics: StaticResult,
+               current) -> _Linearized:
+    """Steps 5-13: iterate the drag linearization about ``statics`` (``current``: the
+    steady current as a fluid field, or ``None``)."""
+    env = system.environment
     mesh = dynamic_mesh(statics.mesh, statics.positions)
     if mesh.n_dofs == 0 and not mesh.body_names:
         raise MoorlineError(f"stochastic analysis of {system.name}: no free node")
@@ -408,39 +474,46 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     H_v, H_a = kinematics_transfer(mid, omega, env.waves.heading_deg, env.depth, env.gravity)
     inertia = np.einsum("eij,wej->wei", _inertia_blocks(t, mesh, rho), H_a)
     bodies = model.body_kinematics(omega)
-    points = _PointWaves(mesh, x0, omega, env, rho)
+    points = _PointWaves(mesh, x0, omega, env, rho, current)
     response = _Response(model.K, model.M, settings)
+    lines = _LineDrag(mesh, t, rho, None if current is None
+                      else current.kinematics(mid, 0.0)[0])
 
-    def line_forces(drag: FloatArray, sigma_p: FloatArray) -> ComplexArray:
+    def line_forces(drag: FloatArray, gain_p: FloatArray) -> ComplexArray:
         per_node = inertia + np.einsum("eij,wej->wei", drag * (0.5 * mesh.length0)[:, None,
                                                                                      None], H_v)
         nodal = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
         np.add.at(nodal, (slice(None), a), per_node)
         np.add.at(nodal, (slice(None), b), per_node)
-        return points.add_forces(nodal, sigma_p)
+        return points.add_forces(nodal, gain_p)
 
-    def relative_sigmas(U: ComplexArray) -> tuple[FloatArray, FloatArray]:
+    def relative(U: ComplexArray) -> tuple[ComplexArray, ComplexArray]:
         R = H_v - 1j * omega[:, None, None] * 0.5 * (U[:, a] + U[:, b])
         s = np.einsum("wei,ei->we", R, t)
-        normal = R - s[..., None] * t[None]
+        return R - s[..., None] * t[None], s
+
+    def sigmas(normal: ComplexArray, s: ComplexArray) -> tuple[FloatArray, FloatArray]:
         var_n = np.einsum("w,we->e", power, np.sum(np.abs(normal) ** 2, axis=-1))
         var_t = np.einsum("w,we->e", power, np.abs(s) ** 2)
         return np.sqrt(var_n), np.sqrt(var_t)
 
     U = np.zeros((len(omega), mesh.n_nodes, 3), dtype=complex)
     X = np.zeros((len(omega), len(model.body_dof), 6), dtype=complex)
-    sigma_n, sigma_t = relative_sigmas(U)  # step 5: the structure at rest
+    normal, s = relative(U)  # step 5: the structure at rest
+    sigma_n, sigma_t = sigmas(normal, s)
     sigma_b = bodies.sigmas(X, power)
     sigma_p = points.sigmas(U, power)
     history: list[float] = []
     converged = False
     for _ in range(settings.max_iterations):
-        drag = _drag_blocks(t, mesh, rho, sigma_n, sigma_t)
+        drag, _ = lines.linearize(normal, power, sigma_n, sigma_t)
+        gain_p, _ = points.gains(U, power, sigma_p)
         C = model.damping(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]), sigma_b,
-                          points.damping_blocks(sigma_p))
-        F = model.forces(line_forces(drag, sigma_p), bodies.excitation(sigma_b))
+                          points.damping_blocks(gain_p))
+        F = model.forces(line_forces(drag, gain_p), bodies.excitation(sigma_b))
         U, X = model.split(response.solve(C, F, omega))
-        new_n, new_t = relative_sigmas(U)
+        normal, s = relative(U)
+        new_n, new_t = sigmas(normal, s)
         new_b, new_p = bodies.sigmas(X, power), points.sigmas(U, power)
         change = max(_relative_change(new_n, sigma_n), _relative_change(new_t, sigma_t),
                      _relative_change(new_b, sigma_b), _relative_change(new_p, sigma_p))
@@ -449,15 +522,119 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         if change <= settings.tolerance:
             converged = True
             break
+    increment = np.zeros((mesh.n_nodes, 3))
+    if current is not None:  # the mean drag minus the current's steady drag, at the nodes
+        _, per_length = lines.linearize(normal, power, sigma_n, sigma_t)
+        share = per_length * (0.5 * mesh.length0)[:, None]
+        np.add.at(increment, a, share)
+        np.add.at(increment, b, share)
+        if points.nodes.size:
+            increment[points.nodes] += points.gains(U, power, sigma_p)[1]
+    return _Linearized(mesh=mesh, sea=sea, omega=omega, amplitude=amplitude,
+                       spectrum=spectrum, power=power, model=model, response=response,
+                       length=length, t=t, U=U, X=X, sigma_n=sigma_n, sigma_t=sigma_t,
+                       history=history, converged=converged, increment=increment)
+
+
+class _LineDrag:
+    """Linearized line drag per unit length (n_elements, 3, 3): without current Tuah's
+    ``B_DL (I - t t^T) + B_DT t t^T`` (eq. 5.2.1-5.2.2); with the current's mean relative
+    velocity ``W`` (normal) and ``s_bar`` (tangential) at the midpoints,
+    ``c_n G_n + 2 c_t E|s| t t^T`` and the mean drag ``c_n E[|w| w] + c_t E[s|s|] t``
+    (:mod:`moorline.solvers.drag_linearization`), ``c_n = rho C_D D / 2``,
+    ``c_t = rho C_T pi D / 2``."""
+
+    def __init__(self, mesh: Mesh, t: FloatArray, rho: float,
+                 current_mid: FloatArray | None) -> None:
+        self.mesh, self.t, self.rho = mesh, t, rho
+        self.mean = current_mid
+        if current_mid is not None:
+            self.c_n = 0.5 * rho * mesh.Cd * mesh.diameter
+            self.c_t = 0.5 * rho * mesh.Ct * math.pi * mesh.diameter
+            self.s_bar = np.einsum("ei,ei->e", current_mid, t)
+            self.W = current_mid - self.s_bar[:, None] * t
+            self.plane = np.eye(3) - t[:, :, None] * t[:, None, :]
+
+    def linearize(self, normal: ComplexArray, power: FloatArray, sigma_n: FloatArray,
+                  sigma_t: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Drag blocks (n_el, 3, 3) and the mean drag minus the steady current's drag per
+        unit length (n_el, 3) (zeros without current)."""
+        t = self.t
+        if self.mean is None:
+            return _drag_blocks(t, self.mesh, self.rho, sigma_n, sigma_t), np.zeros_like(t)
+        cov = np.einsum("w,wei,wej->eij", power, normal, normal.conj()).real
+        e_f, gain = drag_linearization.vector_expectations(self.W, cov, self.plane)
+        e_s, e_abs = drag_linearization.scalar_expectations(self.s_bar, sigma_t)
+        tt = t[:, :, None] * t[:, None, :]
+        blocks = self.c_n[:, None, None] * gain + (2.0 * self.c_t * e_abs)[:, None, None] * tt
+        steady_n = np.linalg.norm(self.W, axis=1)[:, None] * self.W
+        steady_t = np.abs(self.s_bar) * self.s_bar
+        mean = self.c_n[:, None] * (e_f - steady_n) + (self.c_t * (e_s - steady_t))[:, None] * t
+        return blocks, mean
+
+
+def _mean_state(system: System, settings: StochasticSettings, statics: StaticResult | None,
+                current) -> tuple[_Linearized, StaticResult, dict]:
+    """With a current: the static state with the current's drag, the linearization about
+    it, and the statics re-solved with the mean drag's excess over the current's steady
+    drag as node loads, until the mean positions change by less than ``tolerance`` times
+    the largest displacement standard deviation (module docstring, "Current")."""
+    static_settings = replace(system.first(StaticsSettings), current_drag=True)
+    mesh0 = statics.mesh if statics is not None else discretize(system)
+    base = mesh0.node_force
+
+    def solve(extra: FloatArray, start: FloatArray | None) -> StaticResult:
+        mesh = replace(mesh0, node_force=base + extra)
+        st = equilibrium_for(system, solve_statics(system, static_settings, start, mesh),
+                             "stochastic analysis")
+        return st
+
+    start = None if statics is None else statics.positions
+    state = solve(np.zeros_like(base), start)
+    current_only = state.positions
+    lin = _linearize(system, settings, state, current)
+    iterations, change, ok = 0, math.inf, False
+    while iterations < settings.max_iterations:
+        iterations += 1
+        new = solve(lin.increment, state.positions)
+        std = np.sqrt(np.einsum("w,wnc->nc", lin.power, np.abs(lin.U) ** 2))
+        scale = max(float(std.max(initial=0.0)), 1e-12)
+        change = float(np.abs(new.positions - state.positions).max(initial=0.0)) / scale
+        state = new
+        lin = _linearize(system, settings, state, current)
+        if change <= settings.tolerance:
+            ok = True
+            break
+    state = replace(state, mesh=replace(state.mesh, node_force=base))
+    lin.mesh = replace(lin.mesh, node_force=base)
+    offset = float(np.abs(state.positions - current_only).max(initial=0.0))
+    return lin, state, {"mean_state_iterations": iterations, "mean_state_converged": ok,
+                        "mean_state_change": change, "mean_drag_offset": offset}
+
+
+def _result(system: System, settings: StochasticSettings, statics: StaticResult,
+            lin: _Linearized, outer: dict) -> StochasticResult:
+    """Step 14 and the result: standard deviations, tension transfer and time series."""
+    mesh, omega, power, U, X = lin.mesh, lin.omega, lin.power, lin.U, lin.X
+    history, response, model, sea = lin.history, lin.response, lin.model, lin.sea
+    converged = lin.converged and outer.get("mean_state_converged", True)
     message = (f"{len(history)} linearization iterations, {len(omega)} frequencies "
                f"({settings.method})")
-    if not converged:
+    if outer:
+        message += (f"; mean state with the current's and the waves' mean drag: "
+                    f"{outer['mean_state_iterations']} statics")
+    if not lin.converged:
         message = (f"stochastic analysis of {system.name}: the drag linearization did not "
                    f"converge in {settings.max_iterations} iterations (last change "
                    f"{history[-1]:.3g}); the last iterate is returned")
-    _, dT = element.axial_tension(length, mesh.length0, mesh.EA, mesh.slack_ratio,
+    elif not converged:
+        message = (f"stochastic analysis of {system.name}: the mean state with the mean drag "
+                   f"did not converge in {settings.max_iterations} statics (last change "
+                   f"{outer['mean_state_change']:.3g} of the response std)")
+    a, b = mesh.elements[:, 0], mesh.elements[:, 1]
+    _, dT = element.axial_tension(lin.length, mesh.length0, mesh.EA, mesh.slack_ratio,
                                   mesh.slack_smoothing, **mesh.axial_law)
-    H_T = dT[None] * np.einsum("wei,ei->we", U[:, b] - U[:, a], t)
+    H_T = dT[None] * np.einsum("wei,ei->we", U[:, b] - U[:, a], lin.t)
     u_std = np.sqrt(np.einsum("w,wnc->nc", power, np.abs(U) ** 2))
     T_std = np.sqrt(np.einsum("w,we->e", power, np.abs(H_T) ** 2))
 
@@ -468,25 +645,28 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
 
     def series(H: ComplexArray) -> FloatArray:
         c = np.zeros((n_points // 2 + 1,) + H.shape[1:], dtype=complex)
-        c[1:len(omega) + 1] = H * amplitude.reshape((-1,) + (1,) * (H.ndim - 1))
+        c[1:len(omega) + 1] = H * lin.amplitude.reshape((-1,) + (1,) * (H.ndim - 1))
         return np.fft.irfft(c, n=n_points, axis=0) * n_points
 
     time = sea.record_length * np.arange(n_points) / n_points
+    counters = {"frequencies": len(omega), "dofs": model.K.shape[0],
+                "modes": len(response.lam) if settings.method == "foss" else 0,
+                **({"pole_gap": getattr(response, "pole_gap", np.inf)}
+                   if settings.method == "foss" else {})}
+    if outer:
+        counters.update(mean_state_iterations=outer["mean_state_iterations"],
+                        mean_drag_offset=outer["mean_drag_offset"])
     return StochasticResult(
-        omega=omega, wave_spectrum=spectrum, wave_amplitude=amplitude,
+        omega=omega, wave_spectrum=lin.spectrum, wave_amplitude=lin.amplitude,
         displacement_transfer=U, tension_transfer=H_T, displacement_std=u_std,
-        tension_std=T_std, sigma_normal=sigma_n, sigma_tangential=sigma_t,
+        tension_std=T_std, sigma_normal=lin.sigma_n, sigma_tangential=lin.sigma_t,
         iterations=len(history), history=history, time=time,
         elevation=series(np.ones(len(omega), dtype=complex)),
         displacement=series(U), tension=np.asarray(statics.tension, float)[None] + series(H_T),
         mesh=mesh, settings=settings, d_omega=sea.d_omega,
         body_names=tuple(b.name for b in model.bodies), body_transfer=X,
         body_std=np.sqrt(np.einsum("w,wbc->bc", power, np.abs(X) ** 2)),
-        body_motion=series(X),
-        counters={"frequencies": len(omega), "dofs": model.K.shape[0],
-                  "modes": len(response.lam) if settings.method == "foss" else 0,
-                  **({"pole_gap": getattr(response, "pole_gap", np.inf)}
-                     if settings.method == "foss" else {})},
+        body_motion=series(X), counters=counters,
         success=converged, message=message, case=system.name, units=system.units)
 
 
