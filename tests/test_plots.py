@@ -71,7 +71,8 @@ def test_every_figure_function_returns_a_figure(oc3, single_line, tmp_path: Path
                plot.figure_configuration_xz(single_line),
                plot.figure_tension_history(oc3["dynamics"]),
                plot.figure_motion_history(oc3["dynamics"]),
-               plot.figure_mode_shapes(oc3["modal"])]
+               plot.figure_mode_shapes(oc3["modal"]),
+               plot.figure_snapshots(oc3["dynamics"])]
     assert all(isinstance(fig, Figure) for fig in figures)
     files = plot.plot_statics_group(oc3["statics"], tmp_path)
     assert [f.name for f in files] == ["configuration_xz.png", "configuration_3d.png",
@@ -148,6 +149,22 @@ def test_no_label_overprints_another(oc3) -> None:
     texts = [t.get_text() for t in plot.figure_configuration_xz(oc3["statics"]).axes[0].texts]
     assert any("fairlead2" in t and "fairlead3" in t for t in texts)
     assert any("line2" in t and "line3" in t for t in texts)
+
+
+def test_labels_do_not_cover_the_lines(oc3) -> None:
+    """(c) in the OC3 elevation and plan no label box covers a node of a drawn line."""
+    nodes = _all_nodes(oc3["statics"])
+    for make, plane in ((plot.figure_configuration_xz, [0, 2]),
+                        (plot.figure_configuration_plan, [0, 1])):
+        fig = make(oc3["statics"])
+        fig.canvas.draw()
+        ax = fig.axes[0]
+        pixels = ax.transData.transform(nodes[:, plane])
+        for text in ax.texts:
+            box = text.get_window_extent(fig.canvas.get_renderer())
+            inside = ((pixels[:, 0] >= box.x0) & (pixels[:, 0] <= box.x1)
+                      & (pixels[:, 1] >= box.y0) & (pixels[:, 1] <= box.y1))
+            assert not inside.any(), text.get_text()
 
 
 def test_tension_history_styles_units_and_mbl(oc3) -> None:

@@ -19,10 +19,13 @@ from matplotlib.cm import ScalarMappable
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.text import Text
+from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from numpy.typing import NDArray
 
 from .plot_configuration import (
     CMAP,
+    best_azimuth,
+    bounds,
     figure_configuration_3d,
     figure_configuration_plan,
     figure_configuration_xz,
@@ -80,6 +83,21 @@ def _save(fig: Figure, path: Path) -> None:
     for text in fig.findobj(Text):  # names are printed literally ("$x$" is not mathtext)
         text.set_parse_math(False)
     fig.savefig(path, dpi=150)
+
+
+def _writer(figure, name: str):
+    """``plot_<name>(dataset, path, *args, **kwargs) -> Figure``: ``figure`` saved to
+    ``path`` (PNG; parent directories are created)."""
+
+    def write(dataset: xr.Dataset, path: str | Path, *args, **kwargs) -> Figure:
+        fig = figure(dataset, *args, **kwargs)
+        _save(fig, Path(path))
+        return fig
+
+    write.__name__ = write.__qualname__ = f"plot_{name}"
+    write.__doc__ = (f"Save :func:`figure_{name}` of ``dataset`` to ``path`` (PNG; parent "
+                     "directories are created) and return the Figure.")
+    return write
 
 
 # ----------------------------------------------------------------------------- time histories
@@ -148,11 +166,7 @@ def figure_tension_history(dataset: xr.Dataset) -> Figure:
     return fig
 
 
-def plot_tension_history(dataset: xr.Dataset, path: str | Path) -> Figure:
-    """Save :func:`figure_tension_history` to ``path`` (PNG; parents created); returns it."""
-    fig = figure_tension_history(dataset)
-    _save(fig, Path(path))
-    return fig
+plot_tension_history = _writer(figure_tension_history, "tension_history")
 
 
 def figure_motion_history(dataset: xr.Dataset) -> Figure:
@@ -206,11 +220,7 @@ def figure_motion_history(dataset: xr.Dataset) -> Figure:
     return fig
 
 
-def plot_motion_history(dataset: xr.Dataset, path: str | Path) -> Figure:
-    """Save :func:`figure_motion_history` to ``path`` (PNG; parents created); returns it."""
-    fig = figure_motion_history(dataset)
-    _save(fig, Path(path))
-    return fig
+plot_motion_history = _writer(figure_motion_history, "motion_history")
 
 
 # ----------------------------------------------------------------------------- modes
@@ -310,18 +320,13 @@ def figure_mode_shapes(dataset: xr.Dataset, max_modes: int = 6,
     return fig
 
 
-def plot_mode_shapes(dataset: xr.Dataset, path: str | Path, max_modes: int = 6,
-                     amplitude: float = 0.08) -> Figure:
-    """Save :func:`figure_mode_shapes` to ``path`` (PNG; parents created); returns it."""
-    fig = figure_mode_shapes(dataset, max_modes, amplitude)
-    _save(fig, Path(path))
-    return fig
+plot_mode_shapes = _writer(figure_mode_shapes, "mode_shapes")
 
 
 # ----------------------------------------------------------------------------- parameter studies
 
 
-def plot_sweep_trends(dataset: xr.Dataset, path: str | Path) -> None:
+def figure_sweep_trends(dataset: xr.Dataset) -> Figure:
     """Plot every output of a parameter study against the varied parameter.
 
     One panel per output (rows) and varied parameter (columns). One-at-a-time studies draw
@@ -335,8 +340,6 @@ def plot_sweep_trends(dataset: xr.Dataset, path: str | Path) -> None:
         The table of :func:`moorline.sweep.run_study`: dimension ``case``, coordinate
         ``series`` and one per parameter, one variable per output (attribute ``units``);
         attributes ``study``, ``variations`` and ``quantities`` (comma-separated names).
-    path
-        PNG file to write (parent directories are created).
     """
     outputs = [q for q in str(dataset.attrs.get("quantities", "")).split(",") if q]
     varied = [v for v in str(dataset.attrs.get("variations", "")).split(",") if v]
@@ -365,7 +368,7 @@ def plot_sweep_trends(dataset: xr.Dataset, path: str | Path) -> None:
                 ax.legend(fontsize=7)
     study = str(dataset.attrs.get("study", "")).strip()
     fig.suptitle(f"{study}: steady-state outputs" if study else "Parameter study")
-    _save(fig, Path(path))
+    return fig
 
 
 def _sweep_groups(dataset: xr.Dataset, parameter: str, varied: list[str], series: list[str],
@@ -389,10 +392,9 @@ def _sweep_groups(dataset: xr.Dataset, parameter: str, varied: list[str], series
     return groups
 
 
-__all__ += ["plot_sweep_trends"]
 
 
-def plot_body_motion(dataset: xr.Dataset, path: str | Path) -> None:
+def figure_body_motion(dataset: xr.Dataset) -> Figure:
     """Six panels per run: body surge, sway, heave (positions of the origin) and roll, pitch,
     yaw (the rotation vector, degrees) vs time, one line per body, from a dynamics dataset
     with ``body_pose(time, body, dof)``."""
@@ -412,7 +414,7 @@ def plot_body_motion(dataset: xr.Dataset, path: str | Path) -> None:
         ax.grid(True, lw=0.4)
     fig.axes[0].legend(fontsize=8)
     fig.suptitle(_history_title(dataset, "body motion"))
-    _save(fig, Path(path))
+    return fig
 
 
 def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
@@ -477,35 +479,57 @@ def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
     return fig
 
 
-def plot_snapshots(dataset: xr.Dataset, path: str | Path, times: list[float] | None = None
-                   ) -> None:
+def figure_snapshots(dataset: xr.Dataset, times: list[float] | None = None) -> Figure:
     """The system in 3D at a few times of a dynamics dataset (default: four times spread over
-    the run), one panel each."""
-    time = dataset["time"].values
-    pos = dataset["position"].values
-    el = dataset["element_nodes"].values
+    the run), one panel each: elements coloured by tension (one scale), the same to-scale box
+    holding every node of the run and the seabed, the camera of
+    :func:`moorline.plot_configuration.best_azimuth`."""
+    time = np.asarray(dataset["time"].values, dtype=float)
+    pos = np.asarray(dataset["position"].values, dtype=float)
+    el = np.asarray(dataset["element_nodes"].values, dtype=int)
+    tension = np.asarray(dataset["tension"].values, dtype=float)
     picks = times if times is not None else list(np.linspace(time[0], time[-1], 4))
-    fig = Figure(figsize=(12, 3.6), constrained_layout=True)
-    lo, hi = pos.min(axis=(0, 1)), pos.max(axis=(0, 1))
+    fig = Figure(figsize=(12, 3.8), layout="constrained")
+    seabed = seabed_z(dataset)
+    extent = pos.reshape(-1, 3)
+    if seabed is not None:
+        extent = np.vstack([extent, [[extent[0, 0], extent[0, 1], seabed]]])
+    low, high = bounds(extent)
+    owners = (np.asarray(dataset["element_line"].values).astype(str)
+              if "element_line" in dataset.coords else None)
+    azimuth = best_azimuth(pos[0][el], owners)
+    norm = tension_norm(tension.ravel())
+    length = units_of(dataset)["length"]
+    axes = []
     for k, t in enumerate(picks):
         i = int(np.argmin(np.abs(time - t)))
         ax = fig.add_subplot(1, len(picks), k + 1, projection="3d")
-        p = pos[i]
-        for n1, n2 in el:
-            ax.plot(*zip(p[n1], p[n2], strict=True), color="tab:blue", lw=1.0)
-        ax.set_xlim(lo[0], hi[0])
-        ax.set_ylim(lo[1], hi[1])
-        ax.set_zlim(lo[2], hi[2])
+        collection = Line3DCollection(pos[i][el], cmap=CMAP, norm=norm, linewidths=1.2)
+        collection.set_array(tension[i])
+        ax.add_collection3d(collection)
+        ax.set_xlim(low[0], high[0])
+        ax.set_ylim(low[1], high[1])
+        ax.set_zlim(low[2], high[2])
+        ax.set_box_aspect(tuple(high - low))
+        ax.view_init(elev=20.0, azim=azimuth)
+        ax.set_xlabel(f"x [{length}]", fontsize=7)
+        ax.set_ylabel(f"y [{length}]", fontsize=7)
+        ax.set_zlabel(f"z [{length}]", fontsize=7)
         ax.set_title(f"t = {time[i]:.2f} s", fontsize=9)
+        axes.append(ax)
+    factor, unit = force_scale(max(abs(norm.vmin), abs(norm.vmax)),
+                               str(dataset.attrs.get("units", "SI")))
+    fig.colorbar(ScalarMappable(norm=type(norm)(norm.vmin / factor, norm.vmax / factor),
+                                cmap=CMAP), ax=axes, shrink=0.7, label=f"tension [{unit}]")
     fig.suptitle(_history_title(dataset, "snapshots"))
-    _save(fig, Path(path))
+    return fig
 
 
 # ----------------------------------------------------------------------------- strumming
 
 
-def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
-                   max_modes: int = 6) -> None:
+def figure_strumming(dataset: xr.Dataset, max_elements: int = 4,
+                   max_modes: int = 6) -> Figure:
     """Plot the lift coefficient of a few elements and the modal amplitudes against time.
 
     Parameters
@@ -514,8 +538,6 @@ def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
         A strumming dataset (:meth:`moorline.results.StrummingResult.to_xarray`):
         ``lift_coefficient(time, element)``, ``modal_amplitude(time, mode)`` (modes numbered
         from 1), optional ``omega(mode)`` and the attribute ``CL0`` (drawn as +-C_L0).
-    path
-        PNG file to write (parent directories are created).
     max_elements
         Elements drawn: those with the largest peak ``|C_L|``.
     max_modes
@@ -548,10 +570,10 @@ def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
         ax.legend(fontsize=7, loc="upper right")
     axes[0].set_title(_history_title(dataset, "strumming: lift coefficient and modal "
                                               "amplitudes"))
-    _save(fig, Path(path))
+    return fig
 
 
-def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -> None:
+def figure_stochastic(dataset: xr.Dataset, max_items: int = 3) -> Figure:
     """Plot the wave spectrum with the response spectra of the most responsive node
     displacements and element tensions, and their time series over one record.
 
@@ -559,8 +581,6 @@ def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -
     ----------
     dataset
         A stochastic dataset (:meth:`moorline.results.StochasticResult.to_xarray`).
-    path
-        PNG file to write (parent directories are created).
     max_items
         Nodes and elements drawn: those with the largest standard deviation.
     """
@@ -598,10 +618,10 @@ def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -
         ax.legend(fontsize=7, loc="upper right")
     fig.suptitle(f"stochastic response ({dataset.attrs.get('method', '')}, "
                  f"{dataset.attrs.get('iterations', '?')} linearization iterations)")
-    _save(fig, Path(path))
+    return fig
 
 
-def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> None:
+def figure_harmonic(dataset: xr.Dataset, snapshots: int = 8) -> Figure:
     """Plot the periodic response: snapshots of the lines over one period (x-z, the dynamic
     part magnified to be seen) and the tension range along the elements.
 
@@ -609,8 +629,6 @@ def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> 
     ----------
     dataset
         A harmonic dataset (:meth:`moorline.results.HarmonicResult.to_xarray`).
-    path
-        PNG file to write (parent directories are created).
     snapshots
         Instants drawn, equally spaced over the period.
     """
@@ -645,7 +663,18 @@ def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> 
         a.grid(True, linewidth=0.3)
     fig.suptitle(f"harmonic balance: period {float(dataset.attrs.get('period', 0)):.4g}, "
                  f"{dataset.attrs.get('harmonics', '?')} harmonics")
-    _save(fig, Path(path))
+    return fig
+
+
+plot_sweep_trends = _writer(figure_sweep_trends, "sweep_trends")
+plot_body_motion = _writer(figure_body_motion, "body_motion")
+plot_snapshots = _writer(figure_snapshots, "snapshots")
+plot_strumming = _writer(figure_strumming, "strumming")
+plot_stochastic = _writer(figure_stochastic, "stochastic")
+plot_harmonic = _writer(figure_harmonic, "harmonic")
+__all__ += ["figure_body_motion", "figure_harmonic", "figure_snapshots", "figure_stochastic",
+            "figure_strumming", "figure_sweep_trends", "plot_body_motion", "plot_harmonic",
+            "plot_snapshots", "plot_stochastic", "plot_strumming", "plot_sweep_trends"]
 
 
 # ----------------------------------------------------------------------------- per analysis group
@@ -721,10 +750,8 @@ __all__ += ["plot_dynamics_group", "plot_harmonic_group", "plot_modal_group",
             "plot_statics_group", "plot_stochastic_group", "plot_strumming_group"]
 
 
-def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
-                       prefix: str = "") -> list[Path]:
-    """``fatigue.png``: fatigue life [years] along every line (per element) for each method."""
-    path = Path(directory) / f"{prefix}fatigue.png"
+def figure_fatigue(dataset: xr.Dataset) -> Figure:
+    """The fatigue life [years] along every line (per element) for each method."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
     lines = [str(v) for v in dataset["element_line"].values]
@@ -745,14 +772,19 @@ def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
     ax.legend(fontsize=7)
     fig.suptitle(f"fatigue ({dataset.attrs.get('source', '')}): "
                  f"{dataset.attrs.get('curves', '')}", fontsize=9)
-    _save(fig, path)
+    return fig
+
+
+def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
+                       prefix: str = "") -> list[Path]:
+    """``fatigue.png``: :func:`figure_fatigue`."""
+    path = Path(directory) / f"{prefix}fatigue.png"
+    _save(figure_fatigue(dataset), path)
     return [path]
 
 
-def plot_extremes_group(dataset: xr.Dataset, directory: str | Path,
-                        prefix: str = "") -> list[Path]:
-    """``extremes.png``: most probable maximum element tension along every line."""
-    path = Path(directory) / f"{prefix}extremes.png"
+def figure_extremes(dataset: xr.Dataset) -> Figure:
+    """The most probable maximum element tension along every line."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
     lines = [str(v) for v in dataset["element_line"].values]
@@ -769,8 +801,16 @@ def plot_extremes_group(dataset: xr.Dataset, directory: str | Path,
     ax.legend(fontsize=7)
     fig.suptitle(f"extremes ({dataset.attrs.get('method', '')}) over "
                  f"{float(dataset.attrs.get('duration', 0)):.6g} s", fontsize=9)
-    _save(fig, path)
+    return fig
+
+
+def plot_extremes_group(dataset: xr.Dataset, directory: str | Path,
+                       prefix: str = "") -> list[Path]:
+    """``extremes.png``: :func:`figure_extremes`."""
+    path = Path(directory) / f"{prefix}extremes.png"
+    _save(figure_extremes(dataset), path)
     return [path]
 
 
-__all__ += ["plot_extremes_group", "plot_fatigue_group"]
+__all__ += ["figure_extremes", "figure_fatigue", "plot_extremes_group",
+            "plot_fatigue_group"]

@@ -133,10 +133,7 @@ def _figure_2d(dataset: xr.Dataset, plane: tuple[int, int], view: str) -> Figure
             elements = np.flatnonzero(owners == name)
             mid = seg[elements[len(elements) // 2]].mean(axis=0)
             labels.append((name, mid[plane[0]], mid[plane[1]], _LINE_LABEL))
-    ax.autoscale_view()
-    if plane[1] == 2:  # the free surface in view
-        low, high = ax.get_ylim()
-        ax.set_ylim(low, max(high, 0.05 * (high - low)))
+    ax.autoscale_view()  # the free surface (axhline) included
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(f"x [{units['length']}]")
     ax.set_ylabel(f"{'xyz'[plane[1]]} [{units['length']}]")
@@ -145,7 +142,9 @@ def _figure_2d(dataset: xr.Dataset, plane: tuple[int, int], view: str) -> Figure
     if plane[1] == 2:
         ax.legend(loc="lower right", fontsize=8)
     _colourbar(fig, ax, norm, dataset)
-    place_labels(ax, labels)
+    along = seg[:, 0, None, :] + np.linspace(0.0, 1.0, 6)[None, :, None] * (
+        seg[:, 1, None, :] - seg[:, 0, None, :])
+    place_labels(ax, labels, avoid=along[..., list(plane)].reshape(-1, 2))
     return fig
 
 

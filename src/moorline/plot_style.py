@@ -74,14 +74,17 @@ def _offsets() -> list[tuple[float, float]]:
 
 
 def place_labels(ax: Axes, labels: Sequence[tuple[str, float, float, dict[str, Any]]],
-                 merge_pixels: float = 6.0) -> list[Annotation]:
+                 merge_pixels: float = 6.0,
+                 avoid: np.ndarray | None = None) -> list[Annotation]:
     """Annotate points so that no two labels overlap.
 
     Labels whose anchors fall within ``merge_pixels`` of each other on screen (points that
     coincide in this view) are written once, their texts joined by commas. Each label then
     takes the first offset (eight directions, growing distances) at which its box overlaps
-    no label already placed and stays inside the axes. The figure is drawn once first and
-    its layout then frozen, so the boxes measured are those saved.
+    no label already placed, stays inside the axes and covers none of the ``avoid`` points
+    (the drawn lines; when no offset clears them, the first that meets the other two). The
+    figure is drawn once first and its layout then frozen, so the boxes measured are those
+    saved.
 
     Parameters
     ----------
@@ -91,6 +94,8 @@ def place_labels(ax: Axes, labels: Sequence[tuple[str, float, float, dict[str, A
         ``(text, x, y, text keywords)`` in data coordinates.
     merge_pixels
         Screen distance under which anchors are merged.
+    avoid
+        Data points ``(n, 2)`` no label should cover (points along the drawn lines).
 
     Returns
     -------
@@ -113,13 +118,13 @@ def place_labels(ax: Axes, labels: Sequence[tuple[str, float, float, dict[str, A
         else:
             merged.append([[text], x, y, pixel, style])
     frame = ax.get_window_extent(renderer)
+    obstacles = (ax.transData.transform(np.asarray(avoid, dtype=float)) if avoid is not None
+                 else np.zeros((0, 2)))
     placed: list[Annotation] = []
     boxes = []
     for texts, x, y, _, style in merged:
-        annotation = None
+        fallback = None
         for dx, dy in _offsets():
-            if annotation is not None:
-                annotation.remove()
             annotation = ax.annotate(", ".join(texts), (x, y), xytext=(dx, dy),
                                      textcoords="offset points",
                                      ha="left" if dx > 0 else "right" if dx < 0 else "center",
@@ -129,8 +134,25 @@ def place_labels(ax: Axes, labels: Sequence[tuple[str, float, float, dict[str, A
             box = annotation.get_window_extent(renderer).expanded(1.05, 1.1)
             inside = (box.x0 >= frame.x0 and box.x1 <= frame.x1 and box.y0 >= frame.y0
                       and box.y1 <= frame.y1)
-            if inside and not any(box.overlaps(other) for other in boxes):
+            if not inside or any(box.overlaps(other) for other in boxes):
+                annotation.remove()
+                continue
+            covered = np.any((obstacles[:, 0] >= box.x0) & (obstacles[:, 0] <= box.x1)
+                             & (obstacles[:, 1] >= box.y0) & (obstacles[:, 1] <= box.y1))
+            if not covered:
+                if fallback is not None:
+                    fallback.remove()
+                fallback = annotation
                 break
-        boxes.append(annotation.get_window_extent(renderer))
-        placed.append(annotation)
+            if fallback is None:
+                fallback = annotation
+            else:
+                annotation.remove()
+        if fallback is None:  # nowhere free: the first offset
+            dx, dy = _offsets()[0]
+            fallback = ax.annotate(", ".join(texts), (x, y), xytext=(dx, dy),
+                                   textcoords="offset points", annotation_clip=False, **style)
+            fallback.set_parse_math(False)
+        boxes.append(fallback.get_window_extent(renderer))
+        placed.append(fallback)
     return placed
