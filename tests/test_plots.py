@@ -185,8 +185,10 @@ def test_tension_history_styles_units_and_mbl(oc3) -> None:
     fairlead = ds["end_tension"].values[:, :, 1]
     np.testing.assert_allclose(curves[0].get_ydata(), fairlead[:, 0] / 1e6)
     mbl = [c for c in ax.get_lines() if c.get_label().startswith("MBL")]
-    assert len(mbl) == 1
-    np.testing.assert_allclose(mbl[0].get_ydata(), ds.attrs["line_MBL"][0] / 1e6)
+    assert len(mbl) == 1  # the three lines share one MBL: one line, one label
+    # R3 studless chain, d = 62.5 mm: MBL = 0.0223 d^2 (44 - 0.08 d) kN (DNV-OS-E302)
+    np.testing.assert_allclose(mbl[0].get_ydata(), 0.0223 * 62.5**2 * (44 - 0.08 * 62.5) / 1e3,
+                               rtol=1e-6)
     ds_unknown = ds.copy()
     ds_unknown.attrs["line_MBL"] = np.full(3, np.nan)
     lines = plot.figure_tension_history(ds_unknown).axes[0].get_lines()
@@ -236,19 +238,28 @@ def test_motion_history_draws_only_what_moves(oc3) -> None:
 
 def test_mode_shapes_say_arbitrary_and_stay_above_the_seabed(oc3) -> None:
     """(j) every panel says the amplitude is arbitrary; no drawn node of an elevation
-    panel is below the seabed."""
+    panel is below the seabed. OC3 single line, eight modes: scaled as before (largest
+    displacement 8 % of the system), modes 5 and 7 reach ~30 m into the seabed."""
     fig = plot.figure_mode_shapes(oc3["modal"])
     assert "arbitrary" in fig.get_suptitle()
     panels = [ax for ax in fig.axes if ax.get_title()]
     assert len(panels) == 6
     assert all("amplitude arbitrary" in ax.get_title() for ax in panels)
-    for ax in panels:
-        if ax.get_ylabel() != "z [m]":
-            continue
+    ds = solve_modes(load_case(OC3_LINE)).to_xarray()
+    position, shapes = ds["position"].values, ds["mode_shape"].values[:8]
+    size = np.ptp(position, axis=0).max()
+    old = [(position + s * (0.08 * size / np.abs(s).max()))[:, 2].min() for s in shapes]
+    assert min(old) < -340.0  # the old drawing went through the seabed
+    fig = plot.figure_mode_shapes(ds, max_modes=8)
+    elevations = [ax for ax in fig.axes if ax.get_ylabel() == "z [m]"]
+    assert len(elevations) >= 4
+    for ax in elevations:
         (shape,) = [c for c in ax.collections
                     if isinstance(c, LineCollection) and c.get_gid() == "mode shape"]
-        z = np.concatenate([s[:, 1] for s in shape.get_segments()])
-        assert z.min() >= -320.0
+        drawn = np.array(shape.get_segments())
+        assert drawn[..., 1].min() >= -320.0
+        static = position[ds["element_nodes"].values][..., [0, 2]]
+        assert np.abs(drawn - static).max() > 0.01 * size  # still visible, not scaled away
 
 
 def test_animation_has_units_seabed_and_tension_colours(oc3, tmp_path: Path) -> None:
@@ -265,3 +276,16 @@ def test_animation_has_units_seabed_and_tension_colours(oc3, tmp_path: Path) -> 
     (coloured,) = [c for c in ax.collections if isinstance(c, LineCollection)
                    and c.get_array() is not None]
     np.testing.assert_allclose(coloured.get_array(), oc3["dynamics"]["tension"].values[-1])
+
+
+def test_display_scale_by_hand() -> None:
+    """(j) two nodes 10 and 15 m above a seabed at -20 m: the sign and factor worked out by
+    hand (a mode's sign is free; the factor shrinks until a node touches the seabed, and
+    the drawing is clipped when it would shrink under a quarter)."""
+    position = np.array([[0.0, 0.0, -10.0], [1.0, 0.0, -5.0]])
+    down_only = np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 0.0]])
+    assert plot.display_scale(position, down_only, 5.0, -20.0) == (-5.0, False)
+    both = np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])  # room 10 (sign +), 15 (sign -)
+    assert plot.display_scale(position, both, 20.0, -20.0) == (-15.0, False)
+    assert plot.display_scale(position, both, 100.0, -20.0) == (-100.0, True)
+    assert plot.display_scale(position, both, 100.0, None) == (100.0, False)

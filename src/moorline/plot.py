@@ -227,18 +227,18 @@ plot_motion_history = _writer(figure_motion_history, "motion_history")
 
 
 def display_scale(position: NDArray[np.float64], shape: NDArray[np.float64], target: float,
-                  seabed: float | None) -> tuple[float, bool]:
+                  seabed: float | None, tolerance: float = 0.0) -> tuple[float, bool]:
     """The signed factor a mode shape is drawn with, and whether the drawing must still be
     clipped at the seabed.
 
     A mode's sign and amplitude are arbitrary: the sign is the one that lets the nodes move
-    farthest before one reaches the seabed, and the factor ``target`` is reduced to keep
-    every node above it, unless that would shrink it under a quarter (then the drawing is
-    clipped at the seabed instead).
+    farthest before one goes ``tolerance`` below the seabed (nodes resting on it count from
+    it), and the factor ``target`` is reduced to keep every node above that, unless that
+    would shrink it under a quarter (then the drawing is clipped at the seabed instead).
     """
     if seabed is None:
         return target, False
-    height = np.maximum(position[:, 2] - seabed, 0.0)
+    height = np.maximum(position[:, 2] - seabed, 0.0) + tolerance
     best, room = 1.0, -1.0
     for sign in (1.0, -1.0):
         down = sign * shape[:, 2] < 0
@@ -260,7 +260,9 @@ def figure_mode_shapes(dataset: xr.Dataset, max_modes: int = 6,
     and the seabed), modes dominated by y in the x-y plan view. A mode shape has no
     absolute amplitude (the figure says so): each is drawn with its largest node
     displacement ``amplitude`` times the size of the system, reduced (or, when it would
-    vanish, clipped) so that no node is drawn below the seabed (:func:`display_scale`).
+    vanish, clipped) so that no node is drawn below the seabed (:func:`display_scale`, with
+    0.2 % of the system's size, under a line width, as tolerance; the drawing is then
+    clipped at the seabed).
 
     Parameters
     ----------
@@ -293,7 +295,7 @@ def figure_mode_shapes(dataset: xr.Dataset, max_modes: int = 6,
         plane = [0, 1] if dominant == "y" else [0, 2]
         largest = max(float(np.abs(shapes[k]).max(initial=0.0)), np.finfo(float).tiny)
         scale, clip = display_scale(position, shapes[k], amplitude * size / largest,
-                                    seabed if plane[1] == 2 else None)
+                                    seabed if plane[1] == 2 else None, 2e-3 * size)
         moved = position + shapes[k] * scale
         if seabed is not None and plane[1] == 2:
             moved[:, 2] = np.maximum(moved[:, 2], seabed)
@@ -439,7 +441,7 @@ def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
     length = units_of(dataset)["length"]
     a, b = (0, 2) if view == "xz" else (0, 1)
     picks = np.unique(np.linspace(0, len(time) - 1, min(frames, len(time))).astype(int))
-    fig = Figure(figsize=(8, 5), layout="constrained")
+    fig = Figure(figsize=(9.0, 4.5), layout="constrained")
     FigureCanvasAgg(fig)
     ax = fig.add_subplot(1, 1, 1)
     lo, hi = pos[..., [a, b]].min(axis=(0, 1)), pos[..., [a, b]].max(axis=(0, 1))
@@ -462,9 +464,9 @@ def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
     collection.set_array(tension[picks[0]])
     ax.add_collection(collection)
     fig.colorbar(ScalarMappable(norm=type(norm)(norm.vmin / factor, norm.vmax / factor),
-                                cmap=CMAP), ax=ax, label=f"tension [{unit}]")
-    if b == 2:
-        ax.legend(loc="lower right", fontsize=8)
+                                cmap=CMAP), ax=ax, shrink=0.8, label=f"tension [{unit}]")
+    if b == 2:  # below the axes, where it hides no line
+        fig.legend(loc="outside lower center", ncols=2, fontsize=8, frameon=False)
     title = ax.set_title("")
 
     def draw(i: int):
@@ -634,7 +636,9 @@ def figure_harmonic(dataset: xr.Dataset, snapshots: int = 8) -> Figure:
     """
     pos = np.asarray(dataset["position"].values, dtype=float)
     static = np.asarray(dataset["static_position"].values, dtype=float)
-    tension = np.asarray(dataset["tension"].values, dtype=float)
+    factor, unit = force_scale(float(np.nanmax(np.abs(dataset["tension"].values), initial=0.0)),
+                               str(dataset.attrs.get("units", "SI")))
+    tension = np.asarray(dataset["tension"].values, dtype=float) / factor
     dyn = pos - pos.mean(axis=0)[None]
     span = float(np.ptp(static[:, [0, 2]], axis=0).max()) or 1.0
     amp = float(np.abs(dyn).max()) or 1.0
@@ -648,8 +652,9 @@ def figure_harmonic(dataset: xr.Dataset, snapshots: int = 8) -> Figure:
         ax.plot(shape[order, 0], shape[order, 2], linewidth=0.8,
                 label=f"t/T = {j / len(pos):.2f}")
     ax.plot(static[order, 0], static[order, 2], "k--", linewidth=0.8, label="static")
-    ax.set_xlabel("x")
-    ax.set_ylabel("z")
+    length = units_of(dataset)["length"]
+    ax.set_xlabel(f"x [{length}]")
+    ax.set_ylabel(f"z [{length}]")
     ax.set_title(f"one period (dynamic part x {scale:.3g})")
     ax.legend(fontsize=7)
     elements = np.arange(tension.shape[1]) + 1
@@ -657,7 +662,7 @@ def figure_harmonic(dataset: xr.Dataset, snapshots: int = 8) -> Figure:
                       label="range over the period")
     ax_t.plot(elements, tension.mean(axis=0), "k", linewidth=0.8, label="mean")
     ax_t.set_xlabel("element")
-    ax_t.set_ylabel("tension")
+    ax_t.set_ylabel(f"tension [{unit}]")
     ax_t.legend(fontsize=7)
     for a in (ax, ax_t):
         a.grid(True, linewidth=0.3)
