@@ -194,6 +194,8 @@ def test_tension_history_styles_units_and_mbl(oc3) -> None:
     lines = plot.figure_tension_history(ds_unknown).axes[0].get_lines()
     assert not [c for c in lines if c.get_label().startswith("MBL")]
     assert plot.figure_tension_history(ds_unknown).axes[0].get_ylabel().endswith("[kN]")
+    ds_unknown.attrs["units"] = "US"  # the same numbers read as lbf: kip
+    assert plot.figure_tension_history(ds_unknown).axes[0].get_ylabel().endswith("[kip]")
 
 
 def test_force_scale_steps() -> None:
