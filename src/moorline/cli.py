@@ -196,8 +196,8 @@ def statics(case: Path, out: Path, as_json: bool, plots: bool | None, quiet: boo
     """Solve the static equilibrium of CASE (the method of its first statics analysis).
 
     Writes DIR/<case>/results.nc (group statics), summary.json, summary.txt, report.html,
-    configuration_xz.png and configuration_3d.png (the plots not with --json unless --plots
-    is given, nor with --no-plots).
+    configuration_xz.png, configuration_3d.png and configuration_plan.png (the plots not
+    with --json unless --plots is given, nor with --no-plots).
     """
     _configure_logging(verbose)
     system = _load(case, quiet)
@@ -502,7 +502,8 @@ def _g(value: Any) -> str:
 def plot(results: Path, out: Path | None, animate: bool, quiet: bool, verbose: bool) -> None:
     """Plot a saved RESULTS file (results.nc) again.
 
-    Statics groups give configuration_xz.png and configuration_3d.png, dynamics groups
+    Statics groups give configuration_xz.png, configuration_3d.png and
+    configuration_plan.png, dynamics groups
     tension_history.png and motion_history.png (and body_motion.png, snapshots_3d.png with
     bodies; with --animate, animation.gif); modal, strumming, stochastic and harmonic groups
     their own plot (mode_shapes.png, strumming.png, stochastic.png, harmonic.png); prefixed

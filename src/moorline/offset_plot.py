@@ -19,16 +19,12 @@ _MARKERS = ("o", "s", "^", "v", "D", "x")
 
 
 def force_scale(values: np.ndarray, unit: str) -> tuple[float, str]:
-    """A divisor and unit label for forces of this magnitude: kN or MN (kip for lbf)."""
+    """A divisor and unit label for forces of this magnitude (:func:`moorline.plot_style.
+    force_scale`; ``unit`` the dataset's force unit, ``N`` or ``lbf``)."""
+    from .plot_style import force_scale as scale
+
     largest = float(np.nanmax(np.abs(values), initial=0.0))
-    if unit == "N":
-        if largest >= 1e6:
-            return 1e6, "MN"
-        if largest >= 1e3:
-            return 1e3, "kN"
-    if unit == "lbf" and largest >= 1e3:
-        return 1e3, "kip"
-    return 1.0, unit
+    return scale(largest, "US" if unit == "lbf" else "SI")
 
 
 def plot_offset(dataset: xr.Dataset) -> Figure:

@@ -2,7 +2,9 @@
 
 Figures are built with the object-oriented API (:class:`matplotlib.figure.Figure` on a
 :class:`~matplotlib.backends.backend_agg.FigureCanvasAgg`), so importing this module changes no
-global matplotlib state and works without a display.
+global matplotlib state and works without a display. Every ``figure_*`` function takes a
+dataset and returns the Figure (for notebooks); the ``plot_*`` functions also save it, and the
+``plot_*_group(dataset, directory, prefix)`` functions write the files of ``moorline run``.
 """
 
 from __future__ import annotations
@@ -15,25 +17,37 @@ import xarray as xr
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.cm import ScalarMappable
 from matplotlib.collections import LineCollection
-from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 from matplotlib.text import Text
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from numpy.typing import NDArray
 
+from .plot_configuration import (
+    CMAP,
+    best_azimuth,
+    bounds,
+    figure_configuration_3d,
+    figure_configuration_plan,
+    figure_configuration_xz,
+    seabed_z,
+    tension_norm,
+    units_of,
+)
 from .plot_envelope import plot_tension_envelope
+from .plot_style import curve_styles, draw_water_levels, force_scale
 
-__all__ = ["plot_configuration", "plot_mode_shapes", "plot_motion_history",
+__all__ = ["figure_configuration_3d", "figure_configuration_plan", "figure_configuration_xz",
+           "figure_mode_shapes", "figure_motion_history", "figure_tension_history",
+           "plot_configuration", "plot_mode_shapes", "plot_motion_history",
            "plot_tension_history"]
 
-CMAP = "viridis"
-_MARKERS = {"fixed": ("s", "black"), "prescribed": ("^", "tab:red"), "free": ("o", "tab:blue")}
-_UNITS = {"SI": {"force": "N", "length": "m"}, "US": {"force": "lbf", "length": "ft"}}
 _MOVING = ("free", "prescribed")
 
 
-def plot_configuration(dataset: xr.Dataset, path_xz: str | Path, path_3d: str | Path) -> None:
-    """Plot a static configuration: an x-z elevation and a 3D view, elements coloured by tension.
+def plot_configuration(dataset: xr.Dataset, path_xz: str | Path, path_3d: str | Path,
+                       path_plan: str | Path | None = None) -> list[Figure]:
+    """Save the x-z elevation, the 3-D view and (with ``path_plan``) the x-y plan of a
+    static configuration (:mod:`moorline.plot_configuration`).
 
     Parameters
     ----------
@@ -44,237 +58,49 @@ def plot_configuration(dataset: xr.Dataset, path_xz: str | Path, path_3d: str | 
         ``point_position(point, xyz)`` and the coordinates ``element_line`` and
         ``point_kind``; attributes ``units`` (``SI`` or ``US``), ``case`` and
         optionally ``seabed_z`` (drawn when finite).
-    path_xz, path_3d
+    path_xz, path_3d, path_plan
         PNG files to write (parent directories are created).
+
+    Returns
+    -------
+    list of Figure
+        The figures saved, in the order of the paths.
     """
-    segments, tension = _segments(dataset)
-    units = _UNITS.get(str(dataset.attrs.get("units", "SI")), _UNITS["SI"])
-    norm = _norm(tension)
-    _plot_xz(dataset, segments, tension, norm, units, Path(path_xz))
-    _plot_3d(dataset, segments, tension, norm, units, Path(path_3d))
-
-
-def _segments(dataset: xr.Dataset) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    position = np.asarray(dataset["position"].values, dtype=float)
-    if position.ndim == 3:  # a time history: plot the last instant
-        position = position[-1]
-    connectivity = np.asarray(dataset["element_nodes"].values, dtype=int)
-    tension = np.asarray(dataset["tension"].values, dtype=float)
-    if tension.ndim == 2:
-        tension = tension[-1]
-    return position[connectivity], tension
-
-
-def _norm(tension: NDArray[np.float64]) -> Normalize:
-    finite = tension[np.isfinite(tension)]
-    low, high = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
-    if high <= low:
-        pad = max(abs(high) * 0.01, 1.0)
-        low, high = low - pad, high + pad
-    return Normalize(vmin=low, vmax=high)
-
-
-def _seabed_z(dataset: xr.Dataset) -> float | None:
-    value = dataset.attrs.get("seabed_z")
-    if value is None:
-        return None
-    z = float(np.asarray(value).ravel()[0])
-    return z if math.isfinite(z) else None
-
-
-def _points(dataset: xr.Dataset) -> list[tuple[str, str, NDArray[np.float64]]]:
-    """(name, kind, position) of each named point, when the dataset has them."""
-    if "point_position" not in dataset:
-        return []
-    positions = np.asarray(dataset["point_position"].values, dtype=float)
-    if positions.ndim == 3:
-        positions = positions[-1]
-    names = [str(n) for n in dataset["point"].values]
-    kinds = ([str(k) for k in dataset["point_kind"].values] if "point_kind" in dataset.coords
-             else [""] * len(names))
-    return list(zip(names, kinds, positions, strict=True))
-
-
-def _title(dataset: xr.Dataset, view: str) -> str:
-    case = str(dataset.attrs.get("case", "")).strip()
-    return f"{case}: static configuration, {view}" if case else f"Static configuration, {view}"
+    figures = [figure_configuration_xz(dataset), figure_configuration_3d(dataset)]
+    paths = [path_xz, path_3d]
+    if path_plan is not None:
+        figures.append(figure_configuration_plan(dataset))
+        paths.append(path_plan)
+    for fig, path in zip(figures, paths, strict=True):
+        _save(fig, Path(path))
+    return figures
 
 
 def _save(fig: Figure, path: Path) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
-    FigureCanvasAgg(fig)
+    if not isinstance(fig.canvas, FigureCanvasAgg):
+        FigureCanvasAgg(fig)
     for text in fig.findobj(Text):  # names are printed literally ("$x$" is not mathtext)
         text.set_parse_math(False)
     fig.savefig(path, dpi=150)
 
 
-def _plot_xz(dataset: xr.Dataset, segments: NDArray[np.float64], tension: NDArray[np.float64],
-             norm: Normalize, units: dict[str, str], path: Path) -> None:
-    fig = Figure(figsize=(9.0, 5.0), layout="constrained")
-    ax = fig.add_subplot()
-    collection = LineCollection(segments[:, :, [0, 2]], cmap=CMAP, norm=norm, linewidths=2.0)
-    collection.set_array(tension)
-    ax.add_collection(collection)
-    seabed = _seabed_z(dataset)
-    if seabed is not None:
-        ax.axhline(seabed, color="saddlebrown", linewidth=1.2, label="seabed")
-    for name, kind, xyz in _points(dataset):
-        marker, colour = _MARKERS.get(kind, ("o", "tab:gray"))
-        ax.plot(xyz[0], xyz[2], marker=marker, color=colour, markersize=6, linestyle="none")
-        ax.annotate(name, (xyz[0], xyz[2]), textcoords="offset points", xytext=(5, 5),
-                    fontsize=8)
-    _label_lines(ax, dataset, segments)
-    ax.autoscale_view()
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(f"x [{units['length']}]")
-    ax.set_ylabel(f"z [{units['length']}]")
-    ax.set_title(_title(dataset, "x-z elevation"))
-    ax.grid(True, linewidth=0.3)
-    if seabed is not None:
-        ax.legend(loc="best", fontsize=8)
-    fig.colorbar(ScalarMappable(norm=norm, cmap=CMAP), ax=ax,
-                 label=f"tension [{units['force']}]")
-    _save(fig, path)
+def _writer(figure, name: str):
+    """``plot_<name>(dataset, path, *args, **kwargs) -> Figure``: ``figure`` saved to
+    ``path`` (PNG; parent directories are created)."""
 
+    def write(dataset: xr.Dataset, path: str | Path, *args, **kwargs) -> Figure:
+        fig = figure(dataset, *args, **kwargs)
+        _save(fig, Path(path))
+        return fig
 
-def _label_lines(ax, dataset: xr.Dataset, segments: NDArray[np.float64]) -> None:
-    """Write each line's id next to its middle element (only when there are several lines)."""
-    if "element_line" not in dataset.coords:
-        return
-    owners = np.array([str(v) for v in dataset["element_line"].values])
-    names = list(dict.fromkeys(owners))
-    if len(names) < 2:
-        return
-    for name in names:
-        elements = np.flatnonzero(owners == name)
-        mid = segments[elements[len(elements) // 2]].mean(axis=0)
-        ax.annotate(name, (mid[0], mid[2]), textcoords="offset points", xytext=(0, -12),
-                    fontsize=7, color="dimgray", style="italic", ha="center")
-
-
-def _plot_3d(dataset: xr.Dataset, segments: NDArray[np.float64], tension: NDArray[np.float64],
-             norm: Normalize, units: dict[str, str], path: Path) -> None:
-    fig = Figure(figsize=(8.0, 6.5), layout="constrained")
-    ax = fig.add_subplot(projection="3d")
-    collection = Line3DCollection(segments, cmap=CMAP, norm=norm, linewidths=2.0)
-    collection.set_array(tension)
-    ax.add_collection3d(collection)
-    points = _points(dataset)
-    for name, kind, xyz in points:
-        marker, colour = _MARKERS.get(kind, ("o", "tab:gray"))
-        ax.scatter(*xyz, marker=marker, color=colour, s=25, depthshade=False)
-        ax.text(*xyz, f" {name}", fontsize=8)
-    low, high = _bounds(segments, points)
-    seabed = _seabed_z(dataset)
-    if seabed is not None:
-        xx, yy = np.meshgrid([low[0], high[0]], [low[1], high[1]])
-        ax.plot_surface(xx, yy, np.full_like(xx, seabed), color="saddlebrown", alpha=0.15)
-        low[2], high[2] = min(low[2], seabed), max(high[2], seabed)
-    ax.set_xlim(low[0], high[0])
-    ax.set_ylim(low[1], high[1])
-    ax.set_zlim(low[2], high[2])
-    ax.set_box_aspect(tuple(high - low))
-    ax.view_init(elev=20.0, azim=-60.0)
-    for axis, setter in zip("xyz", (ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), strict=True):
-        setter(f"{axis} [{units['length']}]")
-    ax.set_title(_title(dataset, "3D view"))
-    fig.colorbar(ScalarMappable(norm=norm, cmap=CMAP), ax=ax, shrink=0.6,
-                 label=f"tension [{units['force']}]")
-    _save(fig, path)
-
-
-def _bounds(segments: NDArray[np.float64],
-            points: list[tuple[str, str, NDArray[np.float64]]]) -> tuple[NDArray, NDArray]:
-    """Padded axis limits around all nodes and points; no axis shorter than a fifth of the
-    longest, so that planar configurations still get a readable box."""
-    xyz = segments.reshape(-1, 3)
-    if points:
-        xyz = np.vstack([xyz, [p for _, _, p in points]])
-    xyz = xyz[np.all(np.isfinite(xyz), axis=1)]
-    if not len(xyz):
-        return np.full(3, -1.0), np.full(3, 1.0)
-    low, high = xyz.min(axis=0), xyz.max(axis=0)
-    longest = max(float(np.max(high - low)), 1e-9)
-    half = np.maximum((high - low) / 2, 0.1 * longest) + 0.05 * longest
-    centre = (high + low) / 2
-    return centre - half, centre + half
+    write.__name__ = write.__qualname__ = f"plot_{name}"
+    write.__doc__ = (f"Save :func:`figure_{name}` of ``dataset`` to ``path`` (PNG; parent "
+                     "directories are created) and return the Figure.")
+    return write
 
 
 # ----------------------------------------------------------------------------- time histories
-
-
-def plot_tension_history(dataset: xr.Dataset, path: str | Path) -> None:
-    """Plot the end-B (fairlead) tension of every line against time.
-
-    Parameters
-    ----------
-    dataset
-        A dynamics dataset (:meth:`moorline.results.DynamicResult.to_xarray` or the
-        ``dynamics`` group of a ``results.nc`` read back) with ``time`` and
-        ``end_force(time, line, end, xyz)`` (or ``end_tension(time, line, end)``); attributes
-        ``units`` and ``case``.
-    path
-        PNG file to write (parent directories are created).
-    """
-    units = _UNITS.get(str(dataset.attrs.get("units", "SI")), _UNITS["SI"])
-    time = np.asarray(dataset["time"].values, dtype=float)
-    if "end_tension" in dataset:
-        tension = np.asarray(dataset["end_tension"].values, dtype=float)
-    else:
-        tension = np.linalg.norm(np.asarray(dataset["end_force"].values, dtype=float), axis=-1)
-    fig = Figure(figsize=(9.0, 4.5), layout="constrained")
-    ax = fig.add_subplot()
-    for k, line in enumerate(str(n) for n in dataset["line"].values):
-        ax.plot(time, tension[:, k, 1], linewidth=1.0, label=line)
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel(f"end B tension [{units['force']}]")
-    ax.set_title(_history_title(dataset, "line tension at end B"))
-    ax.grid(True, linewidth=0.3)
-    if len(dataset["line"]):
-        fig.legend(loc="outside right upper", fontsize=8)
-    _save(fig, Path(path))
-
-
-def plot_motion_history(dataset: xr.Dataset, path: str | Path) -> None:
-    """Plot x and z of every free and prescribed point against time (two panels).
-
-    Parameters
-    ----------
-    dataset
-        A dynamics dataset with ``time``, ``position(time, node, xyz)``, ``point_node(point)``
-        and the coordinate ``point_kind`` (without it every point is drawn).
-    path
-        PNG file to write (parent directories are created).
-    """
-    units = _UNITS.get(str(dataset.attrs.get("units", "SI")), _UNITS["SI"])
-    time = np.asarray(dataset["time"].values, dtype=float)
-    position = np.asarray(dataset["position"].values, dtype=float)
-    names = [str(n) for n in dataset["point"].values]
-    kinds = ([str(k) for k in dataset["point_kind"].values] if "point_kind" in dataset.coords
-             else [_MOVING[0]] * len(names))
-    nodes = (np.asarray(dataset["point_node"].values, dtype=int) if "point_node" in dataset
-             else np.arange(len(names)))
-    fig = Figure(figsize=(9.0, 6.0), layout="constrained")
-    axes = fig.subplots(2, 1, sharex=True)
-    drawn = 0
-    for name, kind, node in zip(names, kinds, nodes, strict=True):
-        if kind not in _MOVING:
-            continue
-        for ax, component in zip(axes, (0, 2), strict=True):
-            ax.plot(time, position[:, node, component], linewidth=1.0,
-                    label=f"{name} ({kind})")
-        drawn += 1
-    for ax, axis in zip(axes, "xz", strict=True):
-        ax.set_ylabel(f"{axis} [{units['length']}]")
-        ax.grid(True, linewidth=0.3)
-    axes[1].set_xlabel("time [s]")
-    axes[0].set_title(_history_title(dataset, "motion of free and prescribed points"))
-    if drawn:
-        fig.legend(*axes[0].get_legend_handles_labels(), loc="outside right upper", fontsize=8)
-    else:
-        axes[0].text(0.5, 0.5, "no free or prescribed points", transform=axes[0].transAxes,
-                     ha="center", va="center")
-    _save(fig, Path(path))
 
 
 def _history_title(dataset: xr.Dataset, what: str) -> str:
@@ -282,17 +108,161 @@ def _history_title(dataset: xr.Dataset, what: str) -> str:
     return f"{case}: {what}" if case else what[:1].upper() + what[1:]
 
 
+def _line_mbl(dataset: xr.Dataset) -> NDArray[np.float64]:
+    """The ``line_MBL`` attribute (one per line, NaN where unknown), all NaN without it."""
+    n = dataset.sizes.get("line", 0)
+    value = dataset.attrs.get("line_MBL")
+    mbl = np.full(n, np.nan) if value is None else np.atleast_1d(np.asarray(value, dtype=float))
+    return mbl if mbl.shape == (n,) else np.full(n, np.nan)
+
+
+def figure_tension_history(dataset: xr.Dataset) -> Figure:
+    """The end-B (fairlead) tension of every line against time.
+
+    Parameters
+    ----------
+    dataset
+        A dynamics dataset (:meth:`moorline.results.DynamicResult.to_xarray` or the
+        ``dynamics`` group of a ``results.nc`` read back) with ``time`` and
+        ``end_force(time, line, end, xyz)`` (or ``end_tension(time, line, end)``); attributes
+        ``units``, ``case`` and optionally ``line_MBL`` (drawn as horizontal lines where
+        finite).
+
+    Returns
+    -------
+    Figure
+        Forces in N, kN or MN (lbf or kip) by magnitude; each line its own (colour,
+        linestyle, marker) so that equal histories stay distinguishable.
+    """
+    units = str(dataset.attrs.get("units", "SI"))
+    time = np.asarray(dataset["time"].values, dtype=float)
+    if "end_tension" in dataset:
+        tension = np.asarray(dataset["end_tension"].values, dtype=float)[:, :, 1]
+    else:
+        tension = np.linalg.norm(np.asarray(dataset["end_force"].values, dtype=float),
+                                 axis=-1)[:, :, 1]
+    lines = [str(n) for n in dataset["line"].values]
+    mbl = _line_mbl(dataset)
+    peak = float(np.nanmax(np.abs(np.concatenate([tension.ravel(), mbl])), initial=0.0))
+    factor, unit = force_scale(peak, units)
+    fig = Figure(figsize=(9.0, 4.5), layout="constrained")
+    ax = fig.add_subplot()
+    styles = curve_styles(len(lines))
+    for k, line in enumerate(lines):
+        ax.plot(time, tension[:, k] / factor, label=line, **styles[k])
+    finite = sorted({float(v) for v in mbl[np.isfinite(mbl)]})
+    for value in finite:
+        owners = [n for n, v in zip(lines, mbl, strict=True) if v == value]
+        colour = "tab:red" if len(finite) == 1 else styles[lines.index(owners[0])]["color"]
+        ax.axhline(value / factor, color=colour, linestyle=(0, (8, 3)), linewidth=1.4,
+                   label=f"MBL {', '.join(owners)} ({value / factor:.4g} {unit})")
+    ax.ticklabel_format(axis="y", style="plain", useOffset=False)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel(f"end B tension [{unit}]")
+    ax.set_title(_history_title(dataset, "line tension at end B"))
+    ax.grid(True, linewidth=0.3)
+    if lines:
+        fig.legend(loc="outside right upper", fontsize=8)
+    return fig
+
+
+plot_tension_history = _writer(figure_tension_history, "tension_history")
+
+
+def figure_motion_history(dataset: xr.Dataset) -> Figure:
+    """The displacement from the first record of every free and prescribed point against
+    time, one panel per moving component (x, y, z), each scaled to its own range; a
+    component in which no point moves is not drawn, nor a point that does not move in it.
+
+    Parameters
+    ----------
+    dataset
+        A dynamics dataset with ``time``, ``position(time, node, xyz)``, ``point_node(point)``
+        and the coordinate ``point_kind`` (without it every point is drawn).
+    """
+    length = units_of(dataset)["length"]
+    time = np.asarray(dataset["time"].values, dtype=float)
+    position = np.asarray(dataset["position"].values, dtype=float)
+    names = [str(n) for n in dataset["point"].values]
+    kinds = ([str(k) for k in dataset["point_kind"].values] if "point_kind" in dataset.coords
+             else [_MOVING[0]] * len(names))
+    nodes = (np.asarray(dataset["point_node"].values, dtype=int) if "point_node" in dataset
+             else np.arange(len(names)))
+    chosen = [(n, k, node) for n, k, node in zip(names, kinds, nodes, strict=True)
+              if k in _MOVING]
+    moved = (np.stack([position[:, node] - position[:1, node] for _, _, node in chosen], axis=1)
+             if chosen and len(time) else np.zeros((len(time), 0, 3)))
+    size = max(float(np.ptp(position[0], axis=0).max(initial=0.0)), 1.0) if len(time) else 1.0
+    moving = np.ptp(moved, axis=0) > 1e-9 * size if len(time) else np.zeros((0, 3), bool)
+    components = [c for c in range(3) if moving[:, c].any()]
+    fig = Figure(figsize=(9.0, 2.2 + 1.9 * max(len(components), 1)), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(max(len(components), 1), 1, sharex=True, squeeze=False)
+                         .ravel())
+    styles = curve_styles(len(chosen))
+    for ax, c in zip(axes, components, strict=False):
+        for j, (name, kind, _) in enumerate(chosen):
+            if moving[j, c]:
+                ax.plot(time, moved[:, j, c], label=f"{name} ({kind})", **styles[j])
+        ax.set_ylabel(f"{'xyz'[c]} - {'xyz'[c]}(0) [{length}]")
+        ax.grid(True, linewidth=0.3)
+    axes[-1].set_xlabel("time [s]")
+    axes[0].set_title(_history_title(dataset, "displacement of the moving points from t = 0"))
+    if components:
+        handles = {}
+        for ax in axes:
+            for h, label in zip(*ax.get_legend_handles_labels(), strict=True):
+                handles.setdefault(label, h)
+        fig.legend(list(handles.values()), list(handles), loc="outside right upper",
+                   fontsize=8)
+    else:
+        axes[0].text(0.5, 0.5, "no free or prescribed point moves",
+                     transform=axes[0].transAxes, ha="center", va="center")
+    return fig
+
+
+plot_motion_history = _writer(figure_motion_history, "motion_history")
+
+
 # ----------------------------------------------------------------------------- modes
 
 
-def plot_mode_shapes(dataset: xr.Dataset, path: str | Path, max_modes: int = 6,
-                     amplitude: float = 0.08) -> None:
-    """Plot the static shape and the scaled shapes of the first modes, one panel per mode.
+def display_scale(position: NDArray[np.float64], shape: NDArray[np.float64], target: float,
+                  seabed: float | None, tolerance: float = 0.0) -> tuple[float, bool]:
+    """The signed factor a mode shape is drawn with, and whether the drawing must still be
+    clipped at the seabed.
 
-    Modes dominated by x or z motion are drawn in the x-z elevation, modes dominated by y
-    (out of the x-z plane) in the x-y plan view. Each mode is scaled so that its largest node
-    displacement is ``amplitude`` times the size of the system (mode shapes have no absolute
-    amplitude).
+    A mode's sign and amplitude are arbitrary: the sign is the one that lets the nodes move
+    farthest before one goes ``tolerance`` below the seabed (nodes resting on it count from
+    it), and the factor ``target`` is reduced to keep every node above that, unless that
+    would shrink it under a quarter (then the drawing is clipped at the seabed instead).
+    """
+    if seabed is None:
+        return target, False
+    height = np.maximum(position[:, 2] - seabed, 0.0) + tolerance
+    best, room = 1.0, -1.0
+    for sign in (1.0, -1.0):
+        down = sign * shape[:, 2] < 0
+        limit = float(np.min(height[down] / -(sign * shape[down, 2]), initial=np.inf))
+        if limit > room:
+            best, room = sign, limit
+    if room >= target:
+        return best * target, False
+    if room >= 0.25 * target:
+        return best * room, False
+    return best * target, True
+
+
+def figure_mode_shapes(dataset: xr.Dataset, max_modes: int = 6,
+                       amplitude: float = 0.08) -> Figure:
+    """The static shape and the shapes of the first modes, one panel per mode.
+
+    Modes dominated by x or z motion are drawn in the x-z elevation (with the free surface
+    and the seabed), modes dominated by y in the x-y plan view. A mode shape has no
+    absolute amplitude (the figure says so): each is drawn with its largest node
+    displacement ``amplitude`` times the size of the system, reduced (or, when it would
+    vanish, clipped) so that no node is drawn below the seabed (:func:`display_scale`, with
+    0.2 % of the system's size, under a line width, as tolerance; the drawing is then
+    clipped at the seabed).
 
     Parameters
     ----------
@@ -300,22 +270,21 @@ def plot_mode_shapes(dataset: xr.Dataset, path: str | Path, max_modes: int = 6,
         A modal dataset (:meth:`moorline.results.ModalResult.to_xarray` or the ``modal`` group
         of a ``results.nc`` read back): ``position(node, xyz)``, ``element_nodes``,
         ``mode_shape(mode, node, xyz)``, ``omega``, ``period``, ``dominant``; attributes
-        ``units`` and ``case``.
-    path
-        PNG file to write (parent directories are created).
+        ``units``, ``case`` and optionally ``seabed_z``.
     max_modes
         Number of modes drawn (the lowest).
     amplitude
         Drawn amplitude relative to the largest extent of the static shape.
     """
-    units = _UNITS.get(str(dataset.attrs.get("units", "SI")), _UNITS["SI"])
+    units = units_of(dataset)
     position = np.asarray(dataset["position"].values, dtype=float)
     connectivity = np.asarray(dataset["element_nodes"].values, dtype=int)
     shapes = np.asarray(dataset["mode_shape"].values, dtype=float)[:max_modes]
+    seabed = seabed_z(dataset)
     n = len(shapes)
     columns = 1 if n <= 1 else 2
     rows = max(1, math.ceil(n / columns))
-    fig = Figure(figsize=(6.0 * columns, 3.2 * rows), layout="constrained")
+    fig = Figure(figsize=(6.0 * columns, 3.4 * rows), layout="constrained")
     axes = np.atleast_1d(fig.subplots(rows, columns, squeeze=False).ravel())
     size = max(float(np.ptp(position, axis=0).max(initial=0.0)), 1e-9)
     for k, ax in enumerate(axes):
@@ -325,11 +294,17 @@ def plot_mode_shapes(dataset: xr.Dataset, path: str | Path, max_modes: int = 6,
         dominant = str(dataset["dominant"].values[k])
         plane = [0, 1] if dominant == "y" else [0, 2]
         largest = max(float(np.abs(shapes[k]).max(initial=0.0)), np.finfo(float).tiny)
-        moved = position + shapes[k] * (amplitude * size / largest)
+        scale, clip = display_scale(position, shapes[k], amplitude * size / largest,
+                                    seabed if plane[1] == 2 else None, 2e-3 * size)
+        moved = position + shapes[k] * scale
+        if seabed is not None and plane[1] == 2:
+            moved[:, 2] = np.maximum(moved[:, 2], seabed)
         ax.add_collection(LineCollection(position[connectivity][:, :, plane], colors="0.6",
                                          linewidths=1.0, linestyles="dashed"))
         ax.add_collection(LineCollection(moved[connectivity][:, :, plane], colors="tab:blue",
-                                         linewidths=1.6))
+                                         linewidths=1.6, gid="mode shape"))
+        if plane[1] == 2:
+            draw_water_levels(ax, seabed)
         ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel(f"x [{units['length']}]")
@@ -337,19 +312,23 @@ def plot_mode_shapes(dataset: xr.Dataset, path: str | Path, max_modes: int = 6,
         omega = float(dataset["omega"].values[k])
         period = float(dataset["period"].values[k])
         view = "plan" if dominant == "y" else "elevation"
-        ax.set_title(f"mode {k + 1}: {omega:.4g} rad/s, T = {period:.4g} s, {dominant} ({view})",
-                     fontsize=9)
+        note = ", clipped at the seabed" if clip else ""
+        ax.set_title(f"mode {k + 1}: {omega:.4g} rad/s, T = {period:.4g} s, {dominant} ({view})"
+                     f"\namplitude arbitrary{note}", fontsize=9)
         ax.grid(True, linewidth=0.3)
     case = str(dataset.attrs.get("case", "")).strip()
-    fig.suptitle(f"{case}: mode shapes (dashed: static shape)" if case
-                 else "Mode shapes (dashed: static shape)")
-    _save(fig, Path(path))
+    what = "mode shapes, amplitude arbitrary (scaled for display; dashed: static shape)"
+    fig.suptitle(f"{case}: {what}" if case else what[:1].upper() + what[1:])
+    return fig
+
+
+plot_mode_shapes = _writer(figure_mode_shapes, "mode_shapes")
 
 
 # ----------------------------------------------------------------------------- parameter studies
 
 
-def plot_sweep_trends(dataset: xr.Dataset, path: str | Path) -> None:
+def figure_sweep_trends(dataset: xr.Dataset) -> Figure:
     """Plot every output of a parameter study against the varied parameter.
 
     One panel per output (rows) and varied parameter (columns). One-at-a-time studies draw
@@ -363,8 +342,6 @@ def plot_sweep_trends(dataset: xr.Dataset, path: str | Path) -> None:
         The table of :func:`moorline.sweep.run_study`: dimension ``case``, coordinate
         ``series`` and one per parameter, one variable per output (attribute ``units``);
         attributes ``study``, ``variations`` and ``quantities`` (comma-separated names).
-    path
-        PNG file to write (parent directories are created).
     """
     outputs = [q for q in str(dataset.attrs.get("quantities", "")).split(",") if q]
     varied = [v for v in str(dataset.attrs.get("variations", "")).split(",") if v]
@@ -393,7 +370,7 @@ def plot_sweep_trends(dataset: xr.Dataset, path: str | Path) -> None:
                 ax.legend(fontsize=7)
     study = str(dataset.attrs.get("study", "")).strip()
     fig.suptitle(f"{study}: steady-state outputs" if study else "Parameter study")
-    _save(fig, Path(path))
+    return fig
 
 
 def _sweep_groups(dataset: xr.Dataset, parameter: str, varied: list[str], series: list[str],
@@ -417,10 +394,9 @@ def _sweep_groups(dataset: xr.Dataset, parameter: str, varied: list[str], series
     return groups
 
 
-__all__ += ["plot_sweep_trends"]
 
 
-def plot_body_motion(dataset: xr.Dataset, path: str | Path) -> None:
+def figure_body_motion(dataset: xr.Dataset) -> Figure:
     """Six panels per run: body surge, sway, heave (positions of the origin) and roll, pitch,
     yaw (the rotation vector, degrees) vs time, one line per body, from a dynamics dataset
     with ``body_pose(time, body, dof)``."""
@@ -440,72 +416,122 @@ def plot_body_motion(dataset: xr.Dataset, path: str | Path) -> None:
         ax.grid(True, lw=0.4)
     fig.axes[0].legend(fontsize=8)
     fig.suptitle(_history_title(dataset, "body motion"))
-    _save(fig, Path(path))
+    return fig
 
 
 def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
-                view: str = "xz") -> None:
-    """An animated GIF of a dynamics dataset: the lines (and the points) in the x-z (or
-    x-y) plane at up to ``frames`` output times (Pillow writer; no screen needed)."""
+                view: str = "xz") -> Figure:
+    """An animated GIF of a dynamics dataset (Pillow writer; no screen needed).
+
+    The lines in the x-z (or x-y) plane at up to ``frames`` output times, elements coloured
+    by tension (one colour scale over the run, colour bar in N, kN or MN), the free surface
+    and the seabed drawn in the x-z view, axes in the case's units.
+
+    Returns
+    -------
+    Figure
+        The animation's figure (its last frame).
+    """
     from matplotlib.animation import FuncAnimation, PillowWriter
 
-    pos = dataset["position"].values
-    time = dataset["time"].values
-    el = dataset["element_nodes"].values
+    pos = np.asarray(dataset["position"].values, dtype=float)
+    time = np.asarray(dataset["time"].values, dtype=float)
+    el = np.asarray(dataset["element_nodes"].values, dtype=int)
+    tension = np.asarray(dataset["tension"].values, dtype=float)
+    length = units_of(dataset)["length"]
     a, b = (0, 2) if view == "xz" else (0, 1)
     picks = np.unique(np.linspace(0, len(time) - 1, min(frames, len(time))).astype(int))
-    fig = Figure(figsize=(8, 5), constrained_layout=True)
+    fig = Figure(figsize=(9.0, 4.5), layout="constrained")
+    FigureCanvasAgg(fig)
     ax = fig.add_subplot(1, 1, 1)
     lo, hi = pos[..., [a, b]].min(axis=(0, 1)), pos[..., [a, b]].max(axis=(0, 1))
+    seabed = seabed_z(dataset)
+    if b == 2:
+        draw_water_levels(ax, seabed)
+        lo[1] = min(lo[1], seabed if seabed is not None else lo[1])
+        hi[1] = max(hi[1], 0.0)
     pad = 0.05 * float(np.max(hi - lo))
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.set_aspect("equal")
-    ax.set_xlabel(view[0])
-    ax.set_ylabel(view[1])
-    lines = [ax.plot([], [], lw=1.2, color="tab:blue")[0] for _ in range(len(el))]
+    ax.set_xlabel(f"{'xyz'[a]} [{length}]")
+    ax.set_ylabel(f"{'xyz'[b]} [{length}]")
+    norm = tension_norm(tension[picks].ravel())
+    factor, unit = force_scale(max(abs(norm.vmin), abs(norm.vmax)),
+                               str(dataset.attrs.get("units", "SI")))
+    collection = LineCollection(pos[picks[0]][el][:, :, [a, b]], cmap=CMAP, norm=norm,
+                                linewidths=2.0)
+    collection.set_array(tension[picks[0]])
+    ax.add_collection(collection)
+    fig.colorbar(ScalarMappable(norm=type(norm)(norm.vmin / factor, norm.vmax / factor),
+                                cmap=CMAP), ax=ax, shrink=0.8, label=f"tension [{unit}]")
+    if b == 2:  # below the axes, where it hides no line
+        fig.legend(loc="outside lower center", ncols=2, fontsize=8, frameon=False)
     title = ax.set_title("")
 
     def draw(i: int):
-        p = pos[picks[i]]
-        for line, (n1, n2) in zip(lines, el, strict=True):
-            line.set_data([p[n1, a], p[n2, a]], [p[n1, b], p[n2, b]])
+        collection.set_segments(pos[picks[i]][el][:, :, [a, b]])
+        collection.set_array(tension[picks[i]])
         title.set_text(f"{dataset.attrs.get('case', '')}  t = {time[picks[i]]:.2f} s")
-        return [*lines, title]
+        return [collection, title]
 
     animation = FuncAnimation(fig, draw, frames=len(picks), blit=False)
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
     animation.save(str(path), writer=PillowWriter(fps=15))
+    return fig
 
 
-def plot_snapshots(dataset: xr.Dataset, path: str | Path, times: list[float] | None = None
-                   ) -> None:
+def figure_snapshots(dataset: xr.Dataset, times: list[float] | None = None) -> Figure:
     """The system in 3D at a few times of a dynamics dataset (default: four times spread over
-    the run), one panel each."""
-    time = dataset["time"].values
-    pos = dataset["position"].values
-    el = dataset["element_nodes"].values
+    the run), one panel each: elements coloured by tension (one scale), the same to-scale box
+    holding every node of the run and the seabed, the camera of
+    :func:`moorline.plot_configuration.best_azimuth`."""
+    time = np.asarray(dataset["time"].values, dtype=float)
+    pos = np.asarray(dataset["position"].values, dtype=float)
+    el = np.asarray(dataset["element_nodes"].values, dtype=int)
+    tension = np.asarray(dataset["tension"].values, dtype=float)
     picks = times if times is not None else list(np.linspace(time[0], time[-1], 4))
-    fig = Figure(figsize=(12, 3.6), constrained_layout=True)
-    lo, hi = pos.min(axis=(0, 1)), pos.max(axis=(0, 1))
+    fig = Figure(figsize=(12, 3.8), layout="constrained")
+    seabed = seabed_z(dataset)
+    extent = pos.reshape(-1, 3)
+    if seabed is not None:
+        extent = np.vstack([extent, [[extent[0, 0], extent[0, 1], seabed]]])
+    low, high = bounds(extent)
+    owners = (np.asarray(dataset["element_line"].values).astype(str)
+              if "element_line" in dataset.coords else None)
+    azimuth = best_azimuth(pos[0][el], owners)
+    norm = tension_norm(tension.ravel())
+    length = units_of(dataset)["length"]
+    axes = []
     for k, t in enumerate(picks):
         i = int(np.argmin(np.abs(time - t)))
         ax = fig.add_subplot(1, len(picks), k + 1, projection="3d")
-        p = pos[i]
-        for n1, n2 in el:
-            ax.plot(*zip(p[n1], p[n2], strict=True), color="tab:blue", lw=1.0)
-        ax.set_xlim(lo[0], hi[0])
-        ax.set_ylim(lo[1], hi[1])
-        ax.set_zlim(lo[2], hi[2])
+        collection = Line3DCollection(pos[i][el], cmap=CMAP, norm=norm, linewidths=1.2)
+        collection.set_array(tension[i])
+        ax.add_collection3d(collection)
+        ax.set_xlim(low[0], high[0])
+        ax.set_ylim(low[1], high[1])
+        ax.set_zlim(low[2], high[2])
+        ax.set_box_aspect(tuple(high - low))
+        ax.view_init(elev=20.0, azim=azimuth)
+        ax.set_xlabel(f"x [{length}]", fontsize=7)
+        ax.set_ylabel(f"y [{length}]", fontsize=7)
+        ax.set_zlabel(f"z [{length}]", fontsize=7)
         ax.set_title(f"t = {time[i]:.2f} s", fontsize=9)
+        axes.append(ax)
+    factor, unit = force_scale(max(abs(norm.vmin), abs(norm.vmax)),
+                               str(dataset.attrs.get("units", "SI")))
+    fig.colorbar(ScalarMappable(norm=type(norm)(norm.vmin / factor, norm.vmax / factor),
+                                cmap=CMAP), ax=axes, shrink=0.7, label=f"tension [{unit}]")
     fig.suptitle(_history_title(dataset, "snapshots"))
-    _save(fig, Path(path))
+    return fig
 
 
 # ----------------------------------------------------------------------------- strumming
 
 
-def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
-                   max_modes: int = 6) -> None:
+def figure_strumming(dataset: xr.Dataset, max_elements: int = 4,
+                   max_modes: int = 6) -> Figure:
     """Plot the lift coefficient of a few elements and the modal amplitudes against time.
 
     Parameters
@@ -514,8 +540,6 @@ def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
         A strumming dataset (:meth:`moorline.results.StrummingResult.to_xarray`):
         ``lift_coefficient(time, element)``, ``modal_amplitude(time, mode)`` (modes numbered
         from 1), optional ``omega(mode)`` and the attribute ``CL0`` (drawn as +-C_L0).
-    path
-        PNG file to write (parent directories are created).
     max_elements
         Elements drawn: those with the largest peak ``|C_L|``.
     max_modes
@@ -548,10 +572,10 @@ def plot_strumming(dataset: xr.Dataset, path: str | Path, max_elements: int = 4,
         ax.legend(fontsize=7, loc="upper right")
     axes[0].set_title(_history_title(dataset, "strumming: lift coefficient and modal "
                                               "amplitudes"))
-    _save(fig, Path(path))
+    return fig
 
 
-def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -> None:
+def figure_stochastic(dataset: xr.Dataset, max_items: int = 3) -> Figure:
     """Plot the wave spectrum with the response spectra of the most responsive node
     displacements and element tensions, and their time series over one record.
 
@@ -559,8 +583,6 @@ def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -
     ----------
     dataset
         A stochastic dataset (:meth:`moorline.results.StochasticResult.to_xarray`).
-    path
-        PNG file to write (parent directories are created).
     max_items
         Nodes and elements drawn: those with the largest standard deviation.
     """
@@ -598,10 +620,10 @@ def plot_stochastic(dataset: xr.Dataset, path: str | Path, max_items: int = 3) -
         ax.legend(fontsize=7, loc="upper right")
     fig.suptitle(f"stochastic response ({dataset.attrs.get('method', '')}, "
                  f"{dataset.attrs.get('iterations', '?')} linearization iterations)")
-    _save(fig, Path(path))
+    return fig
 
 
-def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> None:
+def figure_harmonic(dataset: xr.Dataset, snapshots: int = 8) -> Figure:
     """Plot the periodic response: snapshots of the lines over one period (x-z, the dynamic
     part magnified to be seen) and the tension range along the elements.
 
@@ -609,14 +631,14 @@ def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> 
     ----------
     dataset
         A harmonic dataset (:meth:`moorline.results.HarmonicResult.to_xarray`).
-    path
-        PNG file to write (parent directories are created).
     snapshots
         Instants drawn, equally spaced over the period.
     """
     pos = np.asarray(dataset["position"].values, dtype=float)
     static = np.asarray(dataset["static_position"].values, dtype=float)
-    tension = np.asarray(dataset["tension"].values, dtype=float)
+    factor, unit = force_scale(float(np.nanmax(np.abs(dataset["tension"].values), initial=0.0)),
+                               str(dataset.attrs.get("units", "SI")))
+    tension = np.asarray(dataset["tension"].values, dtype=float) / factor
     dyn = pos - pos.mean(axis=0)[None]
     span = float(np.ptp(static[:, [0, 2]], axis=0).max()) or 1.0
     amp = float(np.abs(dyn).max()) or 1.0
@@ -630,8 +652,9 @@ def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> 
         ax.plot(shape[order, 0], shape[order, 2], linewidth=0.8,
                 label=f"t/T = {j / len(pos):.2f}")
     ax.plot(static[order, 0], static[order, 2], "k--", linewidth=0.8, label="static")
-    ax.set_xlabel("x")
-    ax.set_ylabel("z")
+    length = units_of(dataset)["length"]
+    ax.set_xlabel(f"x [{length}]")
+    ax.set_ylabel(f"z [{length}]")
     ax.set_title(f"one period (dynamic part x {scale:.3g})")
     ax.legend(fontsize=7)
     elements = np.arange(tension.shape[1]) + 1
@@ -639,13 +662,24 @@ def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> 
                       label="range over the period")
     ax_t.plot(elements, tension.mean(axis=0), "k", linewidth=0.8, label="mean")
     ax_t.set_xlabel("element")
-    ax_t.set_ylabel("tension")
+    ax_t.set_ylabel(f"tension [{unit}]")
     ax_t.legend(fontsize=7)
     for a in (ax, ax_t):
         a.grid(True, linewidth=0.3)
     fig.suptitle(f"harmonic balance: period {float(dataset.attrs.get('period', 0)):.4g}, "
                  f"{dataset.attrs.get('harmonics', '?')} harmonics")
-    _save(fig, Path(path))
+    return fig
+
+
+plot_sweep_trends = _writer(figure_sweep_trends, "sweep_trends")
+plot_body_motion = _writer(figure_body_motion, "body_motion")
+plot_snapshots = _writer(figure_snapshots, "snapshots")
+plot_strumming = _writer(figure_strumming, "strumming")
+plot_stochastic = _writer(figure_stochastic, "stochastic")
+plot_harmonic = _writer(figure_harmonic, "harmonic")
+__all__ += ["figure_body_motion", "figure_harmonic", "figure_snapshots", "figure_stochastic",
+            "figure_strumming", "figure_sweep_trends", "plot_body_motion", "plot_harmonic",
+            "plot_snapshots", "plot_stochastic", "plot_strumming", "plot_sweep_trends"]
 
 
 # ----------------------------------------------------------------------------- per analysis group
@@ -657,7 +691,8 @@ def plot_harmonic(dataset: xr.Dataset, path: str | Path, snapshots: int = 8) -> 
 
 def plot_statics_group(dataset: xr.Dataset, directory: str | Path,
                        prefix: str = "") -> list[Path]:
-    """``configuration_xz.png`` and ``configuration_3d.png`` of a statics group.
+    """``configuration_xz.png``, ``configuration_3d.png`` and ``configuration_plan.png``
+    of a statics group.
 
     Raises
     ------
@@ -668,7 +703,8 @@ def plot_statics_group(dataset: xr.Dataset, directory: str | Path,
     if missing:
         raise ValueError(f"not a statics result (missing {', '.join(missing)})")
     files = [Path(directory) / f"{prefix}configuration_xz.png",
-             Path(directory) / f"{prefix}configuration_3d.png"]
+             Path(directory) / f"{prefix}configuration_3d.png",
+             Path(directory) / f"{prefix}configuration_plan.png"]
     plot_configuration(dataset, *files)
     return files
 
@@ -719,10 +755,8 @@ __all__ += ["plot_dynamics_group", "plot_harmonic_group", "plot_modal_group",
             "plot_statics_group", "plot_stochastic_group", "plot_strumming_group"]
 
 
-def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
-                       prefix: str = "") -> list[Path]:
-    """``fatigue.png``: fatigue life [years] along every line (per element) for each method."""
-    path = Path(directory) / f"{prefix}fatigue.png"
+def figure_fatigue(dataset: xr.Dataset) -> Figure:
+    """The fatigue life [years] along every line (per element) for each method."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
     lines = [str(v) for v in dataset["element_line"].values]
@@ -743,14 +777,19 @@ def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
     ax.legend(fontsize=7)
     fig.suptitle(f"fatigue ({dataset.attrs.get('source', '')}): "
                  f"{dataset.attrs.get('curves', '')}", fontsize=9)
-    _save(fig, path)
+    return fig
+
+
+def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
+                       prefix: str = "") -> list[Path]:
+    """``fatigue.png``: :func:`figure_fatigue`."""
+    path = Path(directory) / f"{prefix}fatigue.png"
+    _save(figure_fatigue(dataset), path)
     return [path]
 
 
-def plot_extremes_group(dataset: xr.Dataset, directory: str | Path,
-                        prefix: str = "") -> list[Path]:
-    """``extremes.png``: most probable maximum element tension along every line."""
-    path = Path(directory) / f"{prefix}extremes.png"
+def figure_extremes(dataset: xr.Dataset) -> Figure:
+    """The most probable maximum element tension along every line."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
     lines = [str(v) for v in dataset["element_line"].values]
@@ -767,8 +806,16 @@ def plot_extremes_group(dataset: xr.Dataset, directory: str | Path,
     ax.legend(fontsize=7)
     fig.suptitle(f"extremes ({dataset.attrs.get('method', '')}) over "
                  f"{float(dataset.attrs.get('duration', 0)):.6g} s", fontsize=9)
-    _save(fig, path)
+    return fig
+
+
+def plot_extremes_group(dataset: xr.Dataset, directory: str | Path,
+                       prefix: str = "") -> list[Path]:
+    """``extremes.png``: :func:`figure_extremes`."""
+    path = Path(directory) / f"{prefix}extremes.png"
+    _save(figure_extremes(dataset), path)
     return [path]
 
 
-__all__ += ["plot_extremes_group", "plot_fatigue_group"]
+__all__ += ["figure_extremes", "figure_fatigue", "plot_extremes_group",
+            "plot_fatigue_group"]

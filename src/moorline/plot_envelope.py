@@ -14,21 +14,11 @@ import xarray as xr
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from .plot_style import force_scale
+
 __all__ = ["force_scale", "plot_tension_envelope"]
 
-_FORCE_STEPS = {"SI": ((1.0e6, "MN"), (1.0e3, "kN"), (1.0, "N")),
-                "US": ((1.0e3, "kip"), (1.0, "lbf"))}
 _LENGTH = {"SI": "m", "US": "ft"}
-
-
-def force_scale(peak: float, units: str = "SI") -> tuple[float, str]:
-    """The divisor and unit to show forces up to ``peak`` with: MN from 1 MN, kN from 1 kN,
-    else N (US: kip from 1000 lbf, else lbf)."""
-    steps = _FORCE_STEPS.get(units, _FORCE_STEPS["SI"])
-    for factor, name in steps:
-        if math.isfinite(peak) and abs(peak) >= factor:
-            return factor, name
-    return steps[-1]
 
 
 def plot_tension_envelope(dataset: xr.Dataset) -> Figure:
