@@ -126,7 +126,7 @@ def test_report_parses_and_embeds_every_plot(oc3_run: tuple[Result, Path]) -> No
     assert page.section_ids == list(SECTIONS)
     # every PNG the run wrote, embedded as a data URI that decodes to a PNG
     pngs = sorted(p.name for p in directory.glob("*.png"))
-    assert pngs == ["configuration_3d.png", "configuration_xz.png"]
+    assert pngs == ["configuration_3d.png", "configuration_plan.png", "configuration_xz.png"]
     assert sorted(page.captions) == pngs
     assert len(page.images) == len(pngs)
     for src in page.images:
@@ -240,7 +240,7 @@ def test_report_renders_in_headless_chromium(oc3_run: tuple[Result, Path],
     page.feed(dom.stdout)
     assert [h.strip() for h in page.h2] == list(SECTIONS.values())
     assert page.section_ids == list(SECTIONS)
-    assert len(page.images) == 2 and all(s.startswith("data:image/png;base64,")
+    assert len(page.images) == 3 and all(s.startswith("data:image/png;base64,")
                                          for s in page.images)
     shot = tmp_path / "report.png"
     done = _run_chromium(binary, f"--screenshot={shot}", "--window-size=1200,4000", url)
