@@ -11,6 +11,7 @@ from matplotlib.figure import Figure
 
 from .offset_result import along
 from .plot import _save
+from .plot_style import literal_text
 
 __all__ = ["force_scale", "plot_offset", "plot_offset_group"]
 
@@ -27,6 +28,7 @@ def force_scale(values: np.ndarray, unit: str) -> tuple[float, str]:
     return scale(largest, "US" if unit == "lbf" else "SI")
 
 
+@literal_text
 def plot_offset(dataset: xr.Dataset) -> Figure:
     """The offset curves of an ``offset`` group: a Figure with the restoring force along each
     heading against offset (the yaw moment against yaw when the group has a yaw sweep), and

@@ -34,7 +34,7 @@ from .plot_configuration import (
     units_of,
 )
 from .plot_envelope import plot_tension_envelope
-from .plot_style import curve_styles, draw_water_levels, force_scale
+from .plot_style import curve_styles, draw_water_levels, force_scale, literal_text
 
 __all__ = ["figure_configuration_3d", "figure_configuration_plan", "figure_configuration_xz",
            "figure_mode_shapes", "figure_motion_history", "figure_tension_history",
@@ -116,6 +116,7 @@ def _line_mbl(dataset: xr.Dataset) -> NDArray[np.float64]:
     return mbl if mbl.shape == (n,) else np.full(n, np.nan)
 
 
+@literal_text
 def figure_tension_history(dataset: xr.Dataset) -> Figure:
     """The end-B (fairlead) tension of every line against time.
 
@@ -169,6 +170,7 @@ def figure_tension_history(dataset: xr.Dataset) -> Figure:
 plot_tension_history = _writer(figure_tension_history, "tension_history")
 
 
+@literal_text
 def figure_motion_history(dataset: xr.Dataset) -> Figure:
     """The displacement from the first record of every free and prescribed point against
     time, one panel per moving component (x, y, z), each scaled to its own range; a
@@ -252,6 +254,7 @@ def display_scale(position: NDArray[np.float64], shape: NDArray[np.float64], tar
     return best * target, True
 
 
+@literal_text
 def figure_mode_shapes(dataset: xr.Dataset, max_modes: int = 6,
                        amplitude: float = 0.08) -> Figure:
     """The static shape and the shapes of the first modes, one panel per mode.
@@ -328,6 +331,7 @@ plot_mode_shapes = _writer(figure_mode_shapes, "mode_shapes")
 # ----------------------------------------------------------------------------- parameter studies
 
 
+@literal_text
 def figure_sweep_trends(dataset: xr.Dataset) -> Figure:
     """Plot every output of a parameter study against the varied parameter.
 
@@ -396,6 +400,7 @@ def _sweep_groups(dataset: xr.Dataset, parameter: str, varied: list[str], series
 
 
 
+@literal_text
 def figure_body_motion(dataset: xr.Dataset) -> Figure:
     """Six panels per run: body surge, sway, heave (positions of the origin) and roll, pitch,
     yaw (the rotation vector, degrees) vs time, one line per body, from a dynamics dataset
@@ -419,6 +424,7 @@ def figure_body_motion(dataset: xr.Dataset) -> Figure:
     return fig
 
 
+@literal_text
 def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
                 view: str = "xz") -> Figure:
     """An animated GIF of a dynamics dataset (Pillow writer; no screen needed).
@@ -481,6 +487,7 @@ def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
     return fig
 
 
+@literal_text
 def figure_snapshots(dataset: xr.Dataset, times: list[float] | None = None) -> Figure:
     """The system in 3D at a few times of a dynamics dataset (default: four times spread over
     the run), one panel each: elements coloured by tension (one scale), the same to-scale box
@@ -530,6 +537,7 @@ def figure_snapshots(dataset: xr.Dataset, times: list[float] | None = None) -> F
 # ----------------------------------------------------------------------------- strumming
 
 
+@literal_text
 def figure_strumming(dataset: xr.Dataset, max_elements: int = 4,
                    max_modes: int = 6) -> Figure:
     """Plot the lift coefficient of a few elements and the modal amplitudes against time.
@@ -575,6 +583,7 @@ def figure_strumming(dataset: xr.Dataset, max_elements: int = 4,
     return fig
 
 
+@literal_text
 def figure_stochastic(dataset: xr.Dataset, max_items: int = 3) -> Figure:
     """Plot the wave spectrum with the response spectra of the most responsive node
     displacements and element tensions, and their time series over one record.
@@ -623,6 +632,7 @@ def figure_stochastic(dataset: xr.Dataset, max_items: int = 3) -> Figure:
     return fig
 
 
+@literal_text
 def figure_harmonic(dataset: xr.Dataset, snapshots: int = 8) -> Figure:
     """Plot the periodic response: snapshots of the lines over one period (x-z, the dynamic
     part magnified to be seen) and the tension range along the elements.
@@ -755,6 +765,7 @@ __all__ += ["plot_dynamics_group", "plot_harmonic_group", "plot_modal_group",
             "plot_statics_group", "plot_stochastic_group", "plot_strumming_group"]
 
 
+@literal_text
 def figure_fatigue(dataset: xr.Dataset) -> Figure:
     """The fatigue life [years] along every line (per element) for each method."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")
@@ -788,6 +799,7 @@ def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
     return [path]
 
 
+@literal_text
 def figure_extremes(dataset: xr.Dataset) -> Figure:
     """The most probable maximum element tension along every line."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")

@@ -25,6 +25,7 @@ from .plot_style import (
     UNITS,
     draw_water_levels,
     force_scale,
+    literal_text,
     place_labels,
 )
 
@@ -148,6 +149,7 @@ def _figure_2d(dataset: xr.Dataset, plane: tuple[int, int], view: str) -> Figure
     return fig
 
 
+@literal_text
 def figure_configuration_xz(dataset: xr.Dataset) -> Figure:
     """The x-z elevation of a statics dataset: elements coloured by tension (N, kN or MN),
     points marked by kind, the free surface (z = 0) and the seabed (attribute ``seabed_z``,
@@ -155,6 +157,7 @@ def figure_configuration_xz(dataset: xr.Dataset) -> Figure:
     return _figure_2d(dataset, (0, 2), "x-z elevation")
 
 
+@literal_text
 def figure_configuration_plan(dataset: xr.Dataset) -> Figure:
     """The x-y plan view of a statics dataset (as :func:`figure_configuration_xz`)."""
     return _figure_2d(dataset, (0, 1), "x-y plan")
@@ -205,6 +208,7 @@ def bounds(xyz: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.fl
     return centre - half, centre + half
 
 
+@literal_text
 def figure_configuration_3d(dataset: xr.Dataset, elevation: float = 20.0) -> Figure:
     """The 3-D view of a statics dataset: the limits enclose every node, point, the seabed
     and the free surface, the box is to scale (equal aspect) and the camera azimuth is

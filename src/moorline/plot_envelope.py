@@ -14,13 +14,14 @@ import xarray as xr
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from .plot_style import force_scale
+from .plot_style import force_scale, literal_text
 
 __all__ = ["force_scale", "plot_tension_envelope"]
 
 _LENGTH = {"SI": "m", "US": "ft"}
 
 
+@literal_text
 def plot_tension_envelope(dataset: xr.Dataset) -> Figure:
     """The tension range graph of every line of a dynamics dataset.
 

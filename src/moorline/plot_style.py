@@ -4,18 +4,20 @@ free surface and the seabed, and point labels placed so that none overprints ano
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
+import matplotlib
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.text import Annotation
 
 __all__ = ["UNITS", "curve_styles", "draw_water_levels", "force_scale", "length_unit",
-           "place_labels"]
+           "literal_text", "place_labels"]
 
 UNITS = {"SI": {"force": "N", "length": "m"}, "US": {"force": "lbf", "length": "ft"}}
 _FORCE_STEPS = {"SI": ((1.0e6, "MN"), (1.0e3, "kN"), (1.0, "N")),
@@ -24,6 +26,19 @@ _LINESTYLES = ("-", "--", "-.", ":")
 _MARKERS = ("o", "s", "^", "v", "D", "x", "P", "*")
 SEABED_COLOUR = "saddlebrown"
 SURFACE_COLOUR = "tab:cyan"
+
+
+def literal_text(figure_function: Callable[..., Any]) -> Callable[..., Any]:
+    """Decorate a function that builds a figure: every text it creates is shown literally
+    (names from case files such as ``$x$`` or ``$\\frac{`` are not matplotlib mathtext, which
+    would fail to parse or change them), without touching the caller's matplotlib settings."""
+
+    @functools.wraps(figure_function)
+    def build(*args: Any, **kwargs: Any) -> Any:
+        with matplotlib.rc_context({"text.parse_math": False}):
+            return figure_function(*args, **kwargs)
+
+    return build
 
 
 def force_scale(peak: float, units: str = "SI") -> tuple[float, str]:
