@@ -3,14 +3,12 @@ the yaw moment against yaw), and each line's fairlead and anchor tension against
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
 from .offset_result import along
-from .plot import _save
+from .plot import _single_figure, _writer
 from .plot_style import literal_text
 
 __all__ = ["force_scale", "plot_offset", "plot_offset_group"]
@@ -100,9 +98,4 @@ def _yaw_panel(ax, dataset: xr.Dataset, force_unit: str) -> None:
     ax.set_title("mooring restoring yaw moment", fontsize=9)
 
 
-def plot_offset_group(dataset: xr.Dataset, directory: str | Path,
-                      prefix: str = "") -> list[Path]:
-    """``offset.png`` of an offset group (:func:`plot_offset`)."""
-    path = Path(directory) / f"{prefix}offset.png"
-    _save(plot_offset(dataset), path)
-    return [path]
+plot_offset_group = _single_figure(_writer(plot_offset, "offset"), "offset", "offset")

@@ -751,7 +751,7 @@ def _single_figure(plotter, name: str, kind: str):
         return [path]
 
     plot_group.__name__ = plot_group.__qualname__ = f"plot_{kind}_group"
-    plot_group.__doc__ = f"``{name}.png`` of a {kind} group."
+    plot_group.__doc__ = f"``{name}.png`` of the {kind} group."
     return plot_group
 
 
@@ -765,16 +765,20 @@ __all__ += ["plot_dynamics_group", "plot_harmonic_group", "plot_modal_group",
             "plot_statics_group", "plot_stochastic_group", "plot_strumming_group"]
 
 
+def _elements_by_line(dataset: xr.Dataset) -> list[tuple[str, np.ndarray]]:
+    """(line, mask of its elements) for every line, in the order of ``element_line``."""
+    lines = np.asarray([str(v) for v in dataset["element_line"].values])
+    return [(name, lines == name) for name in dict.fromkeys(lines)]
+
+
 @literal_text
 def figure_fatigue(dataset: xr.Dataset) -> Figure:
     """The fatigue life [years] along every line (per element) for each method."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
-    lines = [str(v) for v in dataset["element_line"].values]
     for k, method in enumerate(dataset["fatigue_method"].values):
         life = dataset["element_life"].values[k]
-        for name in dict.fromkeys(lines):
-            mask = np.array([n == name for n in lines])
+        for name, mask in _elements_by_line(dataset):
             ax.semilogy(np.arange(mask.sum()), life[mask], marker=".",
                         label=f"{name} ({method})")
     from matplotlib.ticker import FuncFormatter, NullFormatter
@@ -791,22 +795,12 @@ def figure_fatigue(dataset: xr.Dataset) -> Figure:
     return fig
 
 
-def plot_fatigue_group(dataset: xr.Dataset, directory: str | Path,
-                       prefix: str = "") -> list[Path]:
-    """``fatigue.png``: :func:`figure_fatigue`."""
-    path = Path(directory) / f"{prefix}fatigue.png"
-    _save(figure_fatigue(dataset), path)
-    return [path]
-
-
 @literal_text
 def figure_extremes(dataset: xr.Dataset) -> Figure:
     """The most probable maximum element tension along every line."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
-    lines = [str(v) for v in dataset["element_line"].values]
-    for name in dict.fromkeys(lines):
-        mask = np.array([n == name for n in lines])
+    for name, mask in _elements_by_line(dataset):
         ax.plot(np.arange(mask.sum()), dataset["element_mpm"].values[mask], marker=".",
                 label=f"{name} MPM")
         maximum = dataset["element_maximum"].values[mask]
@@ -821,12 +815,9 @@ def figure_extremes(dataset: xr.Dataset) -> Figure:
     return fig
 
 
-def plot_extremes_group(dataset: xr.Dataset, directory: str | Path,
-                       prefix: str = "") -> list[Path]:
-    """``extremes.png``: :func:`figure_extremes`."""
-    path = Path(directory) / f"{prefix}extremes.png"
-    _save(figure_extremes(dataset), path)
-    return [path]
+plot_fatigue_group = _single_figure(_writer(figure_fatigue, "fatigue"), "fatigue", "fatigue")
+plot_extremes_group = _single_figure(_writer(figure_extremes, "extremes"), "extremes",
+                                     "extremes")
 
 
 __all__ += ["figure_extremes", "figure_fatigue", "plot_extremes_group",
