@@ -17,7 +17,7 @@ from .analysis import (
     StrummingAnalysis,
     StrummingSettings,
 )
-from .body import Body, Hydrostatics, WaveExcitation
+from .body import Body, Hydrostatics, RadiationTable, WaveExcitation
 from .components import Line, LineType, Motion, Point, PointKind
 from .design import DesignSettings
 from .environment import Current, Environment, Seabed, Waves
@@ -52,6 +52,7 @@ __all__ = [
     "StrummingSettings",
     "System",
     "UnitSystem",
+    "RadiationTable",
     "WaveExcitation",
     "Waves",
 ]

@@ -61,6 +61,35 @@ class WaveExcitation:
 
 
 @dataclass(frozen=True)
+class RadiationTable:
+    """Frequency-dependent added mass and radiation damping of a body (a hydrodynamic
+    database, e.g. capytaine's), about the body origin, world axes, in the case's units
+    (Tuah 1982 sec. 3.2.c: the radiation force coefficients ``f_lj(omega)``).
+
+    In the time domain it gives the Cummins (1962) equation: the infinite-frequency added
+    mass plus a convolution of the velocity history with the retardation kernels
+    ``K_ij(t) = 2/pi int_0^inf B_ij(w) cos(w t) dw``; in the frequency domain ``A(w)`` and
+    ``B(w)`` are interpolated at each frequency.
+
+    Attributes
+    ----------
+    omegas
+        Circular frequencies [rad/s], increasing, n_omega >= 2.
+    added_mass, damping
+        ``A_ij(w)``, ``B_ij(w)``, shape (n_omega, 6, 6), ``[i][j]`` the force in dof ``i`` per
+        acceleration / velocity of dof ``j``.
+    added_mass_infinite
+        ``A_ij(inf)`` (6, 6) when the database gives it (capytaine's ``omega = inf``
+        problem); ``None``: derived from the table (Ogilvie 1964).
+    """
+
+    omegas: tuple[float, ...]
+    added_mass: tuple[Matrix6, ...]
+    damping: tuple[Matrix6, ...]
+    added_mass_infinite: Matrix6 | None = None
+
+
+@dataclass(frozen=True)
 class Body:
     """A six-degree-of-freedom rigid body.
 
@@ -96,6 +125,9 @@ class Body:
     excitation
         Wave exciting forces (amplitude and phase per dof over frequency, interpolated at the
         environment's regular wave), used instead of the long-wave model.
+    radiation
+        Frequency-dependent added mass and damping (:class:`RadiationTable`); when given,
+        ``added_mass`` and ``damping`` must be ``None`` (the table replaces them).
     wave_loads
         Long-wave (small-body) excitation from the fluid field at the body origin: the
         Froude-Krylov and added-mass force ``(rho V + A) a_fluid`` and the waterplane heave
@@ -120,3 +152,4 @@ class Body:
     Cd: float = 1.0
     wave_loads: bool = False
     excitation: WaveExcitation | None = None
+    radiation: RadiationTable | None = None
