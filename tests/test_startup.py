@@ -36,6 +36,23 @@ def test_reading_an_si_case_without_unit_strings_does_not_import_pint() -> None:
     assert "pint" not in loaded
 
 
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")
+def test_reading_a_case_does_not_import_scipy_interpolate() -> None:
+    loaded = _loaded_after("from moorline.io.case import load_case\n"
+                           "load_case('cases/oc3_line.yaml')\n"
+                           "assert 'scipy.interpolate' not in sys.modules")
+    assert "pint" not in loaded
+
+
+def test_writing_results_does_not_import_dask_distributed(tmp_path: Path) -> None:
+    code = ("import numpy as np, xarray as xr\n"
+            "from moorline.io.writers import write_group\n"
+            f"write_group(xr.Dataset({{'a': ('x', np.ones(3))}}), {str(tmp_path / 'r.nc')!r}, "
+            "'statics')\n"
+            "assert 'distributed' not in sys.modules")
+    _loaded_after(code)
+
+
 def test_a_unit_string_still_converts() -> None:
     from moorline.io.units import default_value, to_system
 

@@ -31,6 +31,7 @@ from ..envelope import TensionEnvelope
 from ..mesh import Mesh
 from ..signals import Terminated, signals_deferred
 from ..status import Status
+from .netcdf_write import nc_attrs, write_dataset
 
 FloatArray = NDArray[np.float64]
 
@@ -108,9 +109,8 @@ class HistoryWriter:
         start = {**attrs, "units": units or attrs.get("units", "SI"), "success": 0,
                  "complete": 0, "status": str(Status.RUNNING)}
         skeleton = dynamics_dataset(mesh, np.zeros(0), {}, start, static_tension)
-        skeleton.to_netcdf(self.path, mode="a" if append else "w", group=group,
-                           engine="netcdf4", unlimited_dims=["time"],
-                           encoding=_chunking(skeleton))
+        write_dataset(skeleton, self.path, group=group, mode="a" if append else "w",
+                      unlimited_dims=["time"], chunksizes=_chunking(skeleton))
         self.root = netCDF4.Dataset(self.path, "a")
         self.ds = self.root if group is None else self.root.groups[group]
         self.envelope = TensionEnvelope(mesh.n_elements, skeleton.attrs["envelope_start"],
@@ -171,7 +171,7 @@ class HistoryWriter:
             final = {"complete": 1, "success": 1, "status": str(Status.COMPLETED),
                      "message": f"{self.count} records"}
             final.update(attrs or {})
-            self.ds.setncatts({k: _attr(v) for k, v in final.items()})
+            self.ds.setncatts(nc_attrs(final))
             self.root.close()
 
     def __enter__(self) -> HistoryWriter:
@@ -200,7 +200,7 @@ for an unlimited dimension is one record per chunk, which makes every block writ
 read) thousands of small chunk operations."""
 
 
-def _chunking(skeleton: Any) -> dict[str, dict[str, tuple[int, ...]]]:
+def _chunking(skeleton: Any) -> dict[str, tuple[int, ...]]:
     """Chunk sizes of the time-dependent variables: about :data:`CHUNK_BYTES` per chunk
     along ``time``, whole along the other dimensions."""
     encoding = {}
@@ -209,14 +209,5 @@ def _chunking(skeleton: Any) -> dict[str, dict[str, tuple[int, ...]]]:
             continue
         rest = tuple(max(1, int(n)) for n in var.shape[1:])
         per_record = 8 * int(np.prod(rest, dtype=np.int64))
-        encoding[name] = {"chunksizes": (int(max(1, min(4096, CHUNK_BYTES // per_record))),
-                                         *rest)}
+        encoding[name] = (int(max(1, min(4096, CHUNK_BYTES // per_record))), *rest)
     return encoding
-
-
-def _attr(value: Any) -> Any:
-    if isinstance(value, bool):
-        return int(value)
-    if value is None:
-        return ""
-    return value

@@ -5,8 +5,9 @@ A run writes one NetCDF-4 file, ``results.nc``, with one group per analysis (``s
 only attributes: ``case``, ``units``, ``moorline_version``, ``analyses`` (the group names in
 order), ``complete`` (1 when every analysis ran to its end) and ``status``. Each group is a
 dataset of :func:`moorline.datasets.build_dataset` (the same attributes in every group, units
-and long_name on every variable): written whole with xarray (:func:`write_group`), or, for
-time histories, streamed by :class:`moorline.io.stream.HistoryWriter`.
+and long_name on every variable): written whole (:func:`write_group`, through
+:func:`moorline.io.netcdf_write.write_dataset`, which does not import dask), or, for time
+histories, streamed by :class:`moorline.io.stream.HistoryWriter`.
 
 The summary is a plain dict (the object ``moorline statics --json`` prints). It is written
 twice: as JSON for scripts, and as a readable table (rendered with rich) for people.
@@ -19,16 +20,19 @@ import json
 import math
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import xarray as xr
 from rich.console import Console, RenderableType
 from rich.markup import escape
 from rich.table import Table
 from rich.text import Text
 
+from .netcdf_write import nc_attrs, write_dataset
 from .units import DIMENSIONS
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = [
     "jsonable",
@@ -62,7 +66,7 @@ def write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    ds.to_netcdf(path, engine="netcdf4")
+    write_dataset(ds, path)
     return path
 
 
@@ -88,7 +92,7 @@ def start_results(path: str | Path, attrs: dict[str, Any]) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     path.unlink(missing_ok=True)
     with netCDF4.Dataset(path, "w", format="NETCDF4") as root:
-        root.setncatts(_nc_attrs({"complete": 0, "status": "running", **attrs}))
+        root.setncatts(nc_attrs({"complete": 0, "status": "running", **attrs}))
     return path
 
 
@@ -97,7 +101,7 @@ def update_results(path: str | Path, attrs: dict[str, Any]) -> None:
     import netCDF4
 
     with netCDF4.Dataset(Path(path), "a") as root:
-        root.setncatts(_nc_attrs(attrs))
+        root.setncatts(nc_attrs(attrs))
 
 
 def write_group(ds: xr.Dataset, path: str | Path, group: str) -> Path:
@@ -109,7 +113,7 @@ def write_group(ds: xr.Dataset, path: str | Path, group: str) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     if not path.exists():
         start_results(path, {})
-    ds.to_netcdf(path, mode="a", group=group, engine="netcdf4")
+    write_dataset(ds, path, group=group, mode="a")
     add_analysis(path, group)
     return path
 
@@ -145,13 +149,10 @@ def result_groups(path: str | Path) -> dict[str, str]:
 
 def read_group(path: str | Path, group: str) -> xr.Dataset:
     """Load one group of a results file into memory (``""``: the root group)."""
+    import xarray as xr
+
     with xr.open_dataset(Path(path), group=group or None, engine="netcdf4") as opened:
         return opened.load()
-
-
-def _nc_attrs(attrs: dict[str, Any]) -> dict[str, Any]:
-    return {k: int(v) if isinstance(v, bool) else ("" if v is None else v)
-            for k, v in attrs.items()}
 
 
 def jsonable(value: Any) -> Any:

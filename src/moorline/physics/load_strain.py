@@ -42,7 +42,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import PchipInterpolator
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -73,6 +72,8 @@ class StrainTable:
             raise ValueError("strain table: strains must increase (at least one point > 0)")
         if np.any(np.diff(pts[:, 1]) < 0):
             raise ValueError("strain table: tensions must not decrease (a monotone law)")
+        from scipy.interpolate import PchipInterpolator  # 0.4 s to import: only for tables
+
         self.points = pts
         self._f = PchipInterpolator(pts[:, 0], pts[:, 1], extrapolate=False)
         self._df = self._f.derivative()

@@ -1,0 +1,138 @@
+"""Write an in-memory :class:`xarray.Dataset` to a NetCDF-4 file or group with netCDF4 directly.
+
+xarray's own ``to_netcdf`` asks dask for the active scheduler to pick a write lock, which
+imports dask and dask.distributed when they are installed (about 0.5 s of a ``moorline run``
+that uses neither). Results here are plain in-memory datasets, so the part of xarray's CF
+encoding they need is small and is written out below; files read back with
+``xarray.open_dataset`` give the same dataset (tested against ``to_netcdf`` in
+``tests/test_netcdf_write.py``):
+
+- float variables get ``_FillValue = NaN`` (xarray's default);
+- booleans are stored as ``int8`` with the attribute ``dtype = "bool"`` (xarray decodes them);
+- strings as NetCDF-4 variable-length strings;
+- non-dimension coordinates are listed in each data variable's ``coordinates`` attribute
+  (those whose dimensions it has), the rest in the global ``coordinates`` attribute;
+- attributes: ``bool`` as ``int``, ``None`` as ``""``.
+
+Dates, times as ``datetime64`` and complex numbers are refused (results carry none).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+__all__ = ["nc_attrs", "write_dataset"]
+
+
+def nc_attrs(attrs: Mapping[str, Any]) -> dict[str, Any]:
+    """Attributes NetCDF can store: ``bool`` as ``int``, ``None`` as ``""``."""
+    return {str(k): int(v) if isinstance(v, (bool, np.bool_)) else ("" if v is None else v)
+            for k, v in attrs.items()}
+
+
+def write_dataset(ds: Any, path: str | Path, *, group: str | None = None,
+                  mode: Literal["w", "a"] = "w", unlimited_dims: Iterable[str] = (),
+                  chunksizes: Mapping[str, tuple[int, ...]] | None = None) -> None:
+    """Write ``ds`` to ``path`` (``mode="w"``: a new file; ``"a"``: add to an existing one).
+
+    Parameters
+    ----------
+    ds
+        An in-memory :class:`xarray.Dataset`.
+    path
+        The NetCDF-4 file.
+    group
+        Group to create (``None``: the root group); it must not exist yet.
+    mode
+        ``"w"`` replaces the file, ``"a"`` appends (the file is created when missing).
+    unlimited_dims
+        Dimensions created unlimited (e.g. ``time`` of a streamed history).
+    chunksizes
+        Chunk shape per variable name.
+
+    Raises
+    ------
+    ValueError
+        When ``group`` already exists, or a variable has a type this writer does not encode.
+    """
+    import netCDF4
+
+    path = Path(path)
+    mode = "a" if mode == "a" and path.exists() else "w"
+    unlimited = set(unlimited_dims)
+    chunks = dict(chunksizes or {})
+    with netCDF4.Dataset(path, mode, format="NETCDF4") as root:
+        if group is None:
+            target = root
+        elif group in root.groups:
+            raise ValueError(f"{path} already has a group {group!r}")
+        else:
+            target = root.createGroup(group)
+        for dim, size in ds.sizes.items():
+            target.createDimension(str(dim), None if dim in unlimited else int(size))
+        coordinates = _coordinates(ds)
+        for name, var in ds.variables.items():
+            _write_variable(target, str(name), var, chunks.get(str(name)),
+                            coordinates.get(str(name)))
+        attrs = nc_attrs(ds.attrs)
+        if coordinates.get(None):
+            attrs["coordinates"] = coordinates[None]
+        target.setncatts(attrs)
+
+
+def _coordinates(ds: Any) -> dict[str | None, str]:
+    """The ``coordinates`` attribute per data variable, and the global one under ``None``
+    (xarray's ``conventions._encode_coordinates`` rule)."""
+    non_dim = [str(c) for c in ds.coords if c not in ds.dims]
+    attached: dict[str | None, set[str]] = {}
+    used: set[str] = set()
+    for coord in non_dim:
+        coord_dims = set(ds[coord].dims)
+        for name, var in ds.data_vars.items():
+            if coord_dims <= set(var.dims):
+                attached.setdefault(str(name), set()).add(coord)
+                used.add(coord)
+    out: dict[str | None, str] = {k: " ".join(sorted(v)) for k, v in attached.items()}
+    rest = sorted(set(non_dim) - used)
+    if rest:
+        out[None] = " ".join(rest)
+    return out
+
+
+def _write_variable(target: Any, name: str, var: Any, chunks: tuple[int, ...] | None,
+                    coordinates: str | None) -> None:
+    values = np.asarray(var.values)
+    attrs = nc_attrs(var.attrs)
+    kind = values.dtype.kind
+    options: dict[str, Any] = {}
+    if chunks is not None:
+        options["chunksizes"] = tuple(int(c) for c in chunks)
+    if kind == "f":
+        dtype: Any = values.dtype
+        options["fill_value"] = np.nan
+    elif kind in "iu":
+        dtype = values.dtype
+    elif kind == "b":
+        dtype, values = np.int8, values.astype(np.int8)
+        attrs["dtype"] = "bool"
+    elif kind in "USO":
+        dtype = str
+        values = np.asarray(values, dtype=object)
+        if not all(isinstance(v, str) for v in values.flat):
+            raise ValueError(f"variable {name!r}: only strings may be stored as objects")
+    else:
+        raise ValueError(f"variable {name!r}: dtype {values.dtype} is not written by "
+                         "moorline.io.netcdf_write")
+    nc_var = target.createVariable(name, dtype, tuple(str(d) for d in var.dims), **options)
+    if coordinates:
+        attrs["coordinates"] = coordinates
+    nc_var.setncatts(attrs)
+    if values.size:
+        if values.ndim == 0:
+            nc_var[...] = values.item() if dtype is str else values
+        else:
+            nc_var[...] = values
