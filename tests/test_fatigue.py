@@ -352,3 +352,59 @@ def test_rainflow_equals_astm_three_point(seed: int) -> None:
     ours = sorted(zip(np.round(ranges, 12), counts, strict=True))
     theirs = sorted((round(r, 12), c) for r, c in _astm_three_point(x))
     assert ours == theirs
+
+
+@pytest.mark.skipif(not OC3_LINE.is_file(), reason="cases/oc3_line.yaml missing")
+def test_fatigue_over_seeds_is_the_mean_and_shares_runs(tmp_path: Path,
+                                                        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Fatigue with ``seeds: [2]`` after a random-sea dynamics (seed 1) is the mean of the
+    rainflow damages of the seed-1 history and of the history of a separate run of the same
+    case with seed 2; an extremes analysis listing the same seed reuses that realization
+    (one extra simulation, not two)."""
+    import moorline.solvers.dynamics as dynamics_module
+
+    waves = {"kind": "random", "spectrum": "jonswap", "height": 6, "period": 10,
+             "gamma": 3.3, "seed": 1, "record_length": 100}
+    analyses = [{"kind": "statics"}, {"kind": "dynamics", "duration": 20.0, "dt": 0.1}]
+    path = _case(tmp_path, [*analyses,
+                            {"kind": "fatigue", "curves": CURVES, "skip": 5.0, "seeds": [2]},
+                            {"kind": "extremes", "skip": 5.0, "seeds": [2]}])
+    case = yaml.safe_load(path.read_text())
+    case["points"]["fairlead"].pop("motion")
+    case["environment"]["waves"] = waves
+    path.write_text(yaml.safe_dump(case))
+    single = tmp_path / "seed2.yaml"
+    case["environment"]["waves"] = {**waves, "seed": 2}
+    case["analyses"] = analyses
+    single.write_text(yaml.safe_dump(case))
+
+    seeds_run: list[int] = []
+    simulate = dynamics_module.simulate
+
+    def counting(system, *args, **kwargs):
+        seeds_run.append(int(system.environment.waves.seed))
+        return simulate(system, *args, **kwargs)
+
+    monkeypatch.setattr(dynamics_module, "simulate", counting)
+    out = tmp_path / "out"
+    result = CliRunner().invoke(cli, ["run", str(path), "--out", str(out), "-q",
+                                      "--no-plots"])
+    assert result.exit_code == 0, result.output
+    assert seeds_run.count(2) == 1
+    monkeypatch.setattr(dynamics_module, "simulate", simulate)
+    other = tmp_path / "other"
+    result = CliRunner().invoke(cli, ["run", str(single), "--out", str(other), "-q",
+                                      "--no-plots"])
+    assert result.exit_code == 0, result.output
+
+    def damage_of(results: Path) -> float:
+        dyn = xr.open_dataset(results, group="dynamics")
+        keep = dyn["time"].values >= 5.0 - 1e-9
+        ranges, _, counts = rainflow(dyn["end_tension"].values[keep, 0, 1])
+        return miner_damage(ranges / 3.21e6, counts, 3.0, 316.0)
+
+    expected = 0.5 * (damage_of(out / "oc3-line" / "results.nc")
+                      + damage_of(other / "oc3-line" / "results.nc"))
+    group = xr.open_dataset(out / "oc3-line" / "results.nc", group="fatigue")
+    assert group.attrs["realizations"] == 2 and group.attrs["seeds"] == "1,2"
+    assert float(group["damage"].values[0, 0, 1]) == pytest.approx(expected, rel=1e-9)

@@ -13,7 +13,6 @@ moments (:mod:`moorline.extremes`).
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -26,7 +25,7 @@ from .extremes import gumbel_fit, gumbel_mpm, peaks, rayleigh_mpm, weibull_fit, 
 from .spectral import spectral_moments, upcrossing_rate
 from .tension_records import TensionRecords
 
-__all__ = ["ExtremesResult", "realizations", "solve_extremes"]
+__all__ = ["ExtremesResult", "solve_extremes"]
 
 FloatArray = NDArray[np.float64]
 
@@ -116,43 +115,6 @@ class ExtremesResult:
                                    "record_length": self.record_length,
                                    "seeds": ",".join(map(str, self.seeds))})
         return build_dataset("extremes", data, coords, attrs)
-
-
-def realizations(system: Any, outcome: Any, seeds: tuple[int, ...],
-                 initial: Any = None) -> tuple[list[Any], list[int]]:
-    """The preceding dynamics result and the same simulation with each of the wave
-    ``seeds`` (a seed equal to the case's is not run again).
-
-    Raises
-    ------
-    MoorlineError
-        When seeds are given but the case's sea is not random, or a run fails.
-    """
-    from .model import DynamicsSettings
-    from .solvers.dynamics import simulate
-
-    dynamics = outcome.result.settings
-    if isinstance(dynamics, dict):
-        dynamics = DynamicsSettings(**dynamics)
-    waves = system.environment.waves
-    if not seeds:
-        return [outcome.result], [int(waves.seed) if waves.kind == "random" else -1]
-    if waves.kind != "random":
-        raise MoorlineError("extremes: seeds need a random sea (environment.waves.kind: "
-                            "random)")
-    results, used = [outcome.result], [int(waves.seed)]
-    for seed in seeds:
-        if int(seed) in used:
-            continue
-        other = dataclasses.replace(system, environment=dataclasses.replace(
-            system.environment, waves=dataclasses.replace(waves, seed=int(seed))))
-        result = simulate(other, dynamics, initial=initial)
-        if not result.success:
-            raise MoorlineError(f"extremes: the dynamics with seed {seed} failed: "
-                                f"{result.message}")
-        results.append(result)
-        used.append(int(seed))
-    return results, used
 
 
 def _time_domain(signals: FloatArray, settings: Any, record: float

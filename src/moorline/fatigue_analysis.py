@@ -55,7 +55,10 @@ class FatigueResult:
     end_mean, element_mean
         Mean tensions [force].
     duration
-        Analysed duration [s].
+        Analysed duration [s] (of one realization: the damage is the mean over them).
+    realizations, seeds
+        Number of time-domain realizations averaged and their wave seeds (-1: not a random
+        sea); 1 and ``()`` in the frequency domain.
     safety_factor
         Design fatigue factor applied to the life.
     curves
@@ -76,6 +79,8 @@ class FatigueResult:
     duration: float
     safety_factor: float
     curves: dict[str, tuple[TNCurve, float]]
+    realizations: int = 1
+    seeds: tuple[int, ...] = ()
     settings: Any = None
     success: bool = True
     status: str = "completed"
@@ -120,6 +125,8 @@ class FatigueResult:
         attrs = group_attrs("fatigue", case=self.case, units=self.units, success=self.success,
                             status=self.status, message=self.message, counters=self.counters,
                             extra={"source": self.source, "duration": self.duration,
+                                   "realizations": self.realizations,
+                                   "seeds": ",".join(map(str, self.seeds)),
                                    "safety_factor": self.safety_factor, "curves": curves,
                                    "curve_sources": sources})
         attrs.update(_settings_attrs(self.settings))
@@ -244,8 +251,11 @@ def solve_fatigue(records: TensionRecords, settings: Any, case: str = "",
                 target[k, where] = spectral_damage(moments, tn.m, K, duration, method)
             count[where] = upcrossing_rate(moments[0], moments[2]) * duration
     missing = sorted(set(records.line_types) - set(curves))
+    n_real = int(records.end.shape[0]) if time_domain else 1
     message = (f"{'rainflow' if time_domain else ', '.join(methods)} damage over "
                f"{duration:.6g} s of the {records.source} analysis")
+    if n_real > 1:
+        message += f" (mean of {n_real} realizations, seeds {', '.join(map(str, records.seeds))})"
     if missing:
         message += f"; no curve for line type(s) {', '.join(missing)} (NaN)"
     return FatigueResult(
@@ -253,5 +263,6 @@ def solve_fatigue(records: TensionRecords, settings: Any, case: str = "",
         element_line=records.element_line, damage=damage, element_damage=element_damage,
         cycles=cycles, element_cycles=element_cycles, end_mean=records.end_mean,
         element_mean=records.element_mean, duration=float(duration),
-        safety_factor=float(settings.safety_factor), curves=curves, settings=settings,
+        safety_factor=float(settings.safety_factor), curves=curves, realizations=n_real,
+        seeds=tuple(records.seeds) if time_domain else (), settings=settings,
         message=message, case=case, units=units)

@@ -80,6 +80,9 @@ class RunContext:
     plots
         Whether the analyses draw their plots (``--no-plots``: numbers only, and no
         matplotlib import).
+    seed_runs
+        Dynamics re-run with further wave seeds, per preceding outcome (``id``) and seed,
+        shared by the fatigue and extremes analyses that list them.
     """
 
     system: Any
@@ -89,6 +92,7 @@ class RunContext:
     outcomes: list[Outcome] = field(default_factory=list)
     time: float | None = None
     plots: bool = True
+    seed_runs: dict[int, dict[int, Any]] = field(default_factory=dict)
 
     def latest(self, kind: str) -> Outcome | None:
         """The most recent outcome of an analysis kind, if any."""
@@ -443,29 +447,29 @@ def _run_analyses(context: RunContext, analyses: list[Any], kinds: list[str]) ->
     update_results(context.results, {"complete": int(not failed), "status": status})
 
 
-def _records(context: RunContext, settings: Any, seeds: tuple[int, ...] = ()) -> Any:
+def _records(context: RunContext, settings: Any) -> Any:
     """The tension signals of the run's preceding dynamics or stochastic analysis
     (:mod:`moorline.tension_records`); time domain: after ``settings.skip`` (default the
-    dynamics' ramp time), with the realizations of the further wave ``seeds``."""
-    from .tension_records import from_dynamics, from_stochastic, preceding
+    dynamics' ramp time), with the realizations of the further wave ``settings.seeds``."""
+    from .tension_records import from_dynamics, from_stochastic, preceding, realizations
 
     outcome = preceding(context, settings.source)
     if outcome.kind == "stochastic":
         return from_stochastic(context.system, outcome.result)
-    from .extremes_analysis import realizations
-
     dynamics = outcome.result.settings
     ramp = dynamics.get("ramp_time", 0.0) if isinstance(dynamics, dict) else getattr(
         dynamics, "ramp_time", 0.0)
     skip = settings.skip if settings.skip is not None else float(ramp)
-    results, used = realizations(context.system, outcome, seeds, _statics_of(context))
+    cache = context.seed_runs.setdefault(id(outcome), {})
+    results, used = realizations(context.system, outcome, tuple(settings.seeds),
+                                 _statics_of(context), cache, settings.kind)
     return from_dynamics(context.system, results, skip, used)
 
 
 def run_fatigue(settings: Any, context: RunContext, label: str) -> Outcome:
     """Miner damage and fatigue life per line end and element from the run's preceding
-    dynamics (rainflow) or stochastic (narrow band, Dirlik) analysis: group ``label`` of the
-    results file."""
+    dynamics (rainflow, averaged over the realizations of the listed wave seeds) or
+    stochastic (narrow band, Dirlik) analysis: group ``label`` of the results file."""
     from .fatigue_analysis import solve_fatigue
 
     system = context.system
@@ -482,5 +486,5 @@ def run_extremes(settings: Any, context: RunContext, label: str) -> Outcome:
 
     system = context.system
     return _solve_and_write("extremes", "extremes", lambda: solve_extremes(
-        _records(context, settings, tuple(settings.seeds)), settings, system.name,
+        _records(context, settings), settings, system.name,
         system.units), context, label)

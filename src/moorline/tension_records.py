@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from .errors import MoorlineError
 
-__all__ = ["TensionRecords", "from_dynamics", "from_stochastic", "preceding"]
+__all__ = ["TensionRecords", "from_dynamics", "from_stochastic", "preceding", "realizations"]
 
 FloatArray = NDArray[np.float64]
 
@@ -75,6 +75,63 @@ class TensionRecords:
 
 def _line_types(system: Any, mesh: Any) -> tuple[str, ...]:
     return tuple(system.lines[name].line_type for name in mesh.line_names)
+
+
+def realizations(system: Any, outcome: Any, seeds: Sequence[int], initial: Any = None,
+                 cache: dict[int, Any] | None = None, label: str = "realizations"
+                 ) -> tuple[list[Any], list[int]]:
+    """The preceding dynamics result and the same simulation with each of the wave
+    ``seeds`` (a seed equal to the case's is not run again).
+
+    Parameters
+    ----------
+    system, outcome
+        The case and the preceding dynamics analysis (its result and settings).
+    seeds
+        Wave seeds of the further realizations.
+    initial
+        The static state the dynamics starts from.
+    cache
+        Results of seeds already simulated for this outcome (seed -> result), filled here:
+        a fatigue and an extremes analysis with the same seeds share the runs.
+    label
+        The analysis named in error messages.
+
+    Raises
+    ------
+    MoorlineError
+        When seeds are given but the case's sea is not random, or a run fails.
+    """
+    import dataclasses
+
+    from .model import DynamicsSettings
+    from .solvers.dynamics import simulate
+
+    dynamics = outcome.result.settings
+    if isinstance(dynamics, dict):
+        dynamics = DynamicsSettings(**dynamics)
+    waves = system.environment.waves
+    if not seeds:
+        return [outcome.result], [int(waves.seed) if waves.kind == "random" else -1]
+    if waves.kind != "random":
+        raise MoorlineError(f"{label}: seeds need a random sea (environment.waves.kind: "
+                            "random)")
+    cache = {} if cache is None else cache
+    results, used = [outcome.result], [int(waves.seed)]
+    for seed in map(int, seeds):
+        if seed in used:
+            continue
+        if seed not in cache:
+            other = dataclasses.replace(system, environment=dataclasses.replace(
+                system.environment, waves=dataclasses.replace(waves, seed=seed)))
+            result = simulate(other, dynamics, initial=initial)
+            if not result.success:
+                raise MoorlineError(f"{label}: the dynamics with seed {seed} failed: "
+                                    f"{result.message}")
+            cache[seed] = result
+        results.append(cache[seed])
+        used.append(seed)
+    return results, used
 
 
 def from_dynamics(system: Any, results: Sequence[Any], skip: float,

@@ -584,6 +584,7 @@ class FatigueSpec(_Spec):
     residue: Literal["half", "repeat"] = "half"
     skip: quantity("time", ge=0.0) | None = None
     safety_factor: quantity("dimensionless", gt=0.0) = 1.0
+    seeds: list[Annotated[int, Field(ge=0)]] = []
 
 
 class ExtremesSpec(_Spec):

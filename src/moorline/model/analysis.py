@@ -348,6 +348,10 @@ class FatigueSettings:
         ``ramp_time``.
     safety_factor
         Design fatigue factor: the life is the duration over ``safety_factor * damage``.
+    seeds
+        Wave seeds of further realizations (time domain): the preceding dynamics is run again
+        with each and the damage is the mean over the realizations (the case's own seed is
+        the first); runs shared with an extremes analysis listing the same seeds.
     """
 
     kind: Literal["fatigue"] = "fatigue"
@@ -357,6 +361,7 @@ class FatigueSettings:
     residue: Literal["half", "repeat"] = "half"
     skip: float | None = None
     safety_factor: float = 1.0
+    seeds: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True)
