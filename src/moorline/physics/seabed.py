@@ -3,15 +3,19 @@
 MoorDyn's model (kBot, cBot per unit contact area) switches both on at first contact, so the
 force has a kink (spring) and a jump (damper) as a node lands. An implicit Newton iteration
 cycles across such switches instead of converging. Here both blend in over the first
-``ramp`` of penetration (a few millimetres: the static penetration of a lying line):
+``ramp`` of penetration ``p`` (a few millimetres: at least the static penetration of a lying
+line, :func:`contact_ramp`):
 
-    spring  k p^2 / (2 ramp)           for p < ramp,   k (p - ramp / 2)   beyond,
+    spring  k p^2 (2 ramp - p) / ramp^2   for p < ramp,   k p   beyond,
     damper  -c v_z min(p / ramp, 1).
 
-The spring is C1 and the damper continuous; away from touchdown they are MoorDyn's, with the
-equilibrium penetration deeper by ``ramp / 2``. Unlike MoorDyn, the total never pulls: a node
-lifting off faster than the spring pushes feels no seabed force (MoorDyn's damper sucks it
-down; that suction also leaves implicit steps without a solution near the seabed).
+The spring is C1 (value ``k ramp`` and slope ``k`` at ``p = ramp``, zero slope at first
+contact) and never above MoorDyn's ``k p``; the damper is continuous. Beyond ``ramp`` both are
+MoorDyn's, so a lying line rests at MoorDyn's penetration ``w / k`` on a soft seabed (an
+earlier blend, ``k p^2 / (2 ramp)`` then ``k (p - ramp / 2)``, put it ``ramp / 2`` deeper:
+0.35 % in the statics of a deck with kBot = 1e5 Pa/m). Unlike MoorDyn, the total never pulls:
+a node lifting off faster than the spring pushes feels no seabed force (MoorDyn's damper
+sucks it down; that suction also leaves implicit steps without a solution near the seabed).
 """
 
 from __future__ import annotations
@@ -50,11 +54,11 @@ def contact_force(
     touching = p > 0
     share = np.clip(p / ramp, 0.0, 1.0)
     full = p >= ramp
-    spring = np.where(full, k * (p - 0.5 * ramp), k * p * share * 0.5)
+    spring = np.where(full, k * p, k * p * share * (2.0 - share))
     total = spring - c * share * vz
     pushing = touching & (total > 0)  # the seabed pushes, it never pulls a lifting node down
     force = np.where(pushing, total, 0.0)
-    d_spring = np.where(full, k, k * share)  # d(spring)/dp
+    d_spring = np.where(full, k, k * share * (4.0 - 3.0 * share))  # d(spring)/dp
     d_damp = np.where(~full, c * vz / ramp, 0.0)  # d(c share vz)/dp
     d_dz = np.where(pushing, -d_spring + d_damp, 0.0)
     d_dv = np.where(pushing, -c * share, 0.0)
@@ -63,22 +67,32 @@ def contact_force(
 
 def contact_energy(height: FloatArray, k: FloatArray, ramp: FloatArray) -> float:
     """Energy stored in the seabed springs (the potential of :func:`contact_force` with
-    ``c = 0``)."""
+    ``c = 0``): ``k (2 ramp p^3 / 3 - p^4 / 4) / ramp^2`` below ``ramp``,
+    ``k (p^2 / 2 - ramp^2 / 12)`` beyond."""
     p = np.maximum(-height, 0.0)
     full = p >= ramp
-    energy = np.where(full, k * (0.5 * p**2 - 0.5 * ramp * p + ramp**2 / 6),
-                      k * p**3 / (6 * ramp))
-    return float(np.sum(energy))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        partial = k * p**3 * (2.0 * ramp / 3.0 - p / 4.0) / ramp**2
+    energy = np.where(full, k * (0.5 * p**2 - ramp**2 / 12.0), partial)
+    return float(np.sum(np.where(p > 0, energy, 0.0)))
 
 
 def resting_penetration(load: FloatArray, k: FloatArray, ramp: FloatArray) -> FloatArray:
-    """Penetration at which the spring of :func:`contact_force` carries ``load`` (the inverse
-    of ``k p^2 / (2 ramp)`` below ``ramp``, of ``k (p - ramp / 2)`` beyond); 0 where ``k`` or
-    the load is not positive."""
-    load = np.maximum(load, 0.0)
+    """Penetration at which the spring of :func:`contact_force` carries ``load``: ``load / k``
+    from ``k ramp`` on, below it the root in ``(0, ramp)`` of ``k p^2 (2 ramp - p) / ramp^2 =
+    load`` (increasing there; bisection to machine precision); 0 where ``k`` or the load is
+    not positive."""
+    load = np.maximum(np.asarray(load, dtype=float), 0.0)
+    k, ramp = np.broadcast_to(k, load.shape), np.broadcast_to(ramp, load.shape)
     with np.errstate(divide="ignore", invalid="ignore"):
-        p = np.where(load <= 0.5 * k * ramp, np.sqrt(2.0 * load * ramp / k), load / k + 0.5 * ramp)
-    return np.where(k > 0, p, 0.0)
+        q = np.where(k * ramp > 0, load / (k * ramp), 0.0)  # u^2 (2 - u) = q, u = p / ramp
+        lo, hi = np.zeros_like(q), np.ones_like(q)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            below = mid * mid * (2.0 - mid) < q
+            lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+        p = np.where(q >= 1.0, load / k, 0.5 * (lo + hi) * ramp)
+    return np.where((k > 0) & (load > 0), p, 0.0)
 
 
 def contact_ramp(weight_per_node: FloatArray, k: FloatArray, diameter: float) -> FloatArray:

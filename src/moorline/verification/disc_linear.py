@@ -17,7 +17,7 @@ vanishing wave amplitude:
   Airy acceleration at the element midpoint (Tuah eq. 3.2.a.2, 3.2.a.10). The quadratic drag
   ``|u| u`` has a zero derivative at rest: it drops out of the small-amplitude limit.
 * **Seabed**: a penalty spring and damper per node, blended in over a ``ramp`` of penetration
-  (``k p^2 / (2 ramp)`` below ``ramp``, ``k (p - ramp / 2)`` beyond, damping ``c min(p / ramp,
+  (``k p^2 (2 ramp - p) / ramp^2`` below ``ramp``, ``k p`` beyond, damping ``c min(p / ramp,
   1)``; ``k``, ``c`` per unit contact area times ``D`` times the node's tributary length;
   ``ramp = max(w L_trib / k, D / 4)``): the documented law of the case's seabed.
 * **Coupling**: the fairlead node rides on the body, ``x_f = r + R a`` (Tuah eq. 3.3.6-3.3.7).
@@ -159,8 +159,8 @@ def _seabed(leg: Leg, sea: Sea, z: FloatArray, vz: FloatArray | None = None) -> 
     k = leg.seabed_stiffness * leg.diameter * L0
     ramp = max(leg.weight_per_length * L0 / k, 0.25 * leg.diameter)
     p = -(z + sea.depth)
-    spring = np.where(p >= ramp, k * (p - 0.5 * ramp), k * np.clip(p, 0, None) ** 2
-                      / (2 * ramp))
+    pc = np.clip(p, 0, None)
+    spring = np.where(p >= ramp, k * p, k * pc**2 * (2 * ramp - pc) / ramp**2)
     if vz is not None:
         spring = spring - leg.seabed_damping * leg.diameter * L0 * np.clip(p / ramp, 0, 1) * vz
     return np.where(p > 0, spring, 0.0)
