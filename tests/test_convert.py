@@ -182,13 +182,8 @@ PUBLIC_DECKS = [
     "MoorDyn/lowe_and_langley_2006/line.txt", "MoorDyn/wavekin_4/hanging_lines.txt",
     "MoorDyn/wave_surface/wave_surface.txt", "MoorDyn/viv/viv.txt",
     "MoorDyn/wavekin_2/wavekin_2.txt", "MoorDyn/BeamSimplySupported.txt",
-    pytest.param("MoorPy/tests/case6.dat", marks=pytest.mark.xfail(
-        strict=True, reason="hard statics (issue 14, Deliver 5): a W-shaped line with a "
-        "buoy and seabed contact; the default Newton stalls, relaxation converges in 1606 "
-        "steps")),
-    pytest.param("MoorDyn/tripod.txt", marks=pytest.mark.xfail(
-        strict=True, reason="hard statics (issue 14, Deliver 5): 11 lines, 9 free points "
-        "and floats; Newton (also with 10 load steps) and relaxation fail")),
+    "MoorPy/tests/case6.dat",  # a W-shaped line with a buoy, lines touching the seabed
+    "MoorDyn/tripod.txt",  # 11 lines, 9 free points and floats
 ]
 
 

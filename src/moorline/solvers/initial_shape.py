@@ -20,15 +20,23 @@ def initial_positions(system: System, mesh: Mesh,
     """Node positions to start a static solution from, (n_nodes, 3).
 
     Lines with a user-given ``initial_shape`` take it. With ``start='catenary'`` every other
-    line starts on the closed-form elastic catenary between its end positions (for a free end,
-    the point's initial guess), with seabed contact when an end lies on the seabed; where no
-    catenary exists (or with ``start='straight'``) the line starts on its straight chord, as in
-    Tuah (1982) Ex. 2. Free nodes the start puts on (or under) the seabed are lowered to the
+    line starts on the closed-form elastic catenary between its end positions (free points
+    first moved to their equilibrium with every line a catenary,
+    :func:`~moorline.solvers.point_start.presolve_free_points`), with seabed contact when an
+    end lies on the seabed; where no catenary exists (or with ``start='straight'``) the line
+    starts on its straight chord, as in Tuah (1982) Ex. 2. Free nodes the start puts on (or
+    under) the seabed are lowered to the
     penetration at which the penalty seabed carries them
     (:meth:`~moorline.solvers.equilibrium.StaticModel.resting_penetration`), so that a lying
     line starts in vertical balance, not on the contact's kink.
     """
     x = mesh.node_prescribed_start.copy()
+    if start == "catenary":
+        from .point_start import presolve_free_points
+
+        solved = presolve_free_points(system, mesh, x)
+        if solved is not None:
+            x = solved
     sink = np.zeros(mesh.n_nodes)
     if np.isfinite(mesh.seabed_z):
         from .equilibrium import StaticModel
@@ -58,13 +66,27 @@ def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray
                     sink: float = 0.0) -> FloatArray | None:
     """The closed-form profile at arc lengths ``s``; with an end on the seabed, solved with
     that end and the seabed ``sink`` lower (the penetration at which the lying nodes rest),
-    so that lying and hanging nodes start in balance with each other."""
+    so that lying and hanging nodes start in balance with each other; with both ends above
+    the seabed and a sag that reaches it, the U-shape of
+    :func:`moorline.catenary_touching.touching_3d` (unless it piles up)."""
     from ..catenary import CatenaryError, catenary_3d, profile_3d
+    from .discrete_shape import discrete_catenary
 
     lt = system.line_types[type_name]
     env = system.environment
     w = (lt.mass_per_length - env.water_density * lt.area_displaced) * env.gravity
     tol = 1e-6 * max(1.0, abs(seabed_z)) if np.isfinite(seabed_z) else 0.0
+    if np.isfinite(seabed_z) and min(a[2], b[2]) > seabed_z + tol and w > 0:
+        from ..catenary_touching import touching_3d, touching_profile_3d
+
+        touching = touching_3d(a, b, length, lt.EA, w, seabed_z - sink)
+        if touching is not None and touching[2].H > 0.0:
+            profile = touching_profile_3d(touching[2], a, b, s)
+            if lt.EA_table is None:
+                split = _discrete_touching(touching[2], profile, a, b, s, lt.EA, w)
+                if split is not None:
+                    return split
+            return profile
     flip = bool(np.isfinite(seabed_z) and b[2] <= seabed_z + tol < a[2])
     pa, pb = (b, a) if flip else (a, b)
     on_seabed = bool(np.isfinite(seabed_z) and pa[2] <= seabed_z + tol)
@@ -77,10 +99,36 @@ def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray
         shape = profile_3d(sol, pa, pb, sigma)
         if sol.H == 0.0 and sol.seabed_length > 0.0:
             shape = _coil_pile(shape, sol, pa, sigma)
+        elif lt.EA_table is None and env.seabed.friction == 0.0:
+            exact = discrete_catenary(pa, pb, len(s) - 1, length, lt.EA, w, on_seabed and w > 0,
+                                      sol.H, sol.V_b)
+            if exact is not None:
+                shape = exact
     except CatenaryError as err:
         logger.info("catenary start not available (%s); starting straight", err)
         return None
     return shape[::-1] if flip else shape
+
+
+def _discrete_touching(sol, profile: FloatArray, a: FloatArray, b: FloatArray,
+                       s: FloatArray, EA: float, w: float) -> FloatArray | None:
+    """The finite elements' own equilibrium of a U-shaped line (:func:`discrete_catenary`
+    on each side of a node in the middle of the lying stretch, each side resting on the
+    seabed at that node), or ``None`` when no node lies inside the lying stretch."""
+    from .discrete_shape import discrete_catenary
+
+    inside = np.flatnonzero((s > sol.hanging_a) & (s < sol.length - sol.hanging_b))
+    if len(inside) == 0:
+        return None
+    k = int(inside[len(inside) // 2])
+    n = len(s) - 1
+    side_a = discrete_catenary(profile[k], a, k, float(s[k]), EA, w, True, sol.H,
+                               w * sol.hanging_a)
+    side_b = discrete_catenary(profile[k], b, n - k, float(s[-1] - s[k]), EA, w, True,
+                               sol.H, w * sol.hanging_b)
+    if side_a is None or side_b is None:
+        return None
+    return np.vstack([side_a[::-1], side_b[1:]])
 
 
 def _coil_pile(shape: FloatArray, sol, pa: FloatArray, sigma: FloatArray) -> FloatArray:
