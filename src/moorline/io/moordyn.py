@@ -37,8 +37,12 @@ names are ``point<ID>`` and ``line<ID>``. :func:`write_moordyn` writes names tha
 ``read_moordyn(write_moordyn(system))`` gives back the same names.
 
 Missing ``WtrDpth``: MoorDyn-C starts from 0 and lowers the seabed to any point defined below
-it; the reader does the same (with a warning). Bodies, rods and seabed files are not supported
-(``CaseError``, naming every unsupported section at once). ``WaveKin`` and ``Currents`` are
+it; the reader does the same (with a warning). ``BODIES``, ``ROD TYPES`` and ``RODS`` become
+moorline bodies and points (:mod:`moorline.io.moordyn_rigid`: free, fixed and coupled bodies,
+body points ``Body<k>``, rods fixed to bodies, free, fixed and coupled rods, lines on rod ends
+``R<k>A``/``R<k>B``); what cannot be represented (pinned rods, pinned coupled bodies) is one
+``CaseError`` naming every such item, what is approximated a warning each. Seabed files are
+not supported. ``WaveKin`` and ``Currents`` are
 warnings naming what is dropped; ``Currents`` 1 or 3 with a ``current_profile.txt`` next to
 the deck becomes the case's current (:mod:`moorline.io.moordyn_kinematics`). ``TMax``,
 ``dtOut`` and the ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and
@@ -757,7 +761,7 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
     coupling interface) and free points ``Free`` (``CdA = Cd * drag_area``). A vertical
     constant point force becomes extra ``Volume`` (MoorDyn points have no force column).
     Bodies that MoorDyn can express (:mod:`moorline.io.moordyn_bodies`) become ``BODIES``
-    rows and their points ``Body<k>`` points; the reader does not read them back.
+    rows and their points ``Body<k>`` points (read back by :func:`read_moordyn_deck`).
 
     Parameters
     ----------
