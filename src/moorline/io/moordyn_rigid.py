@@ -44,7 +44,13 @@ The mapping to moorline (:class:`moorline.model.Body`):
   ``Coupled`` rods -> prescribed end points; zero-length free rods (``NumSegs 0``, MoorDyn's
   point-like connectors, without mass) -> one free point for both ends;
 - ``Pinned`` rods (free rotation about a fixed or body-attached end A; ``CoupledPinned``)
-  cannot be represented (moorline has no 3-dof rigid member): an error naming them.
+  cannot be represented (moorline has no 3-dof rigid member): an error naming them;
+- a deck's ``Coupled`` points and no body: ``moorline stiffness`` takes them as one rigid
+  group (its default); ``moorline convert --vessel-body`` (:func:`vessel_body`) holds them by
+  one fixed body at the origin instead, so that the statics summary reports its 6x6.
+
+All errors are collected and raised at once (:attr:`RigidParts.errors`), the approximations
+are warnings (:attr:`RigidParts.warnings`, the reader's notes).
 """
 
 from __future__ import annotations
@@ -519,3 +525,32 @@ def _align_x(t: FloatArray) -> FloatArray:
     if s < 1e-12:
         return np.eye(3) if c > 0 else rotation_matrix(np.array([0.0, 0.0, math.pi]))
     return rotation_matrix(axis / s * math.atan2(s, c))
+
+
+def vessel_body(system: Any, name: str = "vessel") -> Any:
+    """``system`` with its prescribed points (a deck's ``Coupled``/``Vessel`` points) turned
+    into points of one fixed body ``name`` at the origin, unrotated (the platform reference
+    point of MoorDyn's coupling): the statics summary then reports that body's reaction and
+    6x6 mooring stiffness about the origin (``moorline convert --vessel-body``).
+
+    Raises
+    ------
+    CaseError
+        Without prescribed points, when a prescribed point moves (motion or initial
+        position), or when ``name`` is taken.
+    """
+    from dataclasses import replace
+
+    coupled = [p for p in system.points.values() if p.kind == "prescribed"]
+    if not coupled:
+        raise CaseError("--vessel-body: the deck has no Coupled/Vessel points",
+                        file=system.source)
+    moving = [p.name for p in coupled if p.motion is not None or p.initial_position is not None]
+    if moving:
+        raise CaseError(f"--vessel-body: points {', '.join(moving)} move", file=system.source)
+    if name in system.bodies:
+        raise CaseError(f"--vessel-body: a body {name!r} exists", file=system.source)
+    points = {n: (Point(n, "body", p.position, body=name, mass=p.mass, volume=p.volume)
+                  if p.kind == "prescribed" else p) for n, p in system.points.items()}
+    bodies = {**system.bodies, name: Body(name, "fixed")}
+    return replace(system, points=points, bodies=bodies)
