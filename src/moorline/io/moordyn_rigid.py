@@ -410,9 +410,10 @@ def add_rod(rigid: _Rigid, rod: RodType, a: FloatArray, b: FloatArray, rho: floa
     if 0.0 < s1 - s0 < 1.0:
         _waterplane(rigid, a_w, b_w, t_w, rod.diameter, rho * g)
         warnings.append(f"{label} pierces the surface: buoyancy taken constant at its "
-                        "initial submerged volume, with its waterplane's constant heave, roll "
-                        "and pitch stiffness (MoorDyn recomputes the submerged part node by "
-                        "node)")
+                        "submerged volume and centroid at the deck's pose, with its "
+                        "waterplane's constant heave, roll and pitch stiffness (MoorDyn "
+                        "recomputes the submerged part node by node; a body settling far from "
+                        "its deck pose has its pitch and roll restoring off by rho g A dz z_B)")
 
 
 def _waterplane(rigid: _Rigid, a_w: FloatArray, b_w: FloatArray, t_w: FloatArray,
