@@ -294,3 +294,16 @@ def test_free_rod_hanging_against_moordyn(tmp_path):
     assert abs(static.body_position("rod1")[2] - np.mean(depth)) < 0.01
     ours = np.linalg.norm(static.end_force("line1", "a"))
     assert ours == pytest.approx(np.mean(tension), rel=5e-3)
+
+
+def test_fixed_and_coupled_rods_become_end_points(tmp_path):
+    """A Fixed rod's ends are fixed points, a Coupled rod's prescribed points (named
+    rod<k>A/B, at the deck's coordinates); ends no line uses are left out."""
+    path = _deck(tmp_path, [], ANCHORS, ["1 rope 1 R1B 195 10 -", "2 rope 2 R2A 195 10 -"],
+                 rods=["1 can Fixed 0 0 -100 0 0 -98 2 -", "2 can Coupled -10 0 -5 -10 0 5 2 -"])
+    deck = read_moordyn_deck(path)
+    points = deck.system.points
+    assert points["rod1B"].kind == "fixed" and points["rod1B"].position == (0.0, 0.0, -98.0)
+    assert points["rod2A"].kind == "prescribed" and points["rod2A"].position == (-10.0, 0.0, -5.0)
+    assert "rod1A" not in points and "rod2B" not in points
+    assert any("coupled rod" in n for n in deck.notes)
