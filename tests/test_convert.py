@@ -4,6 +4,7 @@ and any case survives write -> load."""
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -187,6 +188,79 @@ PUBLIC_DECKS = [
 ]
 
 
+#: Public decks with bodies and rods (origins in tests/data/moordyn/public/README.md):
+#: coupled bodies (MoorPy case7a/b, case8, case9, sample), a free rod hanging from two lines
+#: (RodHanging), a free point-like body and zero-length rods among EI lines (complex_system),
+#: a free body on one line (bodyDrag).
+PUBLIC_BODY_DECKS = [
+    "MoorPy/tests/case7a.dat", "MoorPy/tests/case7b.dat", "MoorPy/tests/case8.dat",
+    "MoorPy/tests/case9.dat", "MoorPy/examples/sample.txt", "MoorDyn/RodHanging.txt",
+    "MoorDyn/local_euler/complex_system.txt", "MoorDyn/body_tests/bodyDrag.txt",
+]
+
+
+@pytest.mark.parametrize("deck", PUBLIC_BODY_DECKS)
+def test_public_body_decks_convert_solve_and_run(deck, tmp_path):
+    """`moorline convert` then `moorline statics` (converged) and a short dynamics run from
+    the equilibrium (2 s) of the converted case."""
+    import json
+
+    from moorline.model import DynamicsSettings
+    from moorline.solvers.dynamics import simulate
+    from moorline.solvers.statics import solve_statics
+
+    out = tmp_path / "case.yaml"
+    runner = CliRunner()
+    result = runner.invoke(cli, ["convert", str(PUBLIC / deck), "--out", str(out), "--quiet"])
+    assert result.exit_code == 0, result.output
+    statics = runner.invoke(cli, ["statics", str(out), "--out", str(tmp_path / "o"),
+                                  "--json", "--quiet", "--no-plots"])
+    assert statics.exit_code == 0, statics.output
+    summary = json.loads(statics.stdout)
+    assert summary["converged"] is True
+    system = load_case(out)
+    if system.bodies:
+        assert set(summary["bodies"]) == set(system.bodies)
+    run = simulate(system, DynamicsSettings(duration=2.0, dt=0.05), initial=solve_statics(system))
+    assert run.success, run.message
+
+
+@pytest.mark.parametrize(("deck", "named"), [
+    ("MoorDyn/BodiesAndRods.dat", "rod 2 (Body1Pinned, line 21)"),
+    ("MoorDyn/body_tests/pinnedBody.txt", "body 1 (CoupledPinned, line 14)"),
+])
+def test_public_decks_with_pinned_members_are_refused(deck, named, tmp_path):
+    """Pinned rods and pinned coupled bodies cannot be represented: exit 2 naming them."""
+    result = CliRunner().invoke(cli, ["convert", str(PUBLIC / deck), "--out",
+                                      str(tmp_path / "c.yaml")])
+    assert result.exit_code == 2
+    assert named in result.output and "cannot be represented" in result.output
+
+
+def test_coupled_body_stiffness_against_moorpy(tmp_path):
+    """MoorPy case 7b (one catenary line on a coupled body, its fairlead off the body's axes):
+    `moorline stiffness` of the converted deck against MoorPy 1.3's 6x6 of the same file
+    (``Body.getStiffnessA``, analytic, lines only). MoorPy's line is the closed-form elastic
+    catenary, moorline's 80 elements: their largest difference is 3.4e-4 of the largest term
+    (the diagonal within 0.35 %), the discretization's; the tolerance is 1e-3 of it."""
+    import json
+
+    moorpy = pytest.importorskip("moorpy")
+    deck = PUBLIC / "MoorPy/tests/case7b.dat"
+    out = tmp_path / "case.yaml"
+    runner = CliRunner()
+    assert runner.invoke(cli, ["convert", str(deck), "--out", str(out), "-q"]).exit_code == 0
+    result = runner.invoke(cli, ["stiffness", str(out), "--json", "-q"])
+    assert result.exit_code == 0, result.output
+    ours = np.array(json.loads(result.stdout)["stiffness"])
+    ms = moorpy.System(file=str(deck))
+    ms.initialize()
+    ms.solveEquilibrium()
+    theirs = np.asarray(ms.bodyList[0].getStiffnessA(lines_only=True))
+    scale = np.abs(theirs).max()
+    assert np.abs(ours - theirs).max() < 1e-3 * scale
+
+
 @pytest.mark.parametrize("deck", PUBLIC_DECKS)
 def test_public_decks_convert_and_reach_equilibrium(deck, tmp_path):
     """`moorline convert` then `moorline statics` with the defaults: exit 0 both; the
@@ -205,3 +279,39 @@ def test_public_decks_convert_and_reach_equilibrium(deck, tmp_path):
                                   "--json", "--quiet"])
     assert statics.exit_code == 0, statics.output
     assert json.loads(statics.stdout)["converged"] is True
+
+
+def test_vessel_body_reports_the_published_oc3_mooring_stiffness(tmp_path):
+    """`convert --vessel-body` on the OC3 deck holds its three Coupled fairleads by one fixed
+    body at the origin: the statics summary's 6x6 of that body against the linearized mooring
+    restoring of Jonkman (2010), NREL/TP-500-47535 (K11 = K22 = 41,180 N/m, K15 = -K24 =
+    -2,821,000 N/rad, K33 = 11,940 N/m, K44 = K55 = 311,100,000 N m/rad, K66 = 11,560,000
+    N m/rad; the delta connection's yaw spring excluded), 0.5 % (four significant figures of
+    a quasi-static model of the same lines); without the flag, `moorline stiffness` takes the
+    Coupled points as one group and gives the same matrix about the origin."""
+    import json
+
+    runner = CliRunner()
+    out = tmp_path / "vessel.yaml"
+    result = runner.invoke(cli, ["convert", str(DECKS / "oc3.dat"), "--vessel-body", "--out",
+                                 str(out), "-q"])
+    assert result.exit_code == 0, result.output
+    system = load_case(out)
+    assert system.bodies["vessel"].kind == "fixed"
+    assert {p.body for p in system.points.values() if p.kind == "body"} == {"vessel"}
+    statics = runner.invoke(cli, ["statics", str(out), "--out", str(tmp_path / "o"), "--json",
+                                  "-q", "--no-plots"])
+    assert statics.exit_code == 0, statics.output
+    K = np.array(json.loads(statics.stdout)["bodies"]["vessel"]["mooring_stiffness"])
+    published = {(0, 0): 41180.0, (1, 1): 41180.0, (0, 4): -2.821e6, (1, 3): 2.821e6,
+                 (2, 2): 11940.0, (3, 3): 3.111e8, (4, 4): 3.111e8, (5, 5): 1.156e7}
+    for (i, j), value in published.items():
+        assert K[i, j] == pytest.approx(value, rel=5e-3), (i, j)
+    plain = tmp_path / "plain.yaml"
+    assert runner.invoke(cli, ["convert", str(DECKS / "oc3.dat"), "--out", str(plain),
+                               "-q"]).exit_code == 0
+    group = runner.invoke(cli, ["stiffness", str(plain), "--reference", "0,0,0", "--json",
+                                "-q"])
+    assert group.exit_code == 0, group.output
+    np.testing.assert_allclose(json.loads(group.stdout)["stiffness"], K, rtol=1e-6,
+                               atol=1e-6 * np.abs(K).max())

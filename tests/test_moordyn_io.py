@@ -562,26 +562,26 @@ def test_current_profile_statics_match_moordyn_settled_in_the_current(tmp_path: 
         assert abs(np.linalg.norm(dry) / size - 1) > 1e-3  # the current matters here
 
 
-def test_bodies_and_rods_are_named_at_once(tmp_path: Path) -> None:
-    """A deck with bodies, rod types and rods: one error naming all three (the first at its
-    line), before the missing-section checks."""
+def test_pinned_rods_and_bodies_are_refused_at_once(tmp_path: Path) -> None:
+    """A deck with a pinned rod and a pinned coupled body: one error naming both (each with
+    its line), before the lines are read."""
     text = OC3.read_text().replace("---------------------- POINTS", "\n".join([
         "---------------------- ROD TYPES ----", "Name Diam Mass Cd Ca CdEnd CaEnd",
         "(-) (m) (kg/m) (-) (-) (-) (-)", "rod 1.0 100 1 1 1 1",
         "---------------------- BODIES ----", "ID Attachment X0 Y0 Z0 r0 p0 y0 M CG I V CdA Ca",
         "(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m2) (m3) (m2) (-)",
-        "1 Free 0 0 0 0 0 0 1e3 0 0 1 0 0",
+        "1 CoupledPinned 0 0 0 0 0 0 1e3 0 0 1 0 0",
         "---------------------- RODS ----", "ID RodType Attachment Xa Ya Za Xb Yb Zb NumSegs",
-        "(#) (-) (-) (m) (m) (m) (m) (m) (m) (-)", "1 rod Body1 0 0 -1 0 0 -5 4",
+        "(#) (-) (-) (m) (m) (m) (m) (m) (m) (-)", "1 rod Body1Pinned 0 0 -1 0 0 -5 4 -",
         "---------------------- POINTS"]))
     path = tmp_path / "bodies.dat"
     path.write_text(text)
     with pytest.raises(CaseError) as info:
         read_moordyn(path)
-    assert info.value.reason == (f"bodies are not supported; also rods (line "
-                                 f"{_line_of(text, '1 rod Body1')}); rod types (line "
-                                 f"{_line_of(text, 'rod 1.0 100')})")
-    assert info.value.field == f"line {_line_of(text, '1 Free 0 0 0')}, BODIES"
+    reason = info.value.reason
+    assert f"body 1 (CoupledPinned, line {_line_of(text, '1 CoupledPinned')})" in reason
+    assert f"rod 1 (Body1Pinned, line {_line_of(text, '1 rod Body1Pinned')})" in reason
+    assert "pinned rods" in reason and "cannot be represented" in reason
 
 
 def test_is_moordyn_deck() -> None:

@@ -8,7 +8,7 @@ from moorline.verification import CASES, run_cases
 
 SLOW = {"wang-w2", "wang-w3", "tuah-ex5", "tuah-ex7", "tuah-ex6", "tuah-ex7-lift",
         # other codes ([compare] extra): quick forms in test_verification_other_codes.py
-        "moorpy-statics", "moordyn-dynamics", "moordyn-body"}
+        "moorpy-statics", "moordyn-dynamics", "moordyn-body", "moordyn-body-deck"}
 
 
 @pytest.mark.parametrize(

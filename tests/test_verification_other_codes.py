@@ -56,6 +56,16 @@ def test_moordyn_body_quick_rows_pass():
         assert part in quantities
 
 
+def test_moordyn_body_deck_quick_rows_pass():
+    pytest.importorskip("moordyn")
+    rows = core.run_case("moordyn-body-deck", quick=True)
+    _check(rows)
+    quantities = " ".join(r.quantity for r in rows)
+    for part in ("platform deck (10 el.): equilibrium heave", "tension at the anchor",
+                 "tension at the fairlead", "free-decay period", "spar deck (10 el.)"):
+        assert part in quantities
+
+
 def test_moordyn_deck_writes_the_body_and_its_points(tmp_path):
     from moorline.io.moordyn import write_moordyn
     from moorline.verification.moordyn_body import buoy_system
@@ -96,6 +106,6 @@ def test_cases_skip_without_the_extra(monkeypatch):
         return real_import(name, *args, **kwargs)
 
     monkeypatch.setattr(builtins, "__import__", no_compare)
-    for name in ("moorpy-statics", "moordyn-dynamics", "moordyn-body"):
+    for name in ("moorpy-statics", "moordyn-dynamics", "moordyn-body", "moordyn-body-deck"):
         with pytest.raises(core.CaseSkipped, match=r"\[compare\] extra"):
             core.run_case(name, quick=True)

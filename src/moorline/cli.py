@@ -692,8 +692,11 @@ if __name__ == "__main__":  # pragma: no cover
 @click.argument("deck", type=click.Path(dir_okay=False, path_type=Path))
 @click.option("--out", "out", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Case file to write (default: the deck's name with .yaml).")
+@click.option("--vessel-body", "vessel", is_flag=True,
+              help="Hold the Coupled/Vessel points by one fixed body 'vessel' at the origin "
+                   "(the statics summary then reports its reaction and 6x6 stiffness).")
 @_common_options
-def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
+def convert(deck: Path, out: Path | None, vessel: bool, quiet: bool, verbose: bool) -> None:
     """Convert a MoorDyn input file DECK into a moorline case file (YAML).
 
     The case is validated before it is written: a deck whose values a case may not hold
@@ -701,7 +704,9 @@ def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
     reading notes (dropped options and channels), how TMax/dtM/dtOut were used and the line
     output flags are comments at the top of the case; the OUTPUTS channels are
     output.channels (a dynamics run writes them as moordyn_channels.csv). `statics` and
-    `run` also take a deck directly and convert it on the fly (with a note).
+    `run` also take a deck directly and convert it on the fly (with a note). Bodies and rods
+    become moorline bodies and points (moorline.io.moordyn_rigid). Without --vessel-body,
+    `moorline stiffness` takes every Coupled point as one rigid group (about their centroid).
     """
     _configure_logging(verbose)
     from .io.case_writer import write_case
@@ -709,6 +714,10 @@ def convert(deck: Path, out: Path | None, quiet: bool, verbose: bool) -> None:
 
     read = read_moordyn_deck(deck)
     system = read.system
+    if vessel:
+        from .io.moordyn_rigid import vessel_body
+
+        system = vessel_body(system)
     target = out if out is not None else deck.with_suffix(".yaml")
     flags = {n: f for n, f in read.line_outputs.items() if f not in ("-", "0")}
     header = "\n".join([

@@ -595,8 +595,10 @@ def _build(spec: CaseSpec, source: str | None, line_types: dict[str, LineType]) 
 
 def _body(name: str, spec: Any, source: str | None) -> Body:
     hs = spec.hydrostatics
-    inertia = tuple(tuple(spec.inertia[i] if i == j else 0.0 for j in range(3))
-                    for i in range(3))
+    off = {(0, 1): 0, (0, 2): 1, (1, 2): 2}
+    inertia = tuple(tuple(spec.inertia[i] if i == j else
+                          spec.products_of_inertia[off[(min(i, j), max(i, j))]]
+                          for j in range(3)) for i in range(3))
     return Body(
         name=name, kind=spec.kind, position=tuple(spec.position),
         rotation=tuple(math.radians(a) for a in spec.rotation), mass=spec.mass,

@@ -133,6 +133,11 @@ def _body(b: Body) -> dict[str, Any]:
         "center_of_gravity": list(b.center_of_gravity),
         "inertia": [b.inertia[i][i] for i in range(3)], "hydrostatics": hs,
         "force": list(b.force[:3]), "moment": list(b.force[3:])}
+    products = [b.inertia[0][1], b.inertia[0][2], b.inertia[1][2]]
+    if any(products):
+        data["products_of_inertia"] = products
+    if any(b.drag_area):
+        data.update(drag_area=list(b.drag_area), Cd=b.Cd)
     for key in ("added_mass", "damping"):
         if getattr(b, key) is not None:
             data[key] = [list(r) for r in getattr(b, key)]

@@ -37,8 +37,12 @@ names are ``point<ID>`` and ``line<ID>``. :func:`write_moordyn` writes names tha
 ``read_moordyn(write_moordyn(system))`` gives back the same names.
 
 Missing ``WtrDpth``: MoorDyn-C starts from 0 and lowers the seabed to any point defined below
-it; the reader does the same (with a warning). Bodies, rods and seabed files are not supported
-(``CaseError``, naming every unsupported section at once). ``WaveKin`` and ``Currents`` are
+it; the reader does the same (with a warning). ``BODIES``, ``ROD TYPES`` and ``RODS`` become
+moorline bodies and points (:mod:`moorline.io.moordyn_rigid`: free, fixed and coupled bodies,
+body points ``Body<k>``, rods fixed to bodies, free, fixed and coupled rods, lines on rod ends
+``R<k>A``/``R<k>B``); what cannot be represented (pinned rods, pinned coupled bodies) is one
+``CaseError`` naming every such item, what is approximated a warning each. Seabed files are
+not supported. ``WaveKin`` and ``Currents`` are
 warnings naming what is dropped; ``Currents`` 1 or 3 with a ``current_profile.txt`` next to
 the deck becomes the case's current (:mod:`moorline.io.moordyn_kinematics`). ``TMax``,
 ``dtOut`` and the ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and
@@ -62,6 +66,7 @@ from .files import MAX_CASE_BYTES, file_problem
 from .moordyn_bodies import body_attachment, body_problems, body_section
 from .moordyn_kinematics import water_kinematics
 from .moordyn_outputs import output_channels, time_settings
+from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
 from .schema import check_number
 from .strain_table import read_strain_table
 from .topology import geometry_problem
@@ -226,32 +231,41 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     except OSError as exc:
         raise CaseError(f"cannot read MoorDyn file: {exc.strerror or exc}", file=str(path)) from exc
     sections = _split_sections(text.splitlines(), reader)
-    unsupported = [(sections[kind], what) for kind, what in
-                   (("bodies", "bodies"), ("rods", "rods"), ("rodtypes", "rod types"))
-                   if kind in sections and sections[kind].rows]
-    if unsupported:
-        first = unsupported[0][0]
-        others = "; ".join(f"{what} (line {sec.rows[0].lineno})" for sec, what in unsupported[1:])
-        raise reader.fail(f"{unsupported[0][1]} are not supported"
-                          + (f"; also {others}" if others else ""),
-                          row=first.rows[0], section=first.title)
+    options = sections.get("options", _Section("options", "OPTIONS", 0))
+    raw, env_values = _parse_options(options, reader)
     for kind, title in (("types", "LINE TYPES"), ("points", "POINTS"), ("lines", "LINES")):
         if kind not in sections:
             raise reader.fail(f"missing section {title} (a '--- {title} ---' header line)")
         if not sections[kind].rows:
             raise reader.fail(f"section {sections[kind].title} has no entries",
                               lineno=sections[kind].lineno, section=sections[kind].title)
+    rho = env_values.get("rho", MOORDYN_DEFAULTS["rho"])
+    parts = _rigid_parts(sections, rho, env_values.get("g", MOORDYN_DEFAULTS["g"]), reader)
     types, v_types = _parse_line_types(sections["types"], reader)
-    points, ids, v_points = _parse_points(sections["points"], reader)
-    lines, line_ids, v_lines = _parse_lines(sections["lines"], types, ids, v_points, reader)
-    options = sections.get("options", _Section("options", "OPTIONS", 0))
-    raw, env_values = _parse_options(options, reader)
+    points, ids, v_points = _parse_points(sections["points"], reader, parts, rho)
+    points.update(parts.rod_points)
+    parts.collapse_point_bodies(points, rho)
+    if parts.errors:
+        raise reader.fail("cannot be represented: " + "; ".join(parts.errors))
+    lines, line_ids, v_lines = _parse_lines(sections["lines"], types, ids, v_points, reader,
+                                            parts)
+    used = {end for line in lines.values() for end in (line.end_a, line.end_b)}
+    for name in parts.rod_points:
+        if name not in used:
+            del points[name]  # a rod end no line attaches to
+    for name in parts.rigid:
+        if not any(p.kind == "body" and p.body == name for p in points.values()):
+            parts.warnings.append(f"body {name}: no line attaches to it (statics needs "
+                                  "something to hold it)")
+    for message in parts.warnings:
+        reader.warn(message)
+    bodies = parts.bodies()
     environment = _environment(env_values, points, reader)
     current = water_kinematics(raw, path, reader.warn)
     if current is not None:
         environment = replace(environment, current=current)
     versions = {v_types, v_points, v_lines}
-    problem = geometry_problem(points, lines)
+    problem = geometry_problem(points, lines, bodies)
     if problem is not None:
         raise CaseError(problem[0], file=str(path))
     outputs = output_channels(sections.get("outputs"), reader.warn)
@@ -259,13 +273,35 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     analyses, output = time_settings(raw, outputs, current is not None, comments.append)
     system = System(name=path.stem, units="SI", environment=environment, line_types=types,
                     points=points, lines=lines, source=str(path), analyses=analyses,
-                    output=output)
+                    output=output, bodies=bodies)
     flags = {name: _line_flags(sections["lines"].rows[i - 1])
              for name, i in line_ids.items()}
     return MoorDynDeck(system=system, version="v1" if versions == {"v1"} else "v2",
                        options=raw, notes=tuple(reader.notes),
-                       point_ids={name: i for i, name in ids.items()}, line_ids=line_ids,
+                       point_ids={name: i for i, name in ids.items() if name in points},
+                       line_ids=line_ids,
                        outputs=outputs, line_outputs=flags, comments=tuple(comments))
+
+
+def _rigid_parts(sections: Mapping[str, _Section], rho: float, g: float,
+                 reader: _Reader) -> RigidParts:
+    """The ``ROD TYPES``, ``BODIES`` and ``RODS`` sections (:mod:`moorline.io.moordyn_rigid`)."""
+    parts = RigidParts()
+
+    def failer(title: str):
+        return lambda reason, row: reader.fail(reason, row, title)
+
+    rod_types = {}
+    if "rodtypes" in sections:
+        sec = sections["rodtypes"]
+        rod_types = parse_rod_types(sec.rows, failer(sec.title))
+    if "bodies" in sections:
+        sec = sections["bodies"]
+        parse_bodies(sec.rows, rho, failer(sec.title), parts)
+    if "rods" in sections:
+        sec = sections["rods"]
+        parse_rods(sec.rows, rod_types, rho, g, failer(sec.title), parts)
+    return parts
 
 
 def _line_flags(row: _Row) -> str:
@@ -438,7 +474,8 @@ def point_word(attachment: str) -> str:
     return match.group(0).upper() if match else ""
 
 
-def _parse_points(sec: _Section, reader: _Reader
+def _parse_points(sec: _Section, reader: _Reader, parts: RigidParts | None = None,
+                  rho: float = MOORDYN_DEFAULTS["rho"]
                   ) -> tuple[dict[str, Point], dict[int, str], Version]:
     version: Version = "v1" if len(sec.rows[0].tokens) == 12 else "v2"
     layout = ("v2: ID Attachment X Y Z Mass Volume CdA Ca" if version == "v2"
@@ -450,9 +487,13 @@ def _parse_points(sec: _Section, reader: _Reader
         _check_id(row, number, sec.title, reader)
         attachment = row.tokens[1]
         kind = _POINT_KINDS.get(point_word(attachment))
+        body = _point_body(attachment, parts)
+        if body is not None:
+            kind = "body"
         if kind is None:
-            what = ("points attached to bodies or turbines are not supported"
-                    if re.match(r"(?i)(body|turbine)\d*", attachment) else
+            what = ("no such body" if point_word(attachment) == "BODY" else
+                    "points attached to turbines are not supported"
+                    if re.match(r"(?i)turbine\d*", attachment) else
                     "expected Fixed (Fix, Anchor), Coupled (Vessel, Ves, Cpld, Fairlead) "
                     "or Free (Connect, Con, Point)")
             raise reader.fail(f"unknown point attachment {attachment!r}: {what}", row, sec.title)
@@ -466,8 +507,18 @@ def _parse_points(sec: _Section, reader: _Reader
         points[name] = Point(name=name, kind=kind, position=(v[0], v[1], v[2]), mass=v[3],
                              volume=v[4], force=force, Cd=1.0 if cda else 0.0, drag_area=cda,
                              Ca=ca)
+        if body is not None and parts is not None:
+            points[name] = attach_point(parts, points[name], body, rho, number)
         ids[number] = name
     return points, ids, version
+
+
+def _point_body(attachment: str, parts: RigidParts | None) -> str | None:
+    """The body name of a ``Body<k>`` point attachment (None: not one, or no such body)."""
+    match = re.match(r"(?i)^body(\d+)$", attachment)
+    if match is None or parts is None:
+        return None
+    return parts.body_ids.get(int(match.group(1)))
 
 
 def _lines_layout(sec: _Section, points_version: Version) -> Version:
@@ -481,7 +532,7 @@ def _lines_layout(sec: _Section, points_version: Version) -> Version:
 
 
 def _parse_lines(sec: _Section, types: Mapping[str, LineType], ids: Mapping[int, str],
-                 points_version: Version, reader: _Reader
+                 points_version: Version, reader: _Reader, parts: RigidParts | None = None
                  ) -> tuple[dict[str, Line], dict[str, int], Version]:
     version = _lines_layout(sec, points_version)
     layout = ("v2: ID LineType AttachA AttachB UnstrLen NumSegs [Outputs]" if version == "v2"
@@ -498,7 +549,7 @@ def _parse_lines(sec: _Section, types: Mapping[str, LineType], ids: Mapping[int,
                               f"{', '.join(types)}", row, sec.title)
         a, b, length, segs = ((tok[2], tok[3], tok[4], tok[5]) if version == "v2"
                               else (tok[4], tok[5], tok[2], tok[3]))
-        ends = [_attachment(t, which, ids, row, sec.title, reader)
+        ends = [_attachment(t, which, ids, row, sec.title, reader, parts)
                 for t, which in ((a, "AttachA"), (b, "AttachB"))]
         length_value = _number(length, "UnstrLen", row, sec.title, reader)
         n = _integer(segs, "NumSegs", row, sec.title, reader)
@@ -514,10 +565,16 @@ def _parse_lines(sec: _Section, types: Mapping[str, LineType], ids: Mapping[int,
 
 
 def _attachment(token: str, which: str, ids: Mapping[int, str], row: _Row, section: str,
-                reader: _Reader) -> str:
+                reader: _Reader, parts: RigidParts | None = None) -> str:
     if re.match(r"(?i)^r\d+[ab]$", token):
-        raise reader.fail(f"{which} {token!r}: lines attached to rods are not supported",
-                          row, section)
+        try:
+            name = parts.rod_end(token) if parts is not None else None
+        except KeyError:
+            name = None
+        if name is None:
+            raise reader.fail(f"{which} {token!r}: no such rod end (or the rod is pinned, "
+                              "which is not supported)", row, section)
+        return name
     try:
         number = int(token)
     except ValueError:
@@ -525,7 +582,8 @@ def _attachment(token: str, which: str, ids: Mapping[int, str], row: _Row, secti
     if number is None or number not in ids:
         raise reader.fail(f"unknown attachment {which} {token!r}: no point with that ID "
                           f"(points are 1..{len(ids)})", row, section)
-    return ids[number]
+    name = ids[number]
+    return parts.merged.get(name, name) if parts is not None else name
 
 
 def _parse_options(sec: _Section, reader: _Reader) -> tuple[dict[str, str], dict[str, float]]:
@@ -561,7 +619,7 @@ def _environment(values: Mapping[str, float], points: Mapping[str, Point],
                  reader: _Reader) -> Environment:
     get = {**MOORDYN_DEFAULTS, **values}
     depth = get["WtrDpth"]
-    deepest = max((-p.position[2] for p in points.values()), default=0.0)
+    deepest = max((-p.position[2] for p in points.values() if p.kind != "body"), default=0.0)
     if deepest > depth:
         reader.warn(f"water depth set to {deepest:g} (the deepest point), as MoorDyn does: "
                     f"WtrDpth {'is missing' if 'WtrDpth' not in values else f'= {depth:g}'}")
@@ -703,7 +761,7 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
     coupling interface) and free points ``Free`` (``CdA = Cd * drag_area``). A vertical
     constant point force becomes extra ``Volume`` (MoorDyn points have no force column).
     Bodies that MoorDyn can express (:mod:`moorline.io.moordyn_bodies`) become ``BODIES``
-    rows and their points ``Body<k>`` points; the reader does not read them back.
+    rows and their points ``Body<k>`` points (read back by :func:`read_moordyn_deck`).
 
     Parameters
     ----------

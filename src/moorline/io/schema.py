@@ -392,7 +392,9 @@ class ExcitationSpec(_Spec):
 
 class BodySpec(_Spec):
     """``bodies.<name>``: a rigid body (see :class:`moorline.model.Body`). Matrices (inertia,
-    added mass, damping, hydrostatic stiffness) are plain numbers in the case's units."""
+    added mass, damping, hydrostatic stiffness) are plain numbers in the case's units.
+    ``inertia`` holds the diagonal ``Ixx, Iyy, Izz`` about the centre of gravity (body frame),
+    ``products_of_inertia`` the tensor's off-diagonal entries ``I[0][1], I[0][2], I[1][2]``."""
 
     kind: Literal["free", "fixed"] = "free"
     position: Vector3
@@ -401,6 +403,8 @@ class BodySpec(_Spec):
     center_of_gravity: Vector3 = (0.0, 0.0, 0.0)
     inertia: Annotated[list[quantity("mass*length^2", ge=0.0)],
                        AfterValidator(_three)] = (0.0,) * 3
+    products_of_inertia: Annotated[list[quantity("mass*length^2")],
+                                   AfterValidator(_three)] = (0.0,) * 3
     added_mass: Matrix6 | None = None
     damping: Matrix6 | None = None
     hydrostatics: HydrostaticsSpec = Field(default_factory=HydrostaticsSpec)

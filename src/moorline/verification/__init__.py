@@ -29,5 +29,6 @@ register("tcheou-t2", "tcheou_t2:run")
 register("moorpy-statics", "moorpy_statics:run")  # other codes ([compare] extra)
 register("moordyn-dynamics", "moordyn_dynamics:run")  # other codes ([compare] extra)
 register("moordyn-body", "moordyn_body:run")  # other codes ([compare] extra)
+register("moordyn-body-deck", "moordyn_body_deck:run")  # other codes ([compare] extra)
 
 __all__ = ["CASES", "Row", "register", "run_cases"]
