@@ -89,6 +89,8 @@ def _line_type(lt: LineType) -> dict[str, Any]:
         data["EA"] = {"table": [list(row) for row in table]}
     if "EAd" not in data:
         data.pop("EAd_Lm")
+    if not data["EI"]:
+        data.pop("EI")
     return data
 
 

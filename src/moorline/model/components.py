@@ -55,6 +55,9 @@ class LineType:
         Fibre-rope dynamic stiffness ``EA_d = EAd + EAd_Lm T_mean`` [force, -] used about the
         static state in dynamic analyses (Del Vecchio 1992; MoorPy's ``EAd``/``EAd_Lm``);
         ``None``: the static law in dynamics too.
+    EI
+        Bending stiffness [force*length^2] (0: a cable without bending stiffness;
+        :mod:`moorline.physics.bending`, pinned line ends).
     """
 
     name: str
@@ -79,6 +82,7 @@ class LineType:
     EA_table: tuple[tuple[float, float], ...] | None = None
     EAd: float | None = None
     EAd_Lm: float = 0.0
+    EI: float = 0.0
 
     @property
     def area_displaced(self) -> float:
