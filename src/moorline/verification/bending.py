@@ -26,7 +26,11 @@ ones over ``1 + eps``; the closed forms below carry those factors (``eps = 1e-3`
     midspan), 40 elements, Newmark (average acceleration) with 100 steps per period: the
     period of the midspan motion over three periods against ``2 pi / omega_1`` (tolerance
     1e-3: the mesh error 4e-4 and the step's period elongation ``(omega h)^2 / 12 = 3.3e-4``).
-(d) Case ``bending-moordyn``: MoorDyn-C 2.7 (``[compare]`` extra; other code, same input
+(d) Harmonic balance: the same line without weight, end B driven across by 1 mm at a
+    1 s period (between the first two modes), one harmonic, 80 elements: the midspan
+    amplitude against the closed-form steady state (:func:`driven_amplitude`); errors
+    8.1e-3 and 2.0e-3 at 20 and 40 elements (O(h^2)); tolerance 2e-3.
+(e) Case ``bending-moordyn``: MoorDyn-C 2.7 (``[compare]`` extra; other code, same input
     through :func:`moorline.io.moordyn.write_moordyn`): a steel riser (diameter 0.3 m,
     150 kg/m, ``EA = 3e8 N``, ``EI = 5e7 N m^2``, length 118 m) pinned at an anchor point
     100 m below the surface and a top point 60 m away (chord 116.6 m), in water (depth 300 m,
@@ -45,6 +49,7 @@ ones over ``1 + eps``; the closed forms below carry those factors (``eps = 1e-3`
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import tempfile
 from pathlib import Path
@@ -54,15 +59,18 @@ import numpy as np
 from ..model import (
     DynamicsSettings,
     Environment,
+    HarmonicSettings,
     Line,
     LineType,
     ModalSettings,
+    Motion,
     Point,
     StaticsSettings,
     System,
 )
 from ..physics import bending
 from ..solvers.dynamics import simulate
+from ..solvers.harmonic import solve_harmonic
 from ..solvers.modal import solve_modes
 from ..solvers.statics import solve_statics
 from .core import CaseSkipped, Row
@@ -77,6 +85,7 @@ BEAM_TENSION = 1.0
 GRAVITY = 9.80665
 STATIC_ELEMENTS, MODAL_ELEMENTS, DYNAMIC_ELEMENTS = 40, 80, 40
 STEPS_PER_PERIOD = 200
+HARMONIC_ELEMENTS, DRIVE, DRIVE_PERIOD, TOL_HARMONIC = 80, 1.0e-3, 1.0, 2e-3
 TOL_STATIC, TOL_ORDER, TOL_MODAL, TOL_PERIOD = 1e-3, 0.1, 2e-3, 1e-3
 MOORDYN = "MoorDyn-C 2.7.2, same input"
 RISER_SEGMENTS, RISER_EI, RISER_LENGTH, MOORDYN_DT = 10, 5.0e7, 118.0, 5.0e-3
@@ -184,6 +193,39 @@ def dynamic_rows() -> list[Row]:
                 note=f"{len(crossings) - 1} periods, dt = T / {STEPS_PER_PERIOD} (Newmark)")]
 
 
+def driven_amplitude(period: float, amplitude: float = 1.0e-3) -> float:
+    """Exact midspan amplitude of the weightless beam-string whose end B is driven across by
+    ``amplitude sin(2 pi t / period)``, both ends pinned: ``EI w'''' - T w'' - m omega^2 w =
+    0`` with ``w(0) = w''(0) = w''(L) = 0``, ``w(L) = Y`` gives
+    ``w = Y [b^2 sinh(a x) / sinh(a L) + a^2 sin(b x) / sin(b L)] / (a^2 + b^2)``,
+    ``a^2, -b^2 = (T +- sqrt(T^2 + 4 EI m omega^2)) / (2 EI)``."""
+    ei, m = EI * (1.0 + EPS), MASS / (1.0 + EPS)
+    w = 2 * math.pi / period
+    root = math.sqrt(TENSION**2 + 4 * ei * m * w * w)
+    a, b = math.sqrt((TENSION + root) / (2 * ei)), math.sqrt((root - TENSION) / (2 * ei))
+    x = SPAN / 2
+    return amplitude * (b * b * math.sinh(a * x) / math.sinh(a * SPAN)
+                        + a * a * math.sin(b * x) / math.sin(b * SPAN)) / (a * a + b * b)
+
+
+def harmonic_rows() -> list[Row]:
+    """(d): the harmonic-balance steady state of the end-driven beam-string."""
+    system = beam_system(HARMONIC_ELEMENTS)
+    drive = Motion("harmonic", amplitude=(0.0, DRIVE, 0.0), period=DRIVE_PERIOD)
+    right = dataclasses.replace(system.points["right"], kind="prescribed", motion=drive)
+    system = dataclasses.replace(system, points={**system.points, "right": right})
+    result = solve_harmonic(system, HarmonicSettings(period=DRIVE_PERIOD, harmonics=1))
+    if not result.success:
+        raise RuntimeError(f"beam harmonic balance failed: {result.message}")
+    node = result.mesh.line_nodes[0][HARMONIC_ELEMENTS // 2]
+    got = float(result.coefficients[2, node, 1])  # the sin(omega t) coefficient of y
+    return [Row(CASE, f"harmonic balance: midspan amplitude, end driven {DRIVE * 1e3:g} mm at "
+                f"{DRIVE_PERIOD:g} s, {HARMONIC_ELEMENTS} elements",
+                driven_amplitude(DRIVE_PERIOD, DRIVE), got, TOL_HARMONIC, unit="m",
+                kind="exact", source=BEAM,
+                note="in opposition to the drive (between modes 1 and 2)")]
+
+
 def _downward_crossings(t: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Times where ``y`` crosses zero downwards, linearly interpolated."""
     i = np.flatnonzero((y[:-1] > 0) & (y[1:] <= 0))
@@ -191,7 +233,7 @@ def _downward_crossings(t: np.ndarray, y: np.ndarray) -> np.ndarray:
 
 
 def riser_system(EI_: float = RISER_EI, segments: int = RISER_SEGMENTS) -> System:
-    """The riser of (d) (module docstring)."""
+    """The riser of (e) (module docstring)."""
     lt = LineType("riser", diameter=0.3, mass_per_length=150.0, EA=3.0e8, Cd=1.0, Ca=1.0,
                   Ct=0.0, Cat=0.0, EI=EI_)
     points = {"anchor": Point("anchor", "fixed", (0.0, 0.0, -100.0)),
@@ -231,7 +273,7 @@ def moordyn_statics(system: System, dt: float = MOORDYN_DT, tmax_ic: float = 400
 
 
 def moordyn_rows() -> list[Row]:
-    """(d): the riser's end forces and shape against MoorDyn."""
+    """(e): the riser's end forces and shape against MoorDyn."""
     try:
         import moordyn  # noqa: F401
     except ImportError as exc:
@@ -259,12 +301,12 @@ def moordyn_rows() -> list[Row]:
 
 
 def run(quick: bool = False) -> list[Row]:
-    """Case ``bending``: rows (a)-(c) of the module docstring; ``quick`` drops the third
+    """Case ``bending``: rows (a)-(d) of the module docstring; ``quick`` drops the third
     frequencies."""
-    return static_rows() + modal_rows(quick) + dynamic_rows()
+    return static_rows() + modal_rows(quick) + dynamic_rows() + harmonic_rows()
 
 
 def run_moordyn(quick: bool = False) -> list[Row]:
-    """Case ``bending-moordyn``: rows (d) (the same in the quick form: one MoorDyn run of a
+    """Case ``bending-moordyn``: rows (e) (the same in the quick form: one MoorDyn run of a
     few seconds)."""
     return moordyn_rows()
