@@ -325,3 +325,87 @@ def test_stochastic_analysis_carries_bending() -> None:
         np.testing.assert_allclose(foss.tension_std, direct.tension_std, rtol=1e-6)
         stds[ei] = foss.displacement_std
     assert np.abs(stds[1.0e8] - stds[0.0]).max() > 0.05 * np.abs(stds[0.0]).max()
+
+
+def test_clamp_forces_and_tangent_against_finite_differences() -> None:
+    rng = np.random.default_rng(5)
+    x = rng.normal(size=(4, 3))
+    elements = np.array([[0, 1], [2, 3]])
+    which = np.array([0, 1])
+    direction = rng.normal(size=(2, 3))
+    direction /= np.linalg.norm(direction, axis=1)[:, None]
+    c = np.array([2.0, 5.0])
+    args = (elements, which, direction, c)
+    f = bending.clamp_forces(x, *args)
+    K = bending.clamp_tangent(x, *args)
+    h = 1e-6
+    for k in range(2):
+        for j in range(6):
+            node, axis = elements[k, j // 3], j % 3
+            xp, xm = x.copy(), x.copy()
+            xp[node, axis] += h
+            xm[node, axis] -= h
+            energy = bending.clamp_energy(xp, *args)[k] - bending.clamp_energy(xm, *args)[k]
+            grad = energy / (2 * h)
+            assert f[k].ravel()[j] == pytest.approx(-grad, abs=1e-7)
+            dforce = -(bending.clamp_forces(xp, *args)[k] - bending.clamp_forces(xm, *args)[k])
+            np.testing.assert_allclose(K[k][:, j], dforce.ravel() / (2 * h), atol=1e-6)
+
+
+def test_cantilever_tip_deflection_and_clamped_tangent() -> None:
+    """(e) of the verification case: ``P L^3 / 3 EI`` at second order; the assembled tangent
+    with the clamp matches finite differences; the root carries the tip load."""
+    rows = case.cantilever_rows()
+    assert all(r.passed for r in rows), [(r.quantity, r.error) for r in rows]
+    system = case.cantilever_system(6)
+    mesh = discretize(system)
+    assert list(mesh.clamp_elements) == [mesh.line_elements[0][0]]
+    assert mesh.clamp_stiffness[0] == pytest.approx(case.CANTILEVER_EI / (0.5 * 10.0 / 6))
+    rng = np.random.default_rng(2)
+    x = mesh.node_position + 0.05 * rng.normal(size=mesh.node_position.shape)
+    x[mesh.point_node[0]] = mesh.node_position[mesh.point_node[0]]
+    model = StaticModel(mesh)
+    K = model.tangent(x).toarray()
+    h = 1e-6
+    fd = np.zeros_like(K)
+    for j in range(mesh.n_dofs):
+        d = np.zeros(mesh.n_dofs)
+        d[j] = h
+        step = scatter_free(d, mesh.dof_of_node)
+        fd[:, j] = -(model.residual(x + step)[0] - model.residual(x - step)[0]) / (2 * h)
+    np.testing.assert_allclose(K, fd, atol=1e-6 * np.abs(K).max())
+    result = solve_statics(case.cantilever_system(20))
+    np.testing.assert_allclose(result.end_force("beam", "a"), (0.0, 0.0, -case.TIP_LOAD),
+                               atol=1e-6 * case.TIP_LOAD)
+
+
+CLAMPED = """
+name: cantilever
+units: SI
+line_types:
+  b: {{diameter: 0.1 m, mass_per_length: 1 kg/m, EA: 1e9 N, EI: {EI}}}
+points:
+  root: {{kind: {root}, position: [0, 0, 0]}}
+  tip: {{kind: free, position: [10, 0, 0], mass: 1, force: [0, 0, -100]}}
+lines:
+  l: {{type: b, length: 10, segments: 10, end_a: root, end_b: tip, clamp_a: {clamp}}}
+"""
+
+
+def test_clamped_end_from_a_case_file(tmp_path: Path) -> None:
+    from moorline.errors import CaseError
+    from moorline.io import load_case
+    from moorline.io.case_writer import write_case
+
+    system = load_case_text(CLAMPED.format(EI="1e6", root="fixed", clamp="[2, 0, 0]"))
+    assert system.lines["l"].clamp_a == (2.0, 0.0, 0.0) and system.lines["l"].clamp_b is None
+    assert discretize(system).clamp_direction.tolist() == [[1.0, 0.0, 0.0]]
+    again = load_case(write_case(system, tmp_path / "c.yaml"))
+    assert again.lines["l"].clamp_a == (2.0, 0.0, 0.0)
+    for EI, root, clamp, match in (("0", "fixed", "[1, 0, 0]", "needs bending stiffness"),
+                                   ("1e6", "free", "[1, 0, 0]", "fixed or prescribed"),
+                                   ("1e6", "fixed", "[0, 0, 0]", "nonzero direction")):
+        with pytest.raises(CaseError, match=match):
+            load_case_text(CLAMPED.format(EI=EI, root=root, clamp=clamp))
+    with pytest.raises(CaseError, match="clamped end"):
+        write_moordyn(system, tmp_path / "c.dat", 0.001)

@@ -90,6 +90,9 @@ class Mesh:
         Bending stiffness (:mod:`moorline.physics.bending`): the node triplets
         ``(i-1, i, i+1)`` of the interior nodes of lines with ``EI > 0`` (n_b, 3), their two
         elements (n_b, 2) and ``EI / Lbar`` [force*length] (n_b,); empty without bending.
+    clamp_elements, clamp_direction, clamp_stiffness
+        Clamped line ends: the end element (n_c,), the held unit tangent (n_c, 3) and
+        ``EI / (L_e / 2)`` (n_c,); empty when every end is pinned.
     """
 
     node_position: FloatArray
@@ -144,11 +147,14 @@ class Mesh:
     bend_nodes: IntArray = field(default_factory=lambda: np.zeros((0, 3), dtype=np.int64))
     bend_elements: IntArray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
     bend_stiffness: FloatArray = field(default_factory=lambda: np.zeros(0))
+    clamp_elements: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    clamp_direction: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
+    clamp_stiffness: FloatArray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def has_bending(self) -> bool:
-        """Whether any line has bending stiffness."""
-        return len(self.bend_nodes) > 0
+        """Whether any line has bending stiffness (interior nodes or clamped ends)."""
+        return len(self.bend_nodes) > 0 or len(self.clamp_elements) > 0
 
     @property
     def pattern_pairs(self) -> IntArray:
@@ -284,7 +290,8 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
     offsets = np.cumsum([0] + [len(e) for e in elements])
     line_elements = tuple(np.arange(offsets[i], offsets[i + 1]) for i in range(len(elements)))
     props = _element_properties(system, el_line)
-    bend = bending.bending_triplets(line_nodes, line_elements, L0, props.pop("EI"))
+    EI = props.pop("EI")
+    bend = bending.bending_triplets(line_nodes, line_elements, L0, EI)
     ratio = props["BA"] < 0  # MoorDyn's -zeta: a damping ratio of each segment's axial mode
     props["BA"] = np.where(ratio, -props["BA"] * L0 * np.sqrt(props["EA"]
                                                               * props["mass_per_length"]),
@@ -325,7 +332,31 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         seabed_damping_per_area=env.seabed.damping, node_contact_area=tributary,
         gravity=env.gravity, water_density=env.water_density, **props,
         bend_nodes=bend[0], bend_elements=bend[1], bend_stiffness=bend[2],
+        **_clamps(system, line_elements, L0, EI),
         **_body_arrays(system, points))
+
+
+def _clamps(system: System, line_elements: tuple[IntArray, ...], length0: FloatArray,
+            EI: FloatArray) -> dict[str, FloatArray]:
+    """The clamped line ends (:attr:`Mesh.clamp_elements` and the rest)."""
+    elements, directions, stiffness = [], [], []
+    for line, els in zip(system.lines.values(), line_elements, strict=True):
+        for end, direction, e in ((line.end_a, line.clamp_a, els[0]),
+                                  (line.end_b, line.clamp_b, els[-1])):
+            if direction is None:
+                continue
+            d = np.asarray(direction, dtype=float)
+            kind = system.points[end].kind
+            if kind not in ("fixed", "prescribed") or not EI[e] > 0 or not np.any(d):
+                raise ValueError(f"line {line.name}: a clamped end needs EI > 0, a nonzero "
+                                 f"direction and a fixed or prescribed point ({end!r} is "
+                                 f"{kind})")
+            elements.append(e)
+            directions.append(d / np.linalg.norm(d))
+            stiffness.append(EI[e] / (0.5 * length0[e]))
+    return {"clamp_elements": np.array(elements, dtype=np.int64),
+            "clamp_direction": np.array(directions, dtype=float).reshape(-1, 3),
+            "clamp_stiffness": np.array(stiffness, dtype=float)}
 
 
 def with_loads_of(mesh: Mesh, system: System) -> Mesh:

@@ -620,6 +620,9 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
     for ln in system.lines.values():
         if ln.initial_shape is not None:
             omissions.append(f"line {ln.name}: initial_shape")
+        if ln.clamp_a is not None or ln.clamp_b is not None:
+            errors.append(f"line {ln.name}: a clamped end (MoorDyn clamps lines only at rods "
+                          "and bodies)")
     errors += body_problems(system)
     return errors, omissions
 

@@ -437,7 +437,9 @@ class PointSpec(_Spec):
 
 
 class LineSpec(_Spec):
-    """``lines.<name>``: a cable between two points."""
+    """``lines.<name>``: a cable between two points. ``clamp_a``/``clamp_b``: a clamped end
+    (line type with ``EI > 0``, a fixed or prescribed point), the direction its tangent is
+    held along (from end A towards end B); omitted: pinned."""
 
     type: str
     length: quantity("length", gt=0.0)
@@ -445,6 +447,8 @@ class LineSpec(_Spec):
     end_a: str
     end_b: str
     initial_shape: list[Vector3] | None = None
+    clamp_a: Annotated[list[float], AfterValidator(_three)] | None = None
+    clamp_b: Annotated[list[float], AfterValidator(_three)] | None = None
 
 
 class StaticsSpec(_Spec):

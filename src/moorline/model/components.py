@@ -193,6 +193,10 @@ class Line:
     initial_shape
         Optional initial node positions, shape ``(segments + 1, 3)``; otherwise the solver
         chooses (catenary or straight line).
+    clamp_a, clamp_b
+        A clamped end (its line type needs ``EI > 0``; the end point fixed or prescribed): the
+        direction the line's tangent is held along there, pointing from end A towards end B
+        (normalized; :mod:`moorline.physics.bending`). ``None``: a pinned end.
     """
 
     name: str
@@ -202,3 +206,5 @@ class Line:
     end_a: str
     end_b: str
     initial_shape: tuple[Vector3, ...] | None = None
+    clamp_a: Vector3 | None = None
+    clamp_b: Vector3 | None = None

@@ -20,8 +20,14 @@ symmetric: bending is conservative). The moment at the node is
 with forces ``EI kappa / l`` normal to the segments and no part along them: the two agree to
 ``O(theta^2)`` and the segment strain.
 
-Line ends are pinned (no moment): the end nodes take part only in the triplet of their
-neighbour. (MoorDyn clamps a line end attached to a rod or body; that is not done here.)
+Line ends are pinned (no moment) by default: the end nodes take part only in the triplet of
+their neighbour. A clamped end holds the line's tangent there along a fixed direction ``d``
+(pointing from end A towards end B): a half-segment "ghost" triplet with energy
+``EI / (L_e / 2) (1 - t_e . d)`` on the end element ``e`` (MoorDyn-C's cantilevered end,
+curvature ``4 sin(theta/2) / l_e``; the same as the central scheme's ghost node
+``w_{-1} = w_1``). Its forces and tangent act on the end element's two nodes.
+(MoorDyn clamps a line end at a rod or body, whose direction turns with it; here the direction
+is fixed in space.)
 """
 
 from __future__ import annotations
@@ -120,20 +126,60 @@ def bending_tangent(positions: FloatArray, nodes: IntArray, stiffness: FloatArra
     c = stiffness[:, None, None]
     s = np.einsum("ij,ij->i", ta, tb)[:, None, None]
     eye = np.eye(3)
-    outer = _outer
-    Pa, Pb = eye - outer(ta, ta), eye - outer(tb, tb)
-
-    def same(t, u, length):
-        sym = outer(t, u) + outer(u, t) + s * eye - 3.0 * s * outer(t, t)
-        return c * sym / (length**2)[:, None, None]
-
+    Pa, Pb = eye - _outer(ta, ta), eye - _outer(tb, tb)
     cross = -c * (Pa @ Pb) / (la * lb)[:, None, None]
     H = np.empty((len(nodes), 6, 6))
-    H[:, :3, :3] = same(ta, tb, la)
-    H[:, 3:, 3:] = same(tb, ta, lb)
+    H[:, :3, :3] = _direction_hessian(ta, tb, la, c, s)
+    H[:, 3:, 3:] = _direction_hessian(tb, ta, lb, c, s)
     H[:, :3, 3:] = cross
     H[:, 3:, :3] = np.transpose(cross, (0, 2, 1))
     return _B.T @ H @ _B
+
+
+def _direction_hessian(t: FloatArray, u: FloatArray, length: FloatArray, c: FloatArray,
+                       s: FloatArray) -> FloatArray:
+    """``d^2 / da^2`` of ``c (1 - t . u)`` with ``t = a / |a|`` and ``u`` held:
+    ``c (t u^T + u t^T + s I - 3 s t t^T) / |a|^2``, ``s = t . u``."""
+    sym = _outer(t, u) + _outer(u, t) + s * np.eye(3) - 3.0 * s * _outer(t, t)
+    return c * sym / (length**2)[:, None, None]
+
+
+def _element_direction(positions: FloatArray, elements: IntArray, element: IntArray):
+    chord = positions[elements[element, 1]] - positions[elements[element, 0]]
+    length = np.linalg.norm(chord, axis=1)
+    return chord / np.maximum(length, np.finfo(float).tiny)[:, None], length
+
+
+def clamp_energy(positions: FloatArray, elements: IntArray, element: IntArray,
+                 direction: FloatArray, stiffness: FloatArray) -> FloatArray:
+    """Energy ``c (1 - t_e . d)`` of each clamped end (n_c,): ``element`` the end elements,
+    ``direction`` the held unit tangents (n_c, 3), ``stiffness`` ``c = EI / (L_e / 2)``."""
+    t, _ = _element_direction(positions, elements, element)
+    return stiffness * (1.0 - np.einsum("ij,ij->i", t, direction))
+
+
+def clamp_forces(positions: FloatArray, elements: IntArray, element: IntArray,
+                 direction: FloatArray, stiffness: FloatArray) -> FloatArray:
+    """Forces of each clamp on its end element's two nodes, ``-dU/dx`` (n_c, 2, 3)."""
+    t, length = _element_direction(positions, elements, element)
+    s = np.einsum("ij,ij->i", t, direction)[:, None]
+    f2 = stiffness[:, None] * (direction - s * t) / length[:, None]
+    return np.stack((-f2, f2), axis=1)
+
+
+def clamp_tangent(positions: FloatArray, elements: IntArray, element: IntArray,
+                  direction: FloatArray, stiffness: FloatArray) -> FloatArray:
+    """Exact tangent of the clamps' resisting forces over their end elements' nodes
+    (n_c, 6, 6): ``[[H, -H], [-H, H]]`` with ``H`` the Hessian in the chord."""
+    t, length = _element_direction(positions, elements, element)
+    s = np.einsum("ij,ij->i", t, direction)[:, None, None]
+    H = _direction_hessian(t, direction, length, stiffness[:, None, None], s)
+    blocks = np.empty((len(element), 6, 6))
+    blocks[:, :3, :3] = H
+    blocks[:, 3:, 3:] = H
+    blocks[:, :3, 3:] = -H
+    blocks[:, 3:, :3] = -H
+    return blocks
 
 
 def _outer(u: FloatArray, v: FloatArray) -> FloatArray:

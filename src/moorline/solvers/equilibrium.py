@@ -219,6 +219,8 @@ class StaticModel:
                                              **m.axial_law).sum())
         if m.has_bending:
             energy += float(bending.bending_energy(x, m.bend_nodes, m.bend_stiffness).sum())
+            energy += float(bending.clamp_energy(x, m.elements, m.clamp_elements,
+                                                 m.clamp_direction, m.clamp_stiffness).sum())
         if np.isfinite(m.seabed_z):
             energy += seabed.contact_energy(x[:, 2] - m.seabed_z, self.node_seabed_stiffness,
                                             self.seabed_ramp)
@@ -264,11 +266,16 @@ def bending_loads(mesh: Mesh, x: FloatArray, element_blocks: FloatArray | None =
     nodes, c = mesh.bend_nodes, mesh.bend_stiffness
     shear = bending.element_shear(bending.bending_forces(x, nodes, c), mesh.bend_elements,
                                   mesh.n_elements)
+    clamp = (mesh.elements, mesh.clamp_elements, mesh.clamp_direction, mesh.clamp_stiffness)
+    if len(mesh.clamp_elements):
+        np.add.at(shear, mesh.clamp_elements, bending.clamp_forces(x, *clamp))
     if element_blocks is None:
         return shear, None
     K = bending.bending_tangent(x, nodes, c)
-    return shear, bending.to_pair_blocks(K, mesh.bend_elements, mesh.n_elements,
-                                         element_blocks)
+    blocks = bending.to_pair_blocks(K, mesh.bend_elements, mesh.n_elements, element_blocks)
+    if len(mesh.clamp_elements):
+        np.add.at(blocks, mesh.clamp_elements, bending.clamp_tangent(x, *clamp))
+    return shear, blocks
 
 
 def _friction_map(mesh: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]]:

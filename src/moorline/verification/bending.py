@@ -30,7 +30,12 @@ ones over ``1 + eps``; the closed forms below carry those factors (``eps = 1e-3`
     1 s period (between the first two modes), one harmonic, 80 elements: the midspan
     amplitude against the closed-form steady state (:func:`driven_amplitude`); errors
     8.1e-3 and 2.0e-3 at 20 and 40 elements (O(h^2)); tolerance 2e-3.
-(e) Case ``bending-moordyn``: MoorDyn-C 2.7 (``[compare]`` extra; other code, same input
+(e) Cantilever (clamped end): 10 m, ``EI = 1e6 N m^2``, clamped along +x at a fixed root,
+    a free tip point loaded by 100 N downwards (no weight; the tip tension ``P sin(theta)``
+    stays 0.5 N, so the slack band is off): the tip deflection ``P L^3 / (3 EI)`` = 33.3 mm
+    at 40 elements (error 3.0e-4, O(h^2): 5.0e-3 and 1.2e-3 at 10 and 20; tolerance 1e-3),
+    and the observed order.
+(f) Case ``bending-moordyn``: MoorDyn-C 2.7 (``[compare]`` extra; other code, same input
     through :func:`moorline.io.moordyn.write_moordyn`): a steel riser (diameter 0.3 m,
     150 kg/m, ``EA = 3e8 N``, ``EI = 5e7 N m^2``, length 118 m) pinned at an anchor point
     100 m below the surface and a top point 60 m away (chord 116.6 m), in water (depth 300 m,
@@ -86,6 +91,7 @@ GRAVITY = 9.80665
 STATIC_ELEMENTS, MODAL_ELEMENTS, DYNAMIC_ELEMENTS = 40, 80, 40
 STEPS_PER_PERIOD = 200
 HARMONIC_ELEMENTS, DRIVE, DRIVE_PERIOD, TOL_HARMONIC = 80, 1.0e-3, 1.0, 2e-3
+CANTILEVER_LENGTH, CANTILEVER_EI, TIP_LOAD, CANTILEVER_ELEMENTS = 10.0, 1.0e6, 100.0, 40
 TOL_STATIC, TOL_ORDER, TOL_MODAL, TOL_PERIOD = 1e-3, 0.1, 2e-3, 1e-3
 MOORDYN = "MoorDyn-C 2.7.2, same input"
 RISER_SEGMENTS, RISER_EI, RISER_LENGTH, MOORDYN_DT = 10, 5.0e7, 118.0, 5.0e-3
@@ -193,6 +199,44 @@ def dynamic_rows() -> list[Row]:
                 note=f"{len(crossings) - 1} periods, dt = T / {STEPS_PER_PERIOD} (Newmark)")]
 
 
+def cantilever_system(elements: int) -> System:
+    """The cantilever of (e): clamped at the root along +x, a free tip point loaded down."""
+    lt = LineType("beam", diameter=0.1, mass_per_length=1.0, EA=1.0e9, Cd=0.0, Ca=0.0,
+                  Ct=0.0, Cat=0.0, EI=CANTILEVER_EI, slack_smoothing=0.0)
+    points = {"root": Point("root", "fixed", (0.0, 0.0, 0.0)),
+              "tip": Point("tip", "free", (CANTILEVER_LENGTH, 0.0, 0.0),
+                           force=(0.0, 0.0, -TIP_LOAD))}
+    line = Line("beam", "beam", CANTILEVER_LENGTH, elements, "root", "tip",
+                clamp_a=(1.0, 0.0, 0.0))
+    env = Environment(water_density=0.0, gravity=0.0)
+    return System(CASE, environment=env, line_types={"beam": lt}, points=points,
+                  lines={"beam": line}, analyses=(StaticsSettings(start="straight"),))
+
+
+def _tip_error(elements: int) -> tuple[float, float]:
+    result = solve_statics(cantilever_system(elements))
+    if not result.success:
+        raise RuntimeError(f"cantilever statics failed: {result.message}")
+    exact = TIP_LOAD * CANTILEVER_LENGTH**3 / (3.0 * CANTILEVER_EI)
+    return -float(result.positions[result.mesh.point_index("tip"), 2]), exact
+
+
+def cantilever_rows() -> list[Row]:
+    """(e): tip deflection of the clamped cantilever and its convergence order."""
+    counts = (10, 20, CANTILEVER_ELEMENTS)
+    pairs = [_tip_error(n) for n in counts]
+    errors = [abs(g - e) / e for g, e in pairs]
+    order = math.log(errors[-2] / errors[-1]) / math.log(counts[-1] / counts[-2])
+    source = "cantilever, P L^3 / (3 EI)"
+    return [Row(CASE, f"cantilever tip deflection, clamped root, {CANTILEVER_ELEMENTS} "
+                "elements", pairs[-1][1], pairs[-1][0], TOL_STATIC, unit="m", kind="exact",
+                source=source),
+            Row(CASE, f"observed order of the tip deflection error (N = {counts[1]} -> "
+                f"{counts[2]})", 2.0, order, TOL_ORDER, relative=False, kind="exact",
+                source=source, note="errors at N = " + ", ".join(
+                    f"{n}: {e:.2e}" for n, e in zip(counts, errors, strict=True)))]
+
+
 def driven_amplitude(period: float, amplitude: float = 1.0e-3) -> float:
     """Exact midspan amplitude of the weightless beam-string whose end B is driven across by
     ``amplitude sin(2 pi t / period)``, both ends pinned: ``EI w'''' - T w'' - m omega^2 w =
@@ -233,7 +277,7 @@ def _downward_crossings(t: np.ndarray, y: np.ndarray) -> np.ndarray:
 
 
 def riser_system(EI_: float = RISER_EI, segments: int = RISER_SEGMENTS) -> System:
-    """The riser of (e) (module docstring)."""
+    """The riser of (f) (module docstring)."""
     lt = LineType("riser", diameter=0.3, mass_per_length=150.0, EA=3.0e8, Cd=1.0, Ca=1.0,
                   Ct=0.0, Cat=0.0, EI=EI_)
     points = {"anchor": Point("anchor", "fixed", (0.0, 0.0, -100.0)),
@@ -273,7 +317,7 @@ def moordyn_statics(system: System, dt: float = MOORDYN_DT, tmax_ic: float = 400
 
 
 def moordyn_rows() -> list[Row]:
-    """(e): the riser's end forces and shape against MoorDyn."""
+    """(f): the riser's end forces and shape against MoorDyn."""
     try:
         import moordyn  # noqa: F401
     except ImportError as exc:
@@ -301,12 +345,13 @@ def moordyn_rows() -> list[Row]:
 
 
 def run(quick: bool = False) -> list[Row]:
-    """Case ``bending``: rows (a)-(d) of the module docstring; ``quick`` drops the third
+    """Case ``bending``: rows (a)-(e) of the module docstring; ``quick`` drops the third
     frequencies."""
-    return static_rows() + modal_rows(quick) + dynamic_rows() + harmonic_rows()
+    return (static_rows() + modal_rows(quick) + dynamic_rows() + harmonic_rows()
+            + cantilever_rows())
 
 
 def run_moordyn(quick: bool = False) -> list[Row]:
-    """Case ``bending-moordyn``: rows (e) (the same in the quick form: one MoorDyn run of a
+    """Case ``bending-moordyn``: rows (f) (the same in the quick form: one MoorDyn run of a
     few seconds)."""
     return moordyn_rows()
