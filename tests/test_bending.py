@@ -409,3 +409,35 @@ def test_clamped_end_from_a_case_file(tmp_path: Path) -> None:
             load_case_text(CLAMPED.format(EI=EI, root=root, clamp=clamp))
     with pytest.raises(CaseError, match="clamped end"):
         write_moordyn(system, tmp_path / "c.dat", 0.001)
+
+
+def test_body_with_bending_lines_statics_modes_and_hht() -> None:
+    """Lines with EI on a free body: the body's balance with the lines' end forces (which
+    carry the bending shear at the fairleads) still holds, and the modal and HHT dynamic
+    analyses run over the body pattern."""
+    from test_bodies import RHO, G, box_system
+
+    from moorline.model import DynamicsSettings, ModalSettings
+    from moorline.solvers.dynamics import simulate
+    from moorline.solvers.modal import solve_modes
+
+    base = box_system()
+    types = {k: dataclasses.replace(v, EI=5.0e6) for k, v in base.line_types.items()}
+    system = dataclasses.replace(base, line_types=types)
+    result = solve_statics(system)
+    assert result.success, result.message
+    body = system.bodies["box"]
+    lines = sum(result.end_force(f"l{k}", "b") for k in range(4))
+    for i in range(2):
+        assert lines[i] + body.force[i] == pytest.approx(0.0, abs=1e-6 * body.mass * G)
+    plain = solve_statics(base)
+    assert np.abs(result.body_position("box") - plain.body_position("box")).max() > 1e-5
+    draft = 2.5 - result.body_position("box")[2]
+    assert lines[2] + RHO * G * 26 * 10 * draft - body.mass * G == pytest.approx(
+        0.0, abs=1e-3 * body.mass * G)
+    modes = solve_modes(system, ModalSettings(n_modes=6), result)
+    assert modes.success and np.all(modes.omega > 0)
+    run = simulate(system, DynamicsSettings(duration=1.0, dt=0.05, scheme="hht", alpha=-0.05),
+                   initial=result)
+    assert run.success, run.message
+    np.testing.assert_allclose(np.asarray(run.positions)[-1], result.positions, atol=1e-3)
