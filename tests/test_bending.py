@@ -441,3 +441,20 @@ def test_body_with_bending_lines_statics_modes_and_hht() -> None:
                    initial=result)
     assert run.success, run.message
     np.testing.assert_allclose(np.asarray(run.positions)[-1], result.positions, atol=1e-3)
+
+
+def test_bending_moordyn_is_skipped_without_moordyn(monkeypatch) -> None:
+    import builtins
+
+    from moorline.verification import core
+
+    real_import = builtins.__import__
+
+    def no_moordyn(name, *args, **kwargs):
+        if name.split(".")[0] == "moordyn":
+            raise ImportError(name)
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_moordyn)
+    with pytest.raises(core.CaseSkipped, match=r"\[compare\] extra"):
+        core.run_case("bending-moordyn", quick=True)
