@@ -458,3 +458,13 @@ def test_bending_moordyn_is_skipped_without_moordyn(monkeypatch) -> None:
     monkeypatch.setattr(builtins, "__import__", no_moordyn)
     with pytest.raises(core.CaseSkipped, match=r"\[compare\] extra"):
         core.run_case("bending-moordyn", quick=True)
+
+
+def test_riser_in_a_current_against_the_closed_form() -> None:
+    """(g): the vertical, neutrally buoyant riser in a uniform current (statics with the
+    current's drag) offsets as the beam-string under a uniform load; the string alone would
+    offset twice as far."""
+    row, = case.current_riser_rows()
+    assert row.passed, (row.reference, row.computed)
+    load = 0.5 * case.WATER * case.RISER_CD * case.RISER_D * case.SPEED**2
+    assert row.computed < 0.6 * load * case.SPAN**2 / (8 * case.TENSION)

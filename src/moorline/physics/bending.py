@@ -35,6 +35,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from .element import pair_blocks
+
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
@@ -173,13 +175,7 @@ def clamp_tangent(positions: FloatArray, elements: IntArray, element: IntArray,
     (n_c, 6, 6): ``[[H, -H], [-H, H]]`` with ``H`` the Hessian in the chord."""
     t, length = _element_direction(positions, elements, element)
     s = np.einsum("ij,ij->i", t, direction)[:, None, None]
-    H = _direction_hessian(t, direction, length, stiffness[:, None, None], s)
-    blocks = np.empty((len(element), 6, 6))
-    blocks[:, :3, :3] = H
-    blocks[:, 3:, 3:] = H
-    blocks[:, :3, 3:] = -H
-    blocks[:, 3:, :3] = -H
-    return blocks
+    return pair_blocks(_direction_hessian(t, direction, length, stiffness[:, None, None], s))
 
 
 def _outer(u: FloatArray, v: FloatArray) -> FloatArray:
