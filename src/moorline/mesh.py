@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .model import System
-from .physics import element
+from .physics import bending, element
 from .physics.load_strain import StrainLaws, StrainTable, dynamic_strain_law, strain_laws
 from .physics.rigid_body import rotation_matrix
 
@@ -86,6 +86,13 @@ class Mesh:
         Strain offset of each element's law (:func:`dynamic_mesh`); ``None``: zero.
     EAd, EAd_Lm
         Fibre-rope dynamic stiffness per element (``EAd`` NaN where none).
+    bend_nodes, bend_elements, bend_stiffness
+        Bending stiffness (:mod:`moorline.physics.bending`): the node triplets
+        ``(i-1, i, i+1)`` of the interior nodes of lines with ``EI > 0`` (n_b, 3), their two
+        elements (n_b, 2) and ``EI / Lbar`` [force*length] (n_b,); empty without bending.
+    clamp_elements, clamp_direction, clamp_stiffness
+        Clamped line ends: the end element (n_c,), the held unit tangent (n_c, 3) and
+        ``EI / (L_e / 2)`` (n_c,); empty when every end is pinned.
     """
 
     node_position: FloatArray
@@ -137,6 +144,26 @@ class Mesh:
     strain_offset: FloatArray | None = None
     EAd: FloatArray | None = None
     EAd_Lm: FloatArray | None = None
+    bend_nodes: IntArray = field(default_factory=lambda: np.zeros((0, 3), dtype=np.int64))
+    bend_elements: IntArray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
+    bend_stiffness: FloatArray = field(default_factory=lambda: np.zeros(0))
+    clamp_elements: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    clamp_direction: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
+    clamp_stiffness: FloatArray = field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def has_bending(self) -> bool:
+        """Whether any line has bending stiffness (interior nodes or clamped ends)."""
+        return len(self.bend_nodes) > 0 or len(self.clamp_elements) > 0
+
+    @property
+    def pattern_pairs(self) -> IntArray:
+        """The node pairs a tangent couples (n_elements + n_b, 2): the elements, then the
+        outer nodes ``(i-1, i+1)`` of every bending triplet (the pattern of
+        :class:`~moorline.solvers.assembly.BlockPattern`)."""
+        if not self.has_bending:
+            return self.elements
+        return np.concatenate((self.elements, self.bend_nodes[:, [0, 2]]))
 
     @property
     def axial_law(self) -> dict:
@@ -195,7 +222,7 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
     lines = list(system.lines.values())
     props: dict[str, list[float]] = {k: [] for k in (
         "EA", "EA1", "tau", "slack_ratio", "slack_smoothing", "BA", "viscoelastic",
-        "mass_per_length", "weight_per_length", "diameter", "Cd", "Ca", "Ct", "Cat")}
+        "mass_per_length", "weight_per_length", "diameter", "Cd", "Ca", "Ct", "Cat", "EI")}
     for line in lines:
         lt = system.line_types[line.line_type]
         weight = (lt.mass_per_length - env.water_density * lt.area_displaced) * env.gravity
@@ -204,7 +231,8 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
                   "slack_smoothing": lt.slack_smoothing, "BA": lt.BA,
                   "viscoelastic": float(lt.material == "viscoelastic"),
                   "mass_per_length": lt.mass_per_length, "weight_per_length": weight,
-                  "diameter": lt.diameter, "Cd": lt.Cd, "Ca": lt.Ca, "Ct": lt.Ct, "Cat": lt.Cat}
+                  "diameter": lt.diameter, "Cd": lt.Cd, "Ca": lt.Ca, "Ct": lt.Ct, "Cat": lt.Cat,
+                  "EI": lt.EI}
         for key, value in values.items():
             props[key].append(value)
     out = {k: np.asarray(v, dtype=float)[line_of_element] for k, v in props.items()}
@@ -262,6 +290,8 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
     offsets = np.cumsum([0] + [len(e) for e in elements])
     line_elements = tuple(np.arange(offsets[i], offsets[i + 1]) for i in range(len(elements)))
     props = _element_properties(system, el_line)
+    EI = props.pop("EI")
+    bend = bending.bending_triplets(line_nodes, line_elements, L0, EI)
     ratio = props["BA"] < 0  # MoorDyn's -zeta: a damping ratio of each segment's axial mode
     props["BA"] = np.where(ratio, -props["BA"] * L0 * np.sqrt(props["EA"]
                                                               * props["mass_per_length"]),
@@ -301,7 +331,32 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         seabed_stiffness_per_area=env.seabed.stiffness,
         seabed_damping_per_area=env.seabed.damping, node_contact_area=tributary,
         gravity=env.gravity, water_density=env.water_density, **props,
+        bend_nodes=bend[0], bend_elements=bend[1], bend_stiffness=bend[2],
+        **_clamps(system, line_elements, L0, EI),
         **_body_arrays(system, points))
+
+
+def _clamps(system: System, line_elements: tuple[IntArray, ...], length0: FloatArray,
+            EI: FloatArray) -> dict[str, FloatArray]:
+    """The clamped line ends (:attr:`Mesh.clamp_elements` and the rest)."""
+    elements, directions, stiffness = [], [], []
+    for line, els in zip(system.lines.values(), line_elements, strict=True):
+        for end, direction, e in ((line.end_a, line.clamp_a, els[0]),
+                                  (line.end_b, line.clamp_b, els[-1])):
+            if direction is None:
+                continue
+            d = np.asarray(direction, dtype=float)
+            kind = system.points[end].kind
+            if kind not in ("fixed", "prescribed") or not EI[e] > 0 or not np.any(d):
+                raise ValueError(f"line {line.name}: a clamped end needs EI > 0, a nonzero "
+                                 f"direction and a fixed or prescribed point ({end!r} is "
+                                 f"{kind})")
+            elements.append(e)
+            directions.append(d / np.linalg.norm(d))
+            stiffness.append(EI[e] / (0.5 * length0[e]))
+    return {"clamp_elements": np.array(elements, dtype=np.int64),
+            "clamp_direction": np.array(directions, dtype=float).reshape(-1, 3),
+            "clamp_stiffness": np.array(stiffness, dtype=float)}
 
 
 def with_loads_of(mesh: Mesh, system: System) -> Mesh:

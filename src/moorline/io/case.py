@@ -486,6 +486,18 @@ def _check_line(
             f"{where}.end_b",
         )
     a, b = spec.points[line.end_a], spec.points[line.end_b]
+    for key, point in (("clamp_a", a), ("clamp_b", b)):
+        direction = getattr(line, key)
+        if direction is None:
+            continue
+        if not any(direction):
+            fail("a clamped end needs a nonzero direction", f"{where}.{key}")
+        if point.kind not in ("fixed", "prescribed"):
+            fail(f"a clamped end needs a fixed or prescribed point, not {point.kind!r} (the "
+                 "direction is held fixed in space)", f"{where}.{key}")
+        if line.type in spec.line_types and not spec.line_types[line.type].EI > 0:
+            fail(f"a clamped end needs bending stiffness: line type {line.type!r} has no EI",
+                 f"{where}.{key}")
     span = math.dist(a.position, b.position)
     if a.kind in ("fixed", "prescribed") and b.kind in ("fixed", "prescribed") \
             and span > line.length * (1 + MAX_STRAIN):
@@ -646,6 +658,8 @@ def _line(name: str, line: LineSpec) -> Line:
         end_a=line.end_a,
         end_b=line.end_b,
         initial_shape=shape,
+        clamp_a=None if line.clamp_a is None else tuple(line.clamp_a),
+        clamp_b=None if line.clamp_b is None else tuple(line.clamp_b),
     )
 
 

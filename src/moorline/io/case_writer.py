@@ -89,6 +89,8 @@ def _line_type(lt: LineType) -> dict[str, Any]:
         data["EA"] = {"table": [list(row) for row in table]}
     if "EAd" not in data:
         data.pop("EAd_Lm")
+    if not data["EI"]:
+        data.pop("EI")
     return data
 
 
@@ -122,6 +124,9 @@ def _line(line: Line) -> dict[str, Any]:
             "end_a": line.end_a, "end_b": line.end_b}
     if line.initial_shape is not None:
         data["initial_shape"] = [list(r) for r in line.initial_shape]
+    for key in ("clamp_a", "clamp_b"):
+        if getattr(line, key) is not None:
+            data[key] = list(getattr(line, key))
     return data
 
 

@@ -13,7 +13,10 @@ Supported (v2 names first, v1 names in parentheses):
   CaAx [Cl dF cF]``; v1 rows (nine columns) ``Name Diam MassDen EA BA/-zeta Can Cat Cdn Cdt``.
   MoorDyn's ``CdAx`` is relative to the surface ``pi d l`` like moorline's ``Ct``. ``EA`` may
   be the name of a strain-tension table file (MoorDyn's non-linear EA; relative to the deck's
-  folder), read as the line type's ``EA_table``; the writer writes such a file back.
+  folder), read as the line type's ``EA_table``; the writer writes such a file back. ``EI``
+  (a constant; MoorDyn's non-linear EI table is not read) is the line type's bending stiffness
+  (:mod:`moorline.physics.bending`; MoorDyn's pinned ends at points agree, its clamped ends at
+  rods and bodies are not modelled) and is written back.
 - ``POINTS`` (``POINT PROPERTIES``, ``CONNECTION PROPERTIES``, ``NODE PROPERTIES``): v2 rows
   ``ID Attachment X Y Z Mass Volume CdA Ca``; v1 rows (twelve columns) ``ID Type X Y Z M V FX FY
   FZ CdA Ca``. ``Fixed``/``Fix``/``Anchor`` points become ``fixed``,
@@ -417,18 +420,19 @@ def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineTyp
             values.insert(2, table.max_slope)
         if version == "v2":
             d, m, EA, BA, EI, Cd, Ca, Ct, Cat = values[:9]
-            if EI:
-                reader.warn(f"line type {name!r}: bending stiffness EI = {EI:g} is ignored")
+            if EI < 0:
+                raise reader.fail(f"EI must not be negative, got {EI:g}", row, sec.title)
             if len(values) > 9 and values[9]:
                 reader.warn(f"line type {name!r}: VIV lift coefficient Cl is ignored")
         else:
             d, m, EA, BA, Ca, Cat, Cd, Ct = values
+            EI = 0.0
         for what, value in (("Diam", d), ("MassDen", m), ("EA", EA)):
             if value <= 0:
                 raise reader.fail(f"{what} must be positive, got {value:g}", row, sec.title)
         points = None if table is None else tuple(map(tuple, table.points.tolist()))
         types[name] = LineType(name=name, diameter=d, mass_per_length=m, EA=EA, Cd=Cd, Ca=Ca,
-                               Ct=Ct, Cat=Cat, BA=BA, EA_table=points)
+                               Ct=Ct, Cat=Cat, BA=BA, EA_table=points, EI=EI)
     return types, version
 
 
@@ -674,6 +678,9 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
     for ln in system.lines.values():
         if ln.initial_shape is not None:
             omissions.append(f"line {ln.name}: initial_shape")
+        if ln.clamp_a is not None or ln.clamp_b is not None:
+            errors.append(f"line {ln.name}: a clamped end (MoorDyn clamps lines only at rods "
+                          "and bodies)")
     errors += body_problems(system)
     return errors, omissions
 
@@ -703,7 +710,8 @@ def _point_rows(system: System) -> list[str]:
 def _line_type_rows(system: System, path: Path) -> list[str]:
     rows = []
     for lt in system.line_types.values():
-        values = [lt.diameter, lt.mass_per_length, lt.EA, lt.BA, 0.0, lt.Cd, lt.Ca, lt.Ct, lt.Cat]
+        values = [lt.diameter, lt.mass_per_length, lt.EA, lt.BA, lt.EI, lt.Cd, lt.Ca, lt.Ct,
+                  lt.Cat]
         cells = [_fmt(v) for v in values]
         if lt.EA_table is not None:
             cells[2] = _write_ea_table(lt, path.with_name(f"{path.stem}_{lt.name}_EA.dat"))

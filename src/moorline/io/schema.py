@@ -289,7 +289,8 @@ class LineTypeSpec(_Spec):
     ``EA`` may be a tension-strain table (``{table: [[strain, tension], ...]}``) or
     ``EA_table`` a table file (CSV or MoorDyn's EA table file, relative to the case file);
     ``EAd`` and ``EAd_Lm`` give the fibre-rope dynamic stiffness ``EA_d = EAd + EAd_Lm T_mean``
-    used about the static state in dynamic analyses.
+    used about the static state in dynamic analyses. ``EI`` is the bending stiffness
+    [force*length^2] (:mod:`moorline.physics.bending`; line ends pinned), 0 for a cable.
     """
 
     catalog: str | None = None
@@ -313,6 +314,7 @@ class LineTypeSpec(_Spec):
     slack_stiffness_ratio: quantity("dimensionless", gt=0.0, le=1.0) = 1.0e-6
     slack_smoothing: quantity("dimensionless", ge=0.0, le=0.01) = 1.0e-5
     BA: Annotated[float, PlainValidator(_internal_damping)] = 0.0
+    EI: quantity("force*length^2", ge=0.0) = 0.0
 
 
 class MotionSpec(_Spec):
@@ -439,7 +441,9 @@ class PointSpec(_Spec):
 
 
 class LineSpec(_Spec):
-    """``lines.<name>``: a cable between two points."""
+    """``lines.<name>``: a cable between two points. ``clamp_a``/``clamp_b``: a clamped end
+    (line type with ``EI > 0``, a fixed or prescribed point), the direction its tangent is
+    held along (from end A towards end B); omitted: pinned."""
 
     type: str
     length: quantity("length", gt=0.0)
@@ -447,6 +451,8 @@ class LineSpec(_Spec):
     end_a: str
     end_b: str
     initial_shape: list[Vector3] | None = None
+    clamp_a: Annotated[list[float], AfterValidator(_three)] | None = None
+    clamp_b: Annotated[list[float], AfterValidator(_three)] | None = None
 
 
 class StaticsSpec(_Spec):

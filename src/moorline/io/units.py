@@ -90,6 +90,7 @@ DIMENSIONS: dict[str, Dimension] = {
     "mass": Dimension("mass", "kg", "slug"),
     "mass*length^2": Dimension("moment of inertia", "kg*m**2", "slug*ft**2"),
     "force*length": Dimension("moment", "N*m", "lbf*ft"),
+    "force*length^2": Dimension("bending stiffness", "N*m**2", "lbf*ft**2"),
     "time": Dimension("time", "s", "s"),
     "1/time": Dimension("circular frequency (rad/s)", "1/s", "1/s"),
     "velocity": Dimension("velocity", "m/s", "ft/s"),

@@ -55,6 +55,9 @@ class LineType:
         Fibre-rope dynamic stiffness ``EA_d = EAd + EAd_Lm T_mean`` [force, -] used about the
         static state in dynamic analyses (Del Vecchio 1992; MoorPy's ``EAd``/``EAd_Lm``);
         ``None``: the static law in dynamics too.
+    EI
+        Bending stiffness [force*length^2] (0: a cable without bending stiffness;
+        :mod:`moorline.physics.bending`, pinned line ends).
     """
 
     name: str
@@ -79,6 +82,7 @@ class LineType:
     EA_table: tuple[tuple[float, float], ...] | None = None
     EAd: float | None = None
     EAd_Lm: float = 0.0
+    EI: float = 0.0
 
     @property
     def area_displaced(self) -> float:
@@ -189,6 +193,10 @@ class Line:
     initial_shape
         Optional initial node positions, shape ``(segments + 1, 3)``; otherwise the solver
         chooses (catenary or straight line).
+    clamp_a, clamp_b
+        A clamped end (its line type needs ``EI > 0``; the end point fixed or prescribed): the
+        direction the line's tangent is held along there, pointing from end A towards end B
+        (normalized; :mod:`moorline.physics.bending`). ``None``: a pinned end.
     """
 
     name: str
@@ -198,3 +206,5 @@ class Line:
     end_a: str
     end_b: str
     initial_shape: tuple[Vector3, ...] | None = None
+    clamp_a: Vector3 | None = None
+    clamp_b: Vector3 | None = None

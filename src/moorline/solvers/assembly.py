@@ -24,7 +24,9 @@ class BlockPattern:
     Parameters
     ----------
     elements
-        Node pairs (n_elements, 2).
+        Node pairs (n_elements, 2): a mesh's elements, or its
+        :attr:`~moorline.mesh.Mesh.pattern_pairs` (elements, then the outer node pairs of its
+        bending triplets).
     dof_of_node
         Dof numbers (n_nodes, 3); -1 marks a degree of freedom left out.
     """
@@ -79,15 +81,17 @@ class BlockPattern:
         Parameters
         ----------
         element_blocks
-            (n_elements, 6, 6) or ``None``.
+            (n_elements, 6, 6) or ``None``; fewer blocks than the pattern's pairs are the
+            first pairs' (the elements of :attr:`moorline.mesh.Mesh.pattern_pairs`, without
+            the bending pairs after them).
         node_blocks
             (n_nodes, 3, 3) or ``None``.
         diagonal
             (n,) values added to the diagonal, or ``None``.
         """
         values = np.zeros(self._keep.size)
-        if element_blocks is not None:
-            values[: self._n_el_entries] = element_blocks.ravel()
+        if element_blocks is not None:  # fewer blocks than pairs: the first pairs'
+            values[: element_blocks.size] = element_blocks.ravel()
         if node_blocks is not None:
             values[self._n_el_entries :] = node_blocks.ravel()
         data = np.bincount(self._slot, values[self._keep], minlength=self.nnz)

@@ -194,4 +194,4 @@ class BodyDofs:
         for k, node in enumerate(mesh.slave_node):
             ext[node] = n_free + 3 * k + np.arange(3)
         return cls(n_free, body_dof, n_free + 6 * int(free.sum()),
-                   n_free + 3 * len(mesh.slave_node), BlockPattern(mesh.elements, ext), ext)
+                   n_free + 3 * len(mesh.slave_node), BlockPattern(mesh.pattern_pairs, ext), ext)

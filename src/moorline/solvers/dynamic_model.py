@@ -6,7 +6,10 @@ axial element forces (elastic or standard linear solid, plus Kelvin-Voigt dampin
 seabed contact, Morison drag on relative velocity, fluid inertia and minus the added-mass
 force ``M_a(x) a`` (Tuah eq. 3.2.a.6, 4.2.3). ``M_s`` is the lumped structural mass. The
 derivatives are returned as element (6x6) and node (3x3) blocks: ``K = -dF/dx``,
-``C = -dF/dv``, ``M_a = -dF/da``.
+``C = -dF/dv``, ``M_a = -dF/da``. Lines with bending stiffness add the elastic bending
+forces of :mod:`moorline.physics.bending` (no bending damping); the element blocks then run
+over the mesh's :attr:`~moorline.mesh.Mesh.pattern_pairs` (elements, then the bending pairs),
+``C`` and ``M_a`` zero on the bending pairs.
 """
 
 from __future__ import annotations
@@ -19,7 +22,7 @@ from numpy.typing import NDArray
 
 from ..mesh import Mesh
 from ..physics import element, hydro, material, seabed
-from .equilibrium import StaticModel
+from .equilibrium import StaticModel, bending_loads
 
 FloatArray = NDArray[np.float64]
 
@@ -44,7 +47,8 @@ class Evaluation:
     inertial: FloatArray              # (n_nodes, 3) the added-mass part of ``nodal``
     tension: FloatArray               # (n_el,)
     material: MaterialState           # internal variables if this state is accepted
-    element_forces: FloatArray        # (n_el, 2, 3) axial force of each element on its nodes
+    element_forces: FloatArray        # (n_el, 2, 3) axial force (and bending shear) of each
+    #                                   element on its nodes
     K: FloatArray | None = None       # (n_el, 6, 6) -dF/dx, element part
     C: FloatArray | None = None       # (n_el, 6, 6) -dF/dv, element part
     Ma: FloatArray | None = None      # (n_el, 6, 6) -dF/da, element part (added mass)
@@ -72,7 +76,8 @@ class DynamicModel:
         the compiled kernel :class:`moorline.physics.fused.FusedLoads` (same results to
         round-off, much faster); systems with viscoelastic elements or non-linear
         tension-strain laws (tables, fibre-rope dynamic stiffness), and ``numpy``, use the
-        numpy path (the reference). ``self.kernel`` is the one in use.
+        numpy path (the reference). ``self.kernel`` is the one in use. Bending stiffness is
+        added by numpy on either path.
     """
 
     def __init__(self, mesh: Mesh, fluid, viscoelastic_update: str = "exponential",
@@ -132,9 +137,10 @@ class DynamicModel:
             nodal = r.nodal + self.external
             if point_forces is not None:
                 nodal += point_forces
+            nodal, el_forces, out = self._bending(x, nodal, r.element_forces, out, tangent)
             nodal, inertial, out = self._nodes(x, v, a, t, nodal, inertial, out, tangent)
             return Evaluation(nodal, inertial, r.tension, MaterialState(r.strain,
-                              previous.maxwell), r.element_forces, **out)
+                              previous.maxwell), el_forces, **out)
         length, unit = element.element_geometry(x, el)
         dv = v[el[:, 1]] - v[el[:, 0]]
         T, dT_dl, state, share = self._axial_tension(length, unit, dv, previous, dt)
@@ -154,8 +160,24 @@ class DynamicModel:
         nodal = hydro.sum_to_nodes(forces, el, m.n_nodes) + self.external
         if point_forces is not None:
             nodal += point_forces
+        nodal, el_forces, out = self._bending(x, nodal, el_forces, out, tangent)
         nodal, inertial, out = self._nodes(x, v, a, t, nodal, inertial, out, tangent)
         return Evaluation(nodal, inertial, T, state, el_forces, **out)
+
+    def _bending(self, x, nodal, el_forces, out, tangent):
+        """Bending forces added to ``nodal`` and to the element forces (as shear,
+        :func:`moorline.solvers.equilibrium.bending_loads`); with ``tangent`` the element
+        blocks extended over the bending pairs."""
+        m = self.mesh
+        if not m.has_bending:
+            return nodal, el_forces, out
+        shear, K = bending_loads(m, x, out["K"] if tangent else None)
+        if tangent:
+            pad = np.zeros((len(m.bend_nodes), 6, 6))
+            out = dict(out, K=K, **{key: np.concatenate((out[key], pad))
+                                    for key in ("C", "Ma") if out.get(key) is not None})
+        return (nodal + hydro.sum_to_nodes(shear, m.elements, m.n_nodes), el_forces + shear,
+                out)
 
     def _axial_tension(self, length, unit, dv, previous, dt):
         m = self.mesh

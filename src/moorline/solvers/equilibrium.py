@@ -11,6 +11,11 @@ joins the loads, scaled by ``lam`` like them; its position derivative through th
 direction is in the tangent (the current's variation with depth is not). Drag is not
 conservative: the Newton line search holds it at its value at the start of the search and adds
 its work to the potential energy (:meth:`StaticModel.potential_energy`).
+
+Lines with bending stiffness add the forces, tangent and energy of
+:mod:`moorline.physics.bending` (:func:`bending_loads`, shared with the dynamic residual);
+their tangent blocks extend the element blocks over the mesh's
+:attr:`~moorline.mesh.Mesh.pattern_pairs`.
 """
 
 from __future__ import annotations
@@ -22,7 +27,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..physics import element, hydro, seabed
+from ..physics import bending, element, hydro, seabed
 from .assembly import BlockPattern, gather_free
 
 FloatArray = NDArray[np.float64]
@@ -34,6 +39,7 @@ class ForceState:
 
     tension: FloatArray          # (n_elements,)
     element_forces: FloatArray   # (n_elements, 2, 3) force of each element on its nodes
+    #                              (axial, plus the bending shear with bending stiffness)
     nodal: FloatArray            # (n_nodes, 3) sum of all forces on each node
     length: FloatArray           # (n_elements,) current chord lengths
 
@@ -59,7 +65,7 @@ class StaticModel:
         self.exact_cable = exact_cable
         self.friction = float(friction) if np.isfinite(mesh.seabed_z) else 0.0
         self._friction_map = _friction_map(mesh) if self.friction > 0 else None
-        self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
+        self.pattern = BlockPattern(mesh.pattern_pairs, mesh.dof_of_node)
         self.current = current if current is not None and mesh.water_density > 0 else None
         g, rho = mesh.gravity, mesh.water_density
         ext = element.lumped_weight(mesh.elements, mesh.length0, mesh.weight_per_length,
@@ -77,6 +83,8 @@ class StaticModel:
         tension, _ = element.axial_tension(length, m.length0, m.EA, *self._law(),
                                            **m.axial_law)
         el_forces = element.nodal_forces(tension, unit)
+        if m.has_bending:
+            el_forces = el_forces + bending_loads(m, x)[0]
         nodal = lam * self.external
         nodal = nodal + hydro.sum_to_nodes(el_forces, m.elements, m.n_nodes)
         if np.isfinite(m.seabed_z):
@@ -165,6 +173,8 @@ class StaticModel:
             blocks = blocks - self._current_drag(x)[1]
         if self._friction_map is not None:
             blocks = blocks - self._friction(x, length, unit)[1]
+        if m.has_bending:
+            blocks = bending_loads(m, x, blocks)[1]
         node_blocks = None
         if np.isfinite(m.seabed_z):
             node_blocks = np.zeros((m.n_nodes, 3, 3))
@@ -207,6 +217,10 @@ class StaticModel:
         length, _ = element.element_geometry(x, m.elements)
         energy = float(element.strain_energy(length, m.length0, m.EA, *self._law(),
                                              **m.axial_law).sum())
+        if m.has_bending:
+            energy += float(bending.bending_energy(x, m.bend_nodes, m.bend_stiffness).sum())
+            energy += float(bending.clamp_energy(x, m.elements, m.clamp_elements,
+                                                 m.clamp_direction, m.clamp_stiffness).sum())
         if np.isfinite(m.seabed_z):
             energy += seabed.contact_energy(x[:, 2] - m.seabed_z, self.node_seabed_stiffness,
                                             self.seabed_ramp)
@@ -240,6 +254,28 @@ class StaticModel:
             return 0.0
         reach = float(np.abs(x).max(initial=1.0))
         return 64 * np.finfo(float).eps * float(np.max(m.EA / m.length0)) * reach
+
+
+def bending_loads(mesh: Mesh, x: FloatArray, element_blocks: FloatArray | None = None
+                  ) -> tuple[FloatArray, FloatArray | None]:
+    """Bending forces of a mesh with bending stiffness at positions ``x`` as element forces on
+    their nodes (n_elements, 2, 3) (:func:`moorline.physics.bending.element_shear`), and with
+    ``element_blocks`` (n_elements, 6, 6) those blocks extended by the bending tangent over
+    :attr:`~moorline.mesh.Mesh.pattern_pairs` (n_elements + n_b, 6, 6); ``None`` without
+    ``element_blocks``."""
+    nodes, c = mesh.bend_nodes, mesh.bend_stiffness
+    shear = bending.element_shear(bending.bending_forces(x, nodes, c), mesh.bend_elements,
+                                  mesh.n_elements)
+    clamp = (mesh.elements, mesh.clamp_elements, mesh.clamp_direction, mesh.clamp_stiffness)
+    if len(mesh.clamp_elements):
+        np.add.at(shear, mesh.clamp_elements, bending.clamp_forces(x, *clamp))
+    if element_blocks is None:
+        return shear, None
+    K = bending.bending_tangent(x, nodes, c)
+    blocks = bending.to_pair_blocks(K, mesh.bend_elements, mesh.n_elements, element_blocks)
+    if len(mesh.clamp_elements):
+        np.add.at(blocks, mesh.clamp_elements, bending.clamp_tangent(x, *clamp))
+    return shear, blocks
 
 
 def _friction_map(mesh: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]]:

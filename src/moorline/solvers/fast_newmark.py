@@ -328,6 +328,8 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
         return "Rayleigh damping"
     if model._fused is None:
         return "viscoelastic lines or the numpy kernel"
+    if model.mesh.has_bending:
+        return "bending stiffness (EI)"
     if scheme != "newmark" or variant != "iterative":
         return f"scheme {scheme!r} / variant {variant!r}"
     if model.has_point_hydro:

@@ -130,7 +130,7 @@ class HarmonicBalance:
         self.times = self.period * np.arange(n_t) / n_t
         self.basis = _basis(self.times, self.omega, n)
         self.material = self.model.initial_material(self.x_static)
-        self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
+        self.pattern = BlockPattern(mesh.pattern_pairs, mesh.dof_of_node)
         self.node_mass = self.model.node_mass[:, None, None] * np.eye(3)
         self.constrained = [excitation.constrained_state(self.shift + t) for t in self.times]
         self.forces = [excitation.point_forces(self.shift + t, mesh.n_nodes)

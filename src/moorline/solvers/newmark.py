@@ -443,7 +443,7 @@ def accelerated(model: DynamicModel, state: StepState, material: MaterialState,
     nodes_m = model.node_mass[:, None, None] * np.eye(3)
     if ev.node_M is not None:
         nodes_m = nodes_m + ev.node_M
-    M = sp.csc_matrix(BlockPattern(mesh.elements, mesh.dof_of_node).assemble(ev.Ma, nodes_m))
+    M = sp.csc_matrix(BlockPattern(mesh.pattern_pairs, mesh.dof_of_node).assemble(ev.Ma, nodes_m))
     massive = M.diagonal() > 0
     if not np.any(massive):
         return StepState(state.t, x, v, a, ev.material, ev)

@@ -277,7 +277,7 @@ def _newton(model, x, start, target, settings, counters):
 def _incremental(model, x, start, target, settings, counters):
     """Purely incremental loading, Tuah eq. 4.1.1: no equilibrium correction."""
     mesh = model.mesh
-    pattern_all = BlockPattern(mesh.elements, np.arange(mesh.n_nodes * 3).reshape(-1, 3))
+    pattern_all = BlockPattern(mesh.pattern_pairs, np.arange(mesh.n_nodes * 3).reshape(-1, 3))
     free = (mesh.dof_of_node >= 0).ravel()
     n = settings.load_steps
     for step in range(1, n + 1):

@@ -45,7 +45,7 @@ def condensed_tangent(mesh: Mesh, positions: FloatArray, nodes: list[int]) -> Fl
 
 def full_pattern(mesh: Mesh) -> BlockPattern:
     """The block pattern over every node dof (fixed and prescribed ones included)."""
-    return BlockPattern(mesh.elements, np.arange(3 * mesh.n_nodes).reshape(-1, 3))
+    return BlockPattern(mesh.pattern_pairs, np.arange(3 * mesh.n_nodes).reshape(-1, 3))
 
 
 def condense(K, mesh: Mesh, nodes: list[int]) -> FloatArray:

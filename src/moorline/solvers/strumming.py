@@ -159,7 +159,7 @@ class _ModeSource:
         # kinetic energy per element
         self.m = _element_mass(mesh, rho)
         self.a, self.b = mesh.elements[:, 0], mesh.elements[:, 1]
-        self.pattern = BlockPattern(mesh.elements, mesh.dof_of_node)
+        self.pattern = BlockPattern(mesh.pattern_pairs, mesh.dof_of_node)
         self.P = None
         self.keep = None
         if settings.held_body_dofs:
