@@ -50,9 +50,18 @@ amplitudes (DSA or NSA), ``x(n dt) = 2N irfft(H_x A)[n]`` (:mod:`moorline.waves.
 Rigid bodies (Tuah sec. 5.2, "force spectra on large bodies ... by the procedure of sec.
 3.3"): the unknowns are the free node dofs and six per free body, lines attached through the
 master-slave transformation (:func:`moorline.solvers.modal.body_modal_matrices`); constant
-added mass and radiation damping; the wave loads on a body from its exciting-force table
-(amplitude and phase over frequency, zero above the table) or the long-wave model of the time
-domain (``wave_loads``), and its quadratic drag linearized the same way per direction.
+added mass and radiation damping, or a body's frequency-dependent ``radiation`` table
+(:class:`moorline.model.RadiationTable`, e.g. from capytaine): ``A(omega)`` and
+``B(omega)`` interpolated linearly at each frequency, held constant beyond the table's ends
+(its first and last rows; a warning when more than 1 % of the sea's variance lies outside
+the table). The system at each frequency is then ``K - omega^2 (M + A(omega)) + i omega (C +
+B(omega))``: ``direct`` solves it as it is; ``foss`` takes its modes from ``K`` and ``M +
+A(omega_p)`` (``omega_p`` the spectral peak) and solves the coupled modal equations
+``Lambda - omega^2 (I + Phi^T dA Phi) + i omega Phi^T (C + B) Phi`` at each frequency (Foss's
+complex modes need constant matrices), exact with all modes. The wave loads on a body from
+its exciting-force table (amplitude and unwrapped phase interpolated over frequency, zero
+above the table) or the long-wave model of the time domain (``wave_loads``), and its
+quadratic drag linearized the same way per direction.
 
 Free points with their own hydrodynamics (buoys, clump weights: volume, added mass, drag
 area) get the fluid inertia and the linearized drag of the time domain.
@@ -77,6 +86,7 @@ current are refused (the statics has no current drag on bodies).
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import replace
 
@@ -97,6 +107,8 @@ from .assembly import solve_sparse
 from .bodies import long_wave_geometry
 from .modal import system_matrices
 from .statics import _current_field, equilibrium_for, solve_statics
+
+logger = logging.getLogger(__name__)
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -175,7 +187,23 @@ class _LinearModel:
                                  in enumerate(problem.body_dof) if d >= 0]).reshape(-1, 3)
         self.K, self.M = K, M
         self.environment = system.environment
+        self.radiation = [(d, body.radiation) for body, d in zip(self.bodies, self.body_dof,
+                                                                  strict=True)
+                          if body.radiation is not None]
         self.seabed_blocks = _seabed_damping_blocks(mesh, statics.positions, problem.model)
+
+    def radiation_blocks(self, omega: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """``A(omega)`` and ``B(omega)`` of the bodies with a radiation table, (n_w,
+        n_tables, 6, 6), linear in omega, constant beyond the table's ends."""
+        shape = (len(omega), len(self.radiation), 6, 6)
+        added, damping = np.zeros(shape), np.zeros(shape)
+        for k, (_, table) in enumerate(self.radiation):
+            w = np.asarray(table.omegas, dtype=float)
+            for out, values in ((added, table.added_mass), (damping, table.damping)):
+                v = np.asarray(values, dtype=float).reshape(len(w), 36)
+                out[:, k] = np.stack([np.interp(omega, w, v[:, j]) for j in range(36)],
+                                     axis=-1).reshape(-1, 6, 6)
+        return added, damping
 
     def body_kinematics(self, omega: FloatArray) -> _BodyWaves:
         """The wave loads on the free bodies."""
@@ -254,9 +282,10 @@ class _BodyWaves:
                 w_tab = np.asarray(table.omegas, dtype=float)
                 amp = np.column_stack([np.interp(omega, w_tab, np.asarray(table.amplitude)[:, j],
                                                  right=0.0) for j in range(6)])
-                phase = np.radians(np.column_stack([
-                    np.interp(omega, w_tab, np.asarray(table.phase_deg)[:, j])
-                    for j in range(6)]))
+                unwrapped = np.unwrap(np.radians(np.asarray(table.phase_deg, dtype=float)),
+                                      axis=0)
+                phase = np.column_stack([np.interp(omega, w_tab, unwrapped[:, j])
+                                         for j in range(6)])
                 self.fixed[:, i] = amp * np.exp(1j * phase) * shift[:, None]
             elif body.wave_loads:
                 area_wp, volume = long_wave_geometry(body, float(model.origins[i, 2]),
@@ -349,25 +378,81 @@ class _PointWaves:
 
 
 class _Response:
-    """Frequency response of ``M U'' + C U' + K U = F`` over the free dofs."""
+    """Frequency response of ``M U'' + C U' + K U = F`` over the free dofs, plus the
+    frequency-dependent body terms ``(-omega^2 dA(omega) + i omega B(omega))`` of the
+    radiation tables (module docstring)."""
 
-    def __init__(self, K: sp.csr_matrix, M: sp.csr_matrix, settings: StochasticSettings) -> None:
-        self.K, self.M, self.settings = K, M, settings
+    def __init__(self, K: sp.csr_matrix, M: sp.csr_matrix, settings: StochasticSettings,
+                 omega: FloatArray | None = None, model: _LinearModel | None = None,
+                 omega_ref: float = 0.0) -> None:
+        self.K, self.settings = K, settings
+        self.frequency_terms = None
+        if model is not None and model.radiation and omega is not None:
+            added, damping = model.radiation_blocks(np.append(omega, omega_ref))
+            # the modal basis needs a symmetric mass (a BEM table is symmetric only to its
+            # discretization); the per-frequency terms carry the exact A(w) - A_ref
+            added[-1] = 0.5 * (added[-1] + np.swapaxes(added[-1], -1, -2))
+            dofs = [d for d, _ in model.radiation]
+            M = M.tolil()
+            for k, d in enumerate(dofs):
+                M[d:d + 6, d:d + 6] = M[d:d + 6, d:d + 6].toarray() + added[-1, k]
+            M = M.tocsr()
+            # -w^2 (A(w) - A(w_ref)) + i w B(w), on the bodies' 6x6 blocks
+            terms = (-(omega**2)[:, None, None, None] * (added[:-1] - added[-1:])
+                     + 1j * omega[:, None, None, None] * damping[:-1])
+            self.frequency_terms = (dofs, terms)
+        self.M = M
         if settings.method == "foss":
             lam, phi = sla.eigh(K.toarray(), M.toarray())
             if settings.n_modes > 0:
                 lam, phi = lam[: settings.n_modes], phi[:, : settings.n_modes]
             self.lam, self.phi = lam, phi
 
+    def _terms(self, j: int) -> sp.csr_matrix | None:
+        """The frequency-dependent body terms at frequency ``j`` as a sparse matrix."""
+        if self.frequency_terms is None:
+            return None
+        dofs, terms = self.frequency_terms
+        rows, cols, vals = [], [], []
+        base = np.arange(6)
+        for k, d in enumerate(dofs):
+            rows.append(np.repeat(base + d, 6))
+            cols.append(np.tile(base + d, 6))
+            vals.append(terms[j, k].ravel())
+        n = self.K.shape[0]
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                     np.concatenate(cols))), shape=(n, n))
+
     def solve(self, C: sp.csr_matrix, F: ComplexArray, omega: FloatArray) -> ComplexArray:
         """``U`` (n_w, n_dofs) for the forces ``F`` (n_w, n_dofs)."""
         if self.settings.method == "direct":
             out = np.empty_like(F)
             for j, w in enumerate(omega):
-                A = (self.K - w * w * self.M + 1j * w * C).tocsc()
-                out[j] = solve_sparse(A, F[j])
+                A = self.K - w * w * self.M + 1j * w * C
+                extra = self._terms(j)
+                if extra is not None:
+                    A = A + extra
+                out[j] = solve_sparse(A.tocsc(), F[j])
             return out
+        if self.frequency_terms is not None:
+            return self._modal(C, F, omega)
         return self._foss(C, F, omega)
+
+    def _modal(self, C: sp.csr_matrix, F: ComplexArray, omega: FloatArray) -> ComplexArray:
+        """The coupled modal equations solved at each frequency (with radiation tables)."""
+        phi, lam = self.phi, self.lam
+        Cu = phi.T @ (C @ phi)
+        dofs, terms = self.frequency_terms
+        rows = [phi[d:d + 6] for d in dofs]  # (6, n_modes) each
+        modal_force = F @ phi
+        out = np.empty((len(omega), phi.shape[1]), dtype=complex)
+        self.pole_gap = np.inf
+        for j, w in enumerate(omega):
+            Z = np.diag(lam - w * w).astype(complex) + 1j * w * Cu
+            for k, row in enumerate(rows):
+                Z += row.T @ terms[j, k] @ row
+            out[j] = np.linalg.solve(Z, modal_force[j])
+        return out @ phi.T
 
     def _foss(self, C: sp.csr_matrix, F: ComplexArray, omega: FloatArray) -> ComplexArray:
         """Tuah (1982) eq. 5.3.4-5.3.29: Foss's decoupling of the modal equations."""
@@ -475,7 +560,8 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
     inertia = np.einsum("eij,wej->wei", _inertia_blocks(t, mesh, rho), H_a)
     bodies = model.body_kinematics(omega)
     points = _PointWaves(mesh, x0, omega, env, rho, current)
-    response = _Response(model.K, model.M, settings)
+    response = _Response(model.K, model.M, settings, omega, model, sea.spectrum.omega_p)
+    _check_table_range(system, model, omega, power)
     lines = _LineDrag(mesh, t, rho, None if current is None
                       else current.kinematics(mid, 0.0)[0])
 
@@ -668,6 +754,23 @@ def _result(system: System, settings: StochasticSettings, statics: StaticResult,
         body_std=np.sqrt(np.einsum("w,wbc->bc", power, np.abs(X) ** 2)),
         body_motion=series(X), counters=counters,
         success=converged, message=message, case=system.name, units=system.units)
+
+
+def _check_table_range(system: System, model: _LinearModel, omega: FloatArray,
+                       power: FloatArray) -> None:
+    """Warn when more than 1 % of the sea's variance lies outside a body's radiation table
+    (where ``A`` and ``B`` are held at the table's end values)."""
+    total = float(power.sum()) or 1.0
+    for d, table in model.radiation:
+        outside = (omega < table.omegas[0]) | (omega > table.omegas[-1])
+        share = float(power[outside].sum()) / total
+        if share > 0.01:
+            name = next(b.name for b, dof in zip(model.bodies, model.body_dof, strict=True)
+                        if dof == d)
+            logger.warning("stochastic analysis of %s: %.1f %% of the sea's variance is outside "
+                           "body %s's radiation table (%.3g to %.3g rad/s), where its added "
+                           "mass and damping are held at the table's end values", system.name,
+                           100 * share, name, table.omegas[0], table.omegas[-1])
 
 
 def _relative_change(new: FloatArray, old: FloatArray) -> float:
