@@ -40,7 +40,7 @@ line_types:
   rope: {diameter: 0.05, mass_per_length: 5, EA: 1.0e6}
 points:
   a: {kind: fixed, position: [1000, 0, -50]}
-  b: {kind: fixed, position: [1000, 100, -50]}
+  b: {kind: fixed, position: [1100, 0, -50]}
 lines:
   l: {type: rope, length: 100.5, segments: 4, end_a: a, end_b: b}
 """
@@ -118,8 +118,10 @@ def test_capytaine_file_fills_radiation_excitation_and_hydrostatics(capytaine_fi
                                    influenced_dof=list(DOFS)).values
     np.testing.assert_allclose(body.excitation.amplitude, np.abs(X), rtol=1e-12)
     big = np.abs(X) > 1e-6 * np.abs(X).max()
+    # capytaine's X (time factor e^{-i w t}) is the force a |X| cos(w t - arg X): moorline's
+    # phase (a |X| cos(w t + phase), model.WaveExcitation) is -arg X
     np.testing.assert_allclose(np.asarray(body.excitation.phase_deg)[big],
-                               np.degrees(np.angle(X))[big], atol=1e-9)
+                               -np.degrees(np.angle(X))[big], atol=1e-9)
     assert body.added_mass is None and body.damping is None
     hs = body.hydrostatics
     length, width, draft = BOX
@@ -144,7 +146,7 @@ def test_heading_between_two_of_the_database_is_interpolated(capytaine_file, tmp
     X = ds["excitation_force"].sel(omega=OMEGAS, influenced_dof=list(DOFS))
     half = 0.5 * (X.sel(wave_direction=0.0).values + X.sel(wave_direction=math.pi / 2).values)
     got = np.asarray(body.excitation.amplitude) * np.exp(
-        1j * np.radians(np.asarray(body.excitation.phase_deg)))
+        -1j * np.radians(np.asarray(body.excitation.phase_deg)))  # capytaine's sign
     np.testing.assert_allclose(got, half, rtol=1e-10, atol=1e-9 * np.abs(half).max())
 
 
@@ -333,9 +335,10 @@ B0, B1 = 1.0e3, 2.0e4   # B11(w) = B0 + B1 w
 X0, X1, PHASE = 2.0e4, 6.0e4, 0.7  # X1(w) = (X0 + X1 w) exp(i PHASE)
 
 
-def _table_database(path: Path) -> None:
+def _table_database(path: Path, excited: bool = True) -> None:
     """A database in capytaine's layout written by xarray: surge tables linear in omega, the
-    other dofs' diagonal constant (they are not excited)."""
+    other dofs' diagonal constant (they are not excited); ``excited`` False: no exciting
+    force."""
     n = len(W_TABLE)
     A = np.zeros((n, 6, 6))
     B = np.zeros((n, 6, 6))
@@ -345,7 +348,7 @@ def _table_database(path: Path) -> None:
     A[:, 0, 0] = A0 + A1 * W_TABLE
     B[:, 0, 0] = B0 + B1 * W_TABLE
     X = np.zeros((n, 1, 6), dtype=complex)
-    X[:, 0, 0] = (X0 + X1 * W_TABLE) * np.exp(1j * PHASE)
+    X[:, 0, 0] = (X0 + X1 * W_TABLE) * np.exp(1j * PHASE) if excited else 0.0
     ds = xr.Dataset(
         {"added_mass": (("omega", "influenced_dof", "radiating_dof"), A),
          "radiation_damping": (("omega", "influenced_dof", "radiating_dof"), B),
@@ -357,18 +360,19 @@ def _table_database(path: Path) -> None:
     ds.to_netcdf(path)
 
 
-def _spring_body(database: str) -> str:
+def _spring_body(database: str, drag: str = "") -> str:
     diag = [K_SURGE, 1e5, 1e5, 1e5, 1e5, 1e5]
     rows = ", ".join("[" + ", ".join(str(diag[i] if i == j else 0) for j in range(6)) + "]"
                      for i in range(6))
     return (f"position: [0, 0, 0]\nmass: {M_BODY}\ninertia: [1.0e6, 1.0e6, 1.0e6]\n"
             f"hydrostatics: {{kind: matrix, stiffness: [{rows}], volume: {M_BODY / RHO}}}\n"
-            f"hydrodynamics: {{database: {database}}}")
+            f"hydrodynamics: {{database: {database}}}\n{drag}")
 
 
 @pytest.mark.parametrize("method", ["direct", "foss"])
 def test_surge_transfer_function_is_the_exact_one(tmp_path, method):
-    """|H| = |X(w)| / |K - w^2 (m + A(w)) + i w B(w)| at every component, A, B and |X| held
+    """H = conj(X(w)) / (K - w^2 (m + A(w)) + i w B(w)) at every component (time factor
+    e^{i w t}; capytaine's X is for e^{-i w t}), A, B and |X| held
     at the table's first row below 0.1 rad/s (the sea starts at 2 pi / 200 s)."""
     _table_database(tmp_path / "table.nc")
     text = _case(_spring_body("table.nc"), waves="{kind: random, height: 2, period: 14, "
@@ -379,7 +383,8 @@ def test_surge_transfer_function_is_the_exact_one(tmp_path, method):
     w = r.omega
     assert w[0] < W_TABLE[0] and w[-1] <= W_TABLE[-1]
     wc = np.clip(w, W_TABLE[0], W_TABLE[-1])
-    exact = (X0 + X1 * wc) * np.exp(1j * PHASE) / (
+    # moorline's time factor is e^{i w t}: capytaine's X e^{-i w t} is conj(X) e^{i w t}
+    exact = (X0 + X1 * wc) * np.exp(-1j * PHASE) / (
         K_SURGE - w**2 * (M_BODY + A0 + A1 * wc) + 1j * w * (B0 + B1 * wc))
     H = r.body_transfer[:, 0, 0]
     # tolerance: the coupled statics' tangent regularizes each body dof by 1e-9 of its
@@ -394,3 +399,46 @@ def test_surge_transfer_function_is_the_exact_one(tmp_path, method):
     const = (X0 + X1 * wc) / np.abs(K_SURGE - w**2 * (M_BODY + A0 + A1 * peak)
                                     + 1j * w * (B0 + B1 * peak))
     assert abs(math.sqrt(float(np.sum(const**2 * r.wave_spectrum * r.d_omega))) / std - 1) > 0.02
+
+
+def _wave_number(w: float, depth: float) -> float:
+    from scipy.optimize import brentq
+
+    return brentq(lambda k: G * k * math.tanh(k * depth) - w * w, 1e-12, 10 * w * w / G + 1)
+
+
+def test_body_in_a_one_metre_per_second_current(tmp_path):
+    """Statics: the surge offset is the steady drag over the spring, 1/2 rho Cd A U^2 / K.
+    Stochastic in waves far smaller than the current (sigma_u / U ~ 1e-3): the drag
+    linearizes to its derivative at the current, rho Cd A U (the exact Gaussian E|w| differs
+    from U by exp(-U^2 / 2 sigma^2)), and the only surge load is that drag on the wave
+    velocity at the origin, omega coth(k h) per unit amplitude (Airy), so
+    H = rho Cd A U omega coth(k h) / (K - omega^2 (m + A) + i omega (B + rho Cd A U)),
+    phased for where the current holds the body."""
+    _table_database(tmp_path / "table.nc", excited=False)
+    area, cd, speed, depth = 40.0, 1.2, 1.0, 200.0
+    text = _case(_spring_body("table.nc", f"drag_area: [{area}, 0, 0]\nCd: {cd}"),
+                 waves="{kind: random, height: 0.004, period: 8, record_length: 200, "
+                 "omega_max: 2.0}, current: {speed: 1.0, heading: 0}")
+    system = _load(tmp_path, text)
+    r = solve_stochastic(system, system.first("stochastic"))
+    assert r.success, r.message
+    drag = 0.5 * RHO * cd * area * speed**2
+    from moorline.model import StaticsSettings
+    from moorline.solvers.statics import solve_statics
+
+    st = solve_statics(system, StaticsSettings(current_drag=True))
+    # rel: the statics tangent's regularization, 1e-9 of its largest diagonal (above)
+    assert st.body_pose[0, 0] == pytest.approx(drag / K_SURGE, rel=1e-7)
+    w = r.omega
+    wc = np.clip(w, W_TABLE[0], W_TABLE[-1])
+    c = RHO * cd * area * speed
+    k = np.array([_wave_number(x, depth) for x in w])
+    # the current holds the body at x0 = drag / K: the wave reaches it e^{-i k x0} later
+    # (time factor e^{i w t}, as moorline's series x(t) = Re sum H A e^{i w t})
+    coth = np.exp(-1j * k * drag / K_SURGE) / np.tanh(k * depth)
+    exact = c * w * coth / (K_SURGE - w**2 * (M_BODY + A0 + A1 * wc)
+                            + 1j * w * (B0 + B1 * wc + c))
+    # tolerance: the statics tangent's 1e-9 regularization (see above) and E|w| - U
+    np.testing.assert_allclose(r.body_transfer[:, 0, 0], exact, rtol=1e-6,
+                               atol=1e-9 * np.abs(exact).max())

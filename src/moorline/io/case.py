@@ -287,9 +287,6 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
         if env.current.headings is not None and len(env.current.headings) != n:
             fail(f"headings must have {n} entries like z_levels", "environment.current.headings")
     for k, analysis in enumerate(spec.analyses or ()):
-        if isinstance(analysis, StaticsSpec) and analysis.current_drag and spec.bodies:
-            fail("statics with the current's drag is not supported yet for systems with "
-                 "bodies (remove current_drag or the bodies)", f"analyses[{k}].current_drag")
         if isinstance(analysis, HarmonicSpec):
             if spec.bodies:
                 fail("harmonic balance of systems with bodies is not supported yet (use a "
@@ -309,9 +306,6 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             if env.waves.kind != "random":
                 fail("a stochastic analysis needs a random sea (environment.waves kind: "
                      f"random), not {env.waves.kind!r}", f"analyses[{k}].kind")
-            if (env.current.speed or env.current.z_levels) and spec.bodies:
-                fail("a stochastic analysis with a current is not supported yet for systems "
-                     "with bodies (remove the current or the bodies)", f"analyses[{k}].kind")
     if env.waves.kind in ("airy", "random"):
         what = "an airy wave" if env.waves.kind == "airy" else "a random sea (Hs, Tp)"
         for key in ("height", "period"):

@@ -18,8 +18,12 @@ Two layouts are read:
 Conventions (:mod:`moorline.bem`): the coefficients are about the body origin, world axes,
 dofs ``Surge .. Yaw`` = ``x .. rz``; the database's horizontal origin is the body origin
 (where the wave phase is taken), so capytaine's ``rotation_center`` must be ``(0, 0, z)``
-with ``z`` the body origin's height above the still water line. The exciting force is
-``F_i(t) = a |X_i| cos(theta_0 + arg X_i)`` (capytaine's time factor ``exp(-i w t)``).
+with ``z`` the body origin's height above the still water line. Exciting force: capytaine's
+complex ``X_i`` (time factor ``exp(-i w t)``, incident wave ``eta = a cos(k x - w t)``) is the
+force ``F_i(t) = a |X_i| cos(w t - k x_0 - arg X_i)``, so the
+:class:`moorline.model.WaveExcitation` phase (``a |X| cos(w t - k x_0 + phase)``) is
+``-arg X_i``; moorline's layout stores ``excitation_phase = arg X_i``
+(:mod:`moorline.bem`), read the same way.
 
 Hydrostatics: capytaine's rigid-body stiffness about the rotation centre holds the waterplane
 terms and the buoyancy and weight moments :math:`\rho g V (z_b - z_c) - m g (z_g - z_c)`
@@ -358,7 +362,7 @@ def from_dataset(ds: Any, *, units: str, origin_z: float, water_density: float,
                                tuple(_table(m) for m in A_all[finite]),
                                tuple(_table(m) for m in B_all[finite]), infinite)
 
-    force = _excitation_force(ds, heading_deg, notes)
+    force = _excitation_force(ds, heading_deg, notes)  # capytaine's complex X
     excitation = None
     if force is not None:
         force = force * force_factor
@@ -367,7 +371,7 @@ def from_dataset(ds: Any, *, units: str, origin_z: float, water_density: float,
             raise DatabaseError("excitation_force", "has no finite value at a frequency > 0")
         excitation = WaveExcitation(tuple(float(w) for w in omega_all[keep]),
                                     _table(np.abs(force[keep])),
-                                    _table(np.degrees(np.angle(force[keep]))))
+                                    _table(-np.degrees(np.angle(force[keep]))))
     hydrostatics = _hydrostatics(ds, si, (f_m, f_l), rho_db, g_db, center)
     for text in notes:
         if note is not None:

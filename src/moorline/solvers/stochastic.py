@@ -80,8 +80,13 @@ current's steady drag, ``E[f] - f(U)``, as node loads, repeated until the mean p
 by less than ``tolerance`` times the largest displacement std (two statics typically;
 ``counters["mean_drag_offset"]``: how far the mean state moved from the current-only one,
 the error of a one-way analysis). Approximations: the tangent ``K`` about the mean state has
-no drag stiffness (the change of the mean drag with the element direction); bodies in a
-current are refused (the statics has no current drag on bodies).
+no drag stiffness (the change of the mean drag with the element direction). Bodies: their
+drag ``1/2 rho Cd A_i |w_i| w_i`` per world direction on the relative velocity at the origin
+(the time domain's law) is linearized per direction about the current ``U_i`` there,
+``c_i (E[w_i|w_i|] + 2 E|w_i| w_i')`` (closed form, :func:`moorline.solvers.drag_linearization.
+scalar_expectations`; without current ``2 E|w_i| = (8/pi)^(1/2) sigma_i``); the statics
+carries the current's steady drag on them (:func:`moorline.solvers.statics.body_current_drag`)
+and the mean state the excess of the mean drag.
 """
 
 from __future__ import annotations
@@ -205,14 +210,15 @@ class _LinearModel:
                                      axis=-1).reshape(-1, 6, 6)
         return added, damping
 
-    def body_kinematics(self, omega: FloatArray) -> _BodyWaves:
-        """The wave loads on the free bodies."""
-        return _BodyWaves(self, omega)
+    def body_kinematics(self, omega: FloatArray, current=None) -> _BodyWaves:
+        """The wave loads on the free bodies (``current``: the steady current)."""
+        return _BodyWaves(self, omega, current)
 
-    def damping(self, element_blocks: FloatArray, sigma_b: FloatArray,
+    def damping(self, element_blocks: FloatArray, gain_b: FloatArray,
                 node_blocks: FloatArray | None = None) -> sp.csr_matrix:
         """Linearized line (and point) drag, the seabed contact damper of the resting nodes,
-        bodies' radiation damping and linearized body drag."""
+        bodies' radiation damping and linearized body drag (``gain_b``, (n_bodies, 3):
+        :meth:`_BodyWaves.gains`)."""
         if self.seabed_blocks is not None:
             node_blocks = (self.seabed_blocks if node_blocks is None
                            else node_blocks + self.seabed_blocks)
@@ -220,7 +226,7 @@ class _LinearModel:
         C = (self.P.T @ C @ self.P).tolil()
         for i, (body, d) in enumerate(zip(self.bodies, self.body_dof, strict=True)):
             block = _matrix6(body.damping)
-            block[:3, :3] += np.diag(_body_drag(body, self.rho, sigma_b[i]))
+            block[:3, :3] += np.diag(gain_b[i])
             C[d:d + 6, d:d + 6] = C[d:d + 6, d:d + 6].toarray() + block
         return C.tocsr()
 
@@ -247,11 +253,17 @@ class _LinearModel:
         return nodes, bodies
 
 
-def _body_drag(body, rho: float, sigma: FloatArray) -> FloatArray:
-    """Linearized drag coefficients per world direction of a body,
-    ``1/2 rho Cd A_i (8/pi)^(1/2) sigma_i`` (3,)."""
-    area = np.asarray(body.drag_area, dtype=float)
-    return 0.5 * rho * body.Cd * area * math.sqrt(8.0 / math.pi) * sigma
+def _body_drag(body, rho: float, sigma: FloatArray, mean: FloatArray | None = None
+               ) -> tuple[FloatArray, FloatArray]:
+    """Linearized drag per world direction of a body (3,) and its mean drag's excess over
+    the steady current's (3,): ``c_i 2 E|w_i|`` and ``c_i (E[w_i|w_i|] - U_i|U_i|)``,
+    ``c_i = 1/2 rho Cd A_i``, ``w_i ~ N(U_i, sigma_i^2)``; without a mean ``c_i (8/pi)^(1/2)
+    sigma_i`` and 0."""
+    c = 0.5 * rho * body.Cd * np.asarray(body.drag_area, dtype=float)
+    if mean is None:
+        return c * math.sqrt(8.0 / math.pi) * sigma, np.zeros(3)
+    e_sq, e_abs = drag_linearization.scalar_expectations(mean, sigma)
+    return 2.0 * c * e_abs, c * (e_sq - np.abs(mean) * mean)
 
 
 class _BodyWaves:
@@ -262,9 +274,11 @@ class _BodyWaves:
     at the origin, waterplane heave force), plus the linearized drag on the fluid velocity;
     and the standard deviations of the relative velocity at the origin."""
 
-    def __init__(self, model: _LinearModel, omega: FloatArray) -> None:
+    def __init__(self, model: _LinearModel, omega: FloatArray, current=None) -> None:
         mesh, env = model.mesh, model.environment
         self.model, self.omega = model, omega
+        self.mean = (None if current is None or not model.bodies
+                     else current.kinematics(model.origins, 0.0)[0])
         self.fixed = np.zeros((len(omega), len(model.bodies), 6), dtype=complex)
         self.H_v = np.zeros((len(omega), len(model.bodies), 3), dtype=complex)
         if not model.bodies:
@@ -294,11 +308,22 @@ class _BodyWaves:
                 self.fixed[:, i, :3] = H_a[:, i] @ (model.rho * volume * np.eye(3) + added).T
                 self.fixed[:, i, 2] += model.rho * mesh.gravity * area_wp * shift
 
-    def excitation(self, sigma_b: FloatArray) -> ComplexArray:
-        """Body forces (n_w, n_bodies, 6) with the drag linearized at ``sigma_b``."""
+    def gains(self, sigma_b: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Linearized drag coefficients (n_bodies, 3) at the relative-velocity standard
+        deviations ``sigma_b`` (about the current's mean when there is one) and the mean
+        drag's excess over the steady current's (n_bodies, 3)."""
+        out = [_body_drag(body, self.model.rho, sigma_b[i],
+                          None if self.mean is None else self.mean[i])
+               for i, body in enumerate(self.model.bodies)]
+        if not out:
+            return np.zeros((0, 3)), np.zeros((0, 3))
+        return np.array([g for g, _ in out]), np.array([e for _, e in out])
+
+    def excitation(self, gain_b: FloatArray) -> ComplexArray:
+        """Body forces (n_w, n_bodies, 6) with the drag coefficients ``gain_b``."""
         out = self.fixed.copy()
-        for i, body in enumerate(self.model.bodies):
-            out[:, i, :3] += self.H_v[:, i] * _body_drag(body, self.model.rho, sigma_b[i])
+        for i in range(len(self.model.bodies)):
+            out[:, i, :3] += self.H_v[:, i] * gain_b[i]
         return out
 
     def sigmas(self, X: ComplexArray, power: FloatArray) -> FloatArray:
@@ -505,7 +530,7 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     Raises
     ------
     MoorlineError
-        Without a random sea, or with a current and free bodies.
+        Without a random sea.
     ConvergenceError
         When the statics fails.
     """
@@ -518,9 +543,6 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         raise MoorlineError(f"stochastic method must be 'foss' or 'direct', not "
                             f"{settings.method!r}")
     current = _current_field(system)
-    if current is not None and system.bodies:
-        raise MoorlineError(f"stochastic analysis of {system.name}: a current with bodies is "
-                            "not supported yet (the statics has no current drag on bodies)")
     if current is None:
         statics = equilibrium_for(system, statics, "stochastic analysis")
         lin = _linearize(system, settings, statics, None)
@@ -558,7 +580,7 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
     mid = 0.5 * (x0[a] + x0[b])
     H_v, H_a = kinematics_transfer(mid, omega, env.waves.heading_deg, env.depth, env.gravity)
     inertia = np.einsum("eij,wej->wei", _inertia_blocks(t, mesh, rho), H_a)
-    bodies = model.body_kinematics(omega)
+    bodies = model.body_kinematics(omega, current)
     points = _PointWaves(mesh, x0, omega, env, rho, current)
     response = _Response(model.K, model.M, settings, omega, model, sea.spectrum.omega_p)
     _check_table_range(system, model, omega, power)
@@ -594,9 +616,10 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
     for _ in range(settings.max_iterations):
         drag, _ = lines.linearize(normal, power, sigma_n, sigma_t)
         gain_p, _ = points.gains(U, power, sigma_p)
-        C = model.damping(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]), sigma_b,
+        gain_b, _ = bodies.gains(sigma_b)
+        C = model.damping(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]), gain_b,
                           points.damping_blocks(gain_p))
-        F = model.forces(line_forces(drag, gain_p), bodies.excitation(sigma_b))
+        F = model.forces(line_forces(drag, gain_p), bodies.excitation(gain_b))
         U, X = model.split(response.solve(C, F, omega))
         normal, s = relative(U)
         new_n, new_t = sigmas(normal, s)
@@ -609,6 +632,7 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
             converged = True
             break
     increment = np.zeros((mesh.n_nodes, 3))
+    body_increment = np.zeros((len(mesh.body_names), 3))
     if current is not None:  # the mean drag minus the current's steady drag, at the nodes
         _, per_length = lines.linearize(normal, power, sigma_n, sigma_t)
         share = per_length * (0.5 * mesh.length0)[:, None]
@@ -616,10 +640,13 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
         np.add.at(increment, b, share)
         if points.nodes.size:
             increment[points.nodes] += points.gains(U, power, sigma_p)[1]
+        free = [mesh.body_names.index(b.name) for b in model.bodies]
+        body_increment[free] = bodies.gains(sigma_b)[1]
     return _Linearized(mesh=mesh, sea=sea, omega=omega, amplitude=amplitude,
                        spectrum=spectrum, power=power, model=model, response=response,
                        length=length, t=t, U=U, X=X, sigma_n=sigma_n, sigma_t=sigma_t,
-                       history=history, converged=converged, increment=increment)
+                       history=history, converged=converged, increment=increment,
+                       body_increment=body_increment)
 
 
 class _LineDrag:
@@ -669,23 +696,29 @@ def _mean_state(system: System, settings: StochasticSettings, statics: StaticRes
     mesh0 = statics.mesh if statics is not None else discretize(system)
     base = mesh0.node_force
 
-    def solve(extra: FloatArray, start: FloatArray | None) -> StaticResult:
+    def solve(extra: FloatArray, extra_bodies: FloatArray | None,
+              start: FloatArray | None) -> StaticResult:
         mesh = replace(mesh0, node_force=base + extra)
-        st = equilibrium_for(system, solve_statics(system, static_settings, start, mesh),
-                             "stochastic analysis")
+        st = equilibrium_for(system, solve_statics(system, static_settings, start, mesh,
+                                                   extra_bodies), "stochastic analysis")
         return st
 
     start = None if statics is None else statics.positions
-    state = solve(np.zeros_like(base), start)
+    state = solve(np.zeros_like(base), None, start)
     current_only = state.positions
     lin = _linearize(system, settings, state, current)
     iterations, change, ok = 0, math.inf, False
     while iterations < settings.max_iterations:
         iterations += 1
-        new = solve(lin.increment, state.positions)
+        new = solve(lin.increment, lin.body_increment if len(mesh0.body_names) else None,
+                    state.positions)
         std = np.sqrt(np.einsum("w,wnc->nc", lin.power, np.abs(lin.U) ** 2))
-        scale = max(float(std.max(initial=0.0)), 1e-12)
-        change = float(np.abs(new.positions - state.positions).max(initial=0.0)) / scale
+        body_std = np.sqrt(np.einsum("w,wbc->bc", lin.power, np.abs(lin.X[..., :3]) ** 2))
+        scale = max(float(std.max(initial=0.0)), float(body_std.max(initial=0.0)), 1e-12)
+        moved = np.abs(new.body_pose[:, :3] - state.body_pose[:, :3]).max(initial=0.0) \
+            if len(mesh0.body_names) else 0.0
+        change = max(float(np.abs(new.positions - state.positions).max(initial=0.0)),
+                     float(moved)) / scale
         state = new
         lin = _linearize(system, settings, state, current)
         if change <= settings.tolerance:
