@@ -94,11 +94,19 @@ _UNIT_NAMES = {
 
 
 def _capytaine() -> Any:
-    """Import capytaine lazily; a :class:`MoorlineError` telling how to install it."""
+    """Import capytaine lazily; a :class:`MoorlineError` telling how to install it.
+
+    Capytaine's import gives the root logger a rich handler writing to stdout when it has
+    none (``capytaine.set_logging``): removed, so that its warnings go to stderr like any
+    library's and a command's JSON on stdout stays JSON."""
+    before = list(logging.root.handlers)
     try:
         import capytaine
     except ImportError as exc:
         raise MoorlineError(_INSTALL) from exc
+    for handler in [h for h in logging.root.handlers if h not in before]:
+        if type(handler).__name__ == "RichHandler":
+            logging.root.removeHandler(handler)
     return capytaine
 
 
