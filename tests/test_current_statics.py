@@ -5,9 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-import pytest
 
-from moorline.errors import MoorlineError
 from moorline.io import load_case
 from moorline.io.case_writer import write_case
 from moorline.model import Current, DynamicsSettings, StaticsSettings
@@ -63,7 +61,8 @@ def test_current_drag_from_a_case_file_and_refusals(tmp_path):
     from moorline.verification import tuah_ex5
 
     disc, _ = tuah_ex5.static_state()
-    with pytest.raises(MoorlineError, match="current_drag with bodies"):
-        solve_statics(replace(disc, environment=replace(disc.environment,
-                                                        current=Current(speed=0.5))),
-                      StaticsSettings(current_drag=True))
+    # a body in a current: the statics carries the current's drag on it (issue 15)
+    drifted = solve_statics(replace(disc, environment=replace(disc.environment,
+                                                              current=Current(speed=0.5))),
+                            StaticsSettings(current_drag=True))
+    assert drifted.success and drifted.current_drag

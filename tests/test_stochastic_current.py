@@ -14,6 +14,7 @@ import xarray as xr
 from click.testing import CliRunner
 
 from moorline.cli import cli
+from moorline.io import load_case
 from moorline.io.case_writer import write_case
 from moorline.model import Current, DynamicsSettings, StaticsSettings, StochasticSettings
 from moorline.solvers import drag_linearization as dl
@@ -244,18 +245,23 @@ def test_stochastic_with_current_from_a_case_file(tmp_path):
         assert np.allclose(ds["tension_std"].values, direct.tension_std, rtol=1e-9)
 
 
-def test_current_with_bodies_is_refused_at_read_time(tmp_path):
-    """Bodies in a current are not supported yet (the statics has no current drag on
-    bodies): refused when the case is read (``write_case`` reads it back)."""
-    from moorline.errors import CaseError
+def test_bodies_in_a_current_run_from_a_case_file(tmp_path):
+    """Tuah's disc buoy in its random sea with a 1 m/s current (the case is in US units),
+    written as a case file, read back and run: the linearization about the current converges
+    (issue 15: the statics carries the current's drag on bodies, and the bodies feel the
+    drag on their lines' end elements). The exact check of a body's drag about a current is
+    tests/test_hydrodynamics.py."""
     from moorline.verification import tuah_ex5_random
 
     system, _ = tuah_ex5_random.random_system()
+    assert system.units == "US"
     system = replace(system, environment=replace(system.environment,
-                                                 current=Current(speed=1.0)),
+                                                 current=Current(speed=1.0 / 0.3048)),
                      analyses=(StaticsSettings(), StochasticSettings()))
-    with pytest.raises(CaseError, match="current is not supported yet"):
-        write_case(system, tmp_path / "disc.yaml")
+    loaded = load_case(write_case(system, tmp_path / "disc.yaml"))
+    r = solve_stochastic(loaded, StochasticSettings())
+    assert r.success, r.message
+    assert r.counters["mean_state_iterations"] >= 1 and np.all(np.isfinite(r.body_std))
 
 
 @pytest.mark.slow

@@ -94,26 +94,27 @@ _UNIT_NAMES = {
 
 
 def _capytaine() -> Any:
-    """Import capytaine lazily; a :class:`MoorlineError` telling how to install it."""
+    """Import capytaine lazily; a :class:`MoorlineError` telling how to install it.
+
+    Capytaine's import gives the root logger a rich handler writing to stdout when it has
+    none (``capytaine.set_logging``): removed, so that its warnings go to stderr like any
+    library's and a command's JSON on stdout stays JSON."""
+    before = list(logging.root.handlers)
     try:
         import capytaine
     except ImportError as exc:
         raise MoorlineError(_INSTALL) from exc
+    for handler in [h for h in logging.root.handlers if h not in before]:
+        if type(handler).__name__ == "RichHandler":
+            logging.root.removeHandler(handler)
     return capytaine
 
 
 def _si_factors(units: str) -> tuple[float, float]:
     """Factors (mass, length) from SI to ``units``: 1 kg = f_m [mass], 1 m = f_l [length]."""
-    if units == "SI":
-        return 1.0, 1.0
-    if units != "US":
-        raise MoorlineError(f"unknown unit system {units!r} (SI or US)")
-    from .io.units import registry
+    from .io.hydro_database import unit_factors
 
-    ureg = registry()
-
-    return (float(ureg.Quantity(1.0, "kg").to("slug").magnitude),
-            float(ureg.Quantity(1.0, "m").to("ft").magnitude))
+    return unit_factors(units)
 
 
 def _dimension_values(shape: str, dimensions: Mapping[str, float] | Sequence[float]
@@ -279,35 +280,139 @@ def body_coefficients(
     MoorlineError
         Capytaine is not installed, or the geometry or frequencies are invalid.
     """
-    cpt = _capytaine()
-    dims = _dimension_values(shape, dimensions)
-    omega = np.unique(np.asarray(omegas, dtype=float).ravel())
+    ds = capytaine_database(shape, dimensions, draft, omegas, water_density, gravity, depth,
+                            units=units, headings_deg=(heading_deg,), mass=mass,
+                            center_of_gravity=center_of_gravity, panel_size=panel_size,
+                            lid=lid, origin_z=origin_z)
+    return _moorline_layout(ds, units)
+
+
+def _check_inputs(omega: np.ndarray, draft: float | None, water_density: float,
+                  gravity: float) -> None:
     if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega <= 0):
         raise MoorlineError("BEM frequencies must be positive and finite")
-    if not (draft > 0 and math.isfinite(draft)):
+    if draft is not None and not (draft > 0 and math.isfinite(draft)):
         raise MoorlineError(f"draft must be positive, got {draft}")
     if not (water_density > 0 and gravity > 0):
         raise MoorlineError("water density and gravity must be positive")
+
+
+def _file_mesh(cpt: Any, mesh_file: str | os.PathLike[str], f_l: float) -> Any:
+    """A hull mesh file (any format capytaine reads) in the case's length unit, water line at
+    ``z = 0``, in SI and clipped to its wetted part."""
+    try:
+        mesh = cpt.load_mesh(str(mesh_file))
+    except Exception as exc:  # capytaine/meshio raise many kinds
+        raise MoorlineError(f"cannot read mesh file {str(mesh_file)!r}: {exc}") from None
+    if f_l != 1.0:
+        mesh = cpt.Mesh(vertices=np.asarray(mesh.vertices) / f_l, faces=np.asarray(mesh.faces),
+                        name=getattr(mesh, "name", None))
+    wet = mesh.immersed_part()
+    if wet.nb_faces == 0:
+        raise MoorlineError(f"mesh file {str(mesh_file)!r} has no panel below the water line "
+                            "z = 0 (coordinates in the case's length unit, z up)")
+    return wet
+
+
+def capytaine_database(
+    shape: Shape | Literal["mesh"],
+    dimensions: Mapping[str, float] | Sequence[float] | None,
+    draft: float | None,
+    omegas: ArrayLike,
+    water_density: float,
+    gravity: float,
+    depth: float | None = None,
+    *,
+    units: Literal["SI", "US"] = "SI",
+    headings_deg: Sequence[float] = (0.0,),
+    mass: float | None = None,
+    center_of_gravity: Sequence[float] = (0.0, 0.0, 0.0),
+    panel_size: float | None = None,
+    lid: bool = False,
+    origin_z: float | None = None,
+    mesh_file: str | os.PathLike[str] | None = None,
+    infinite_frequency: bool = False,
+) -> xr.Dataset:
+    """The hydrodynamic database of a hull in capytaine's own dataset format (SI units).
+
+    Meshes the wetted part of a box or vertical cylinder floating upright at ``draft`` (or
+    reads a mesh file), adds the six rigid-body dofs about the body origin, and solves the
+    radiation problems of every dof and the diffraction problems of every heading at every
+    frequency with capytaine's ``BEMSolver.fill_dataset`` (Ancellin and Dias 2019), whose
+    ``assemble_dataset`` output is returned unchanged but for ``hydrostatic_stiffness``,
+    recomputed with a 2x2 Gauss-Legendre panel quadrature (exact waterplane moments of flat
+    panels). With ``infinite_frequency`` the radiation problems at ``omega = inf`` are solved
+    too (capytaine >= 2.0) and appended to the ``omega`` axis (their damping is 0, their
+    exciting forces NaN).
+
+    Parameters
+    ----------
+    shape
+        ``box``, ``cylinder`` or ``mesh`` (then ``mesh_file``).
+    dimensions, draft
+        As in :func:`body_coefficients` (ignored for a mesh file).
+    omegas, water_density, gravity, depth, units, mass, center_of_gravity, panel_size, lid
+        As in :func:`body_coefficients` (inputs in ``units``; the dataset is SI, capytaine's).
+    headings_deg
+        Wave propagation directions of the diffraction problems [deg].
+    origin_z
+        Height of the body origin above the still water line [length]; default the shape's
+        centre, ``height / 2 - draft`` (a mesh file: 0).
+    mesh_file
+        A hull mesh in a format capytaine reads (``cpt.load_mesh``), coordinates in the case's
+        length unit, z up, the still water line at ``z = 0``, the body origin on the z axis;
+        only its part below ``z = 0`` is kept. ``panel_size`` does not apply.
+    infinite_frequency
+        Also solve ``omega = inf`` (the added mass ``A(inf)`` of the Cummins equation).
+
+    Returns
+    -------
+    xarray.Dataset
+        Capytaine's dataset (complex exciting forces; write it with
+        :func:`write_capytaine_netcdf`); ``attrs`` also record moorline's inputs
+        (``moorline_*``).
+
+    Raises
+    ------
+    MoorlineError
+        Capytaine is not installed, the mesh file cannot be read, or the geometry or
+        frequencies are invalid.
+    """
+    cpt = _capytaine()
+    omega = np.unique(np.asarray(omegas, dtype=float).ravel())
+    _check_inputs(omega, None if shape == "mesh" else draft, water_density, gravity)
     f_m, f_l = _si_factors(units)
     rho_si = water_density * f_l**3 / f_m
     g_si = gravity / f_l
-    dims_si = {k: v / f_l for k, v in dims.items()}
-    draft_si = draft / f_l
     depth_si = math.inf if depth is None or not math.isfinite(depth) else depth / f_l
-    if depth_si <= draft_si:
-        raise MoorlineError(f"water depth {depth} must exceed the draft {draft}")
-    if panel_size is None:
-        size_si = default_panel_size(shape, dims_si, draft_si, float(omega.max()), g_si)
-    elif panel_size > 0:
-        size_si = panel_size / f_l
+    if shape == "mesh":
+        if mesh_file is None:
+            raise MoorlineError("a mesh hull needs its mesh file")
+        hull = _file_mesh(cpt, mesh_file, f_l)
+        draft_si = float(-np.min(np.asarray(hull.vertices)[:, 2]))
+        size_si = float("nan")
+        origin = np.array([0.0, 0.0, 0.0 if origin_z is None else origin_z / f_l])
+        submerged = bool(np.max(np.asarray(hull.vertices)[:, 2]) < -1e-9 * max(draft_si, 1.0))
+        dims: dict[str, float] = {}
     else:
-        raise MoorlineError(f"panel size must be positive, got {panel_size}")
-
-    hull = _hull_mesh(cpt, shape, dims_si, draft_si, size_si)
-    origin = np.array([0.0, 0.0, dims_si["height"] / 2.0 - draft_si if origin_z is None
-                       else origin_z / f_l])
+        assert draft is not None
+        dims = _dimension_values(shape, dimensions or {})
+        dims_si = {k: v / f_l for k, v in dims.items()}
+        draft_si = draft / f_l
+        if panel_size is None:
+            size_si = default_panel_size(shape, dims_si, draft_si, float(omega.max()), g_si)
+        elif panel_size > 0:
+            size_si = panel_size / f_l
+        else:
+            raise MoorlineError(f"panel size must be positive, got {panel_size}")
+        hull = _hull_mesh(cpt, shape, dims_si, draft_si, size_si)
+        origin = np.array([0.0, 0.0, dims_si["height"] / 2.0 - draft_si if origin_z is None
+                           else origin_z / f_l])
+        submerged = draft_si >= dims_si["height"]
+    if depth_si <= draft_si:
+        raise MoorlineError(f"water depth {depth} must exceed the draft {draft_si * f_l:g}")
     cog = origin + np.asarray(center_of_gravity, dtype=float) / f_l
-    lid_mesh = hull.generate_lid(z=0.0) if lid and draft_si < dims_si["height"] else None
+    lid_mesh = hull.generate_lid(z=0.0) if lid and not submerged else None
     body = cpt.FloatingBody(mesh=hull, lid_mesh=lid_mesh,
                             dofs=cpt.rigid_body_dofs(rotation_center=origin),
                             center_of_mass=cog,
@@ -321,24 +426,75 @@ def body_coefficients(
     statics = cpt.FloatingBody(mesh=exact, dofs=cpt.rigid_body_dofs(rotation_center=origin),
                                center_of_mass=cog, mass=body.mass, name=body.name)
     stiffness = statics.compute_hydrostatic_stiffness(rho=rho_si, g=g_si)
-    stiffness = np.asarray(stiffness.sel(influenced_dof=list(DOFS),
-                                         radiating_dof=list(DOFS)).values, dtype=float)
-    volume = float(body.disp_volume)
-    waterplane = float(body.waterplane_area)
 
-    problems = xr.Dataset(coords={
-        "omega": omega, "wave_direction": [math.radians(heading_deg)],
-        "radiating_dof": list(DOFS), "water_depth": [depth_si], "rho": [rho_si],
-        "g": [g_si]})
+    common = {"radiating_dof": list(DOFS), "water_depth": [depth_si], "rho": [rho_si],
+              "g": [g_si]}
     solver = cpt.BEMSolver()
     quiet = ({"progress_bar": False}
              if "progress_bar" in inspect.signature(solver.fill_dataset).parameters else {})
-    solved = solver.fill_dataset(problems, body, **quiet)
+    headings = np.unique(np.radians(np.asarray(headings_deg, dtype=float).ravel()))
+    solved = solver.fill_dataset(xr.Dataset(coords={
+        "omega": omega, "wave_direction": headings, **common}), body, **quiet)
+    if infinite_frequency:
+        high = solver.fill_dataset(xr.Dataset(coords={"omega": [np.inf], **common}), body,
+                                   **quiet)
+        solved = xr.concat([solved, high[["added_mass", "radiation_damping"]]], dim="omega",
+                           data_vars="minimal", coords="minimal", compat="override",
+                           join="outer")
+    solved["hydrostatic_stiffness"] = (
+        ("influenced_dof", "radiating_dof"),
+        np.asarray(stiffness.sel(influenced_dof=list(DOFS), radiating_dof=list(DOFS)).values,
+                   dtype=float))
+    solved.attrs.update({
+        "moorline_source": "moorline.bem.capytaine_database",
+        "moorline_units_of_inputs": units, "moorline_shape": shape,
+        **{f"moorline_dimension_{k}": v for k, v in dims.items()},
+        "moorline_draft": float(draft_si * f_l),
+        "moorline_mesh_file": "" if mesh_file is None else str(mesh_file),
+        "moorline_mass": float("nan") if mass is None else float(mass),
+        "moorline_center_of_gravity": [float(c) for c in center_of_gravity],
+        "moorline_n_panels": int(hull.nb_faces),
+        "moorline_n_lid_panels": 0 if lid_mesh is None else int(lid_mesh.nb_faces),
+        "moorline_panel_size": size_si * f_l,
+        "moorline_origin_z": float(origin[2] * f_l),
+        "moorline_waterplane_area": float(body.waterplane_area) if not submerged else 0.0,
+    })
+    return solved
+
+
+def write_capytaine_netcdf(dataset: xr.Dataset, path: str | os.PathLike[str]) -> Path:
+    """Write a :func:`capytaine_database` dataset as NetCDF in capytaine's format (complex
+    arrays split on a ``complex`` = re, im axis: capytaine's ``export_dataset``)."""
+    cpt = _capytaine()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    cpt.export_dataset(str(path), dataset, format="netcdf")
+    return path
+
+
+def _moorline_layout(solved: xr.Dataset, units: str) -> xr.Dataset:
+    """:func:`body_coefficients`' layout (case units) of a one-heading
+    :func:`capytaine_database`."""
+    a = solved.attrs
+    f_m, f_l = _si_factors(units)
+    finite = np.isfinite(solved["omega"].values)
+    solved = solved.isel(omega=np.flatnonzero(finite))
+    omega = solved["omega"].values
     pick = {"omega": omega, "influenced_dof": list(DOFS)}
     added = solved["added_mass"].sel(**pick, radiating_dof=list(DOFS)).values
     damping = solved["radiation_damping"].sel(**pick, radiating_dof=list(DOFS)).values
     excitation = solved["excitation_force"].isel(wave_direction=0).sel(**pick).values
     wavenumber = np.asarray(solved["wavenumber"].sel(omega=omega).values, dtype=float)
+    stiffness = solved["hydrostatic_stiffness"].values
+    rho_si = float(solved["rho"])
+    volume = float(solved["disp_mass"]) / rho_si
+    waterplane = float(a["moorline_waterplane_area"])
+    shape = str(a["moorline_shape"])
+    dims = {k[len("moorline_dimension_"):]: v for k, v in a.items()
+            if k.startswith("moorline_dimension_")}
+    depth_si = float(solved["water_depth"])
+    mass = float(a["moorline_mass"])
+    heading_deg = math.degrees(float(solved["wave_direction"].values[0]))
 
     r = _ROTATIONAL
     matrix_factor = f_m * f_l ** (r[:, None] + r[None, :])
@@ -380,21 +536,21 @@ def body_coefficients(
     ds["waterplane_area"].attrs["units"] = f"{length}^2"
     ds.attrs.update({
         "source": "capytaine (Ancellin and Dias 2019), linear potential flow BEM",
-        "capytaine_version": str(getattr(cpt, "__version__", "unknown")),
-        "green_function": str(solved.attrs.get("green_function", "")),
-        "method": str(solved.attrs.get("method", "")),
+        "capytaine_version": str(a.get("capytaine_version", "unknown")),
+        "green_function": str(a.get("green_function", "")),
+        "method": str(a.get("method", "")),
         "units": units, "shape": shape,
         **{f"dimension_{k}": v for k, v in dims.items()},
-        "draft": float(draft), "water_density": float(water_density),
-        "gravity": float(gravity),
-        "depth": math.inf if depth is None else float(depth),
+        "draft": float(a["moorline_draft"]), "water_density": rho_si * f_m / f_l**3,
+        "gravity": float(solved["g"]) * f_l,
+        "depth": depth_si * f_l,
         "heading_deg": float(heading_deg),
-        "mass": float("nan") if mass is None else float(mass),
-        "center_of_gravity": [float(c) for c in center_of_gravity],
-        "n_panels": int(hull.nb_faces),
-        "n_lid_panels": 0 if lid_mesh is None else int(lid_mesh.nb_faces),
-        "panel_size": size_si * f_l,
-        "origin_z": float(origin[2] * f_l),
+        "mass": mass,
+        "center_of_gravity": [float(c) for c in a["moorline_center_of_gravity"]],
+        "n_panels": int(a["moorline_n_panels"]),
+        "n_lid_panels": int(a["moorline_n_lid_panels"]),
+        "panel_size": float(a["moorline_panel_size"]),
+        "origin_z": float(a["moorline_origin_z"]),
         "reference_point": "body origin, world axes",
     })
     return ds

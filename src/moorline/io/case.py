@@ -287,9 +287,6 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
         if env.current.headings is not None and len(env.current.headings) != n:
             fail(f"headings must have {n} entries like z_levels", "environment.current.headings")
     for k, analysis in enumerate(spec.analyses or ()):
-        if isinstance(analysis, StaticsSpec) and analysis.current_drag and spec.bodies:
-            fail("statics with the current's drag is not supported yet for systems with "
-                 "bodies (remove current_drag or the bodies)", f"analyses[{k}].current_drag")
         if isinstance(analysis, HarmonicSpec):
             if spec.bodies:
                 fail("harmonic balance of systems with bodies is not supported yet (use a "
@@ -309,9 +306,6 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             if env.waves.kind != "random":
                 fail("a stochastic analysis needs a random sea (environment.waves kind: "
                      f"random), not {env.waves.kind!r}", f"analyses[{k}].kind")
-            if (env.current.speed or env.current.z_levels) and spec.bodies:
-                fail("a stochastic analysis with a current is not supported yet for systems "
-                     "with bodies (remove the current or the bodies)", f"analyses[{k}].kind")
     if env.waves.kind in ("airy", "random"):
         what = "an airy wave" if env.waves.kind == "airy" else "a random sea (Hs, Tp)"
         for key in ("height", "period"):
@@ -331,6 +325,17 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             fail(f"only body points take 'body'; this point is {point.kind}",
                  f"points.{name}.body")
     for name, body in bodies.items():
+        hydro = body.hydrodynamics
+        if hydro is not None:
+            if (hydro.database is None) == (hydro.bem is None):
+                fail("give exactly one of database (a NetCDF file) and bem (computed)",
+                     f"bodies.{name}.hydrodynamics")
+            given = [k for k in ("added_mass", "damping", "excitation")
+                     if getattr(body, k) is not None]
+            if given:
+                fail(f"a body with hydrodynamics takes its radiation and wave loads from "
+                     f"the database: remove {' and '.join(given)} (or hydrodynamics)",
+                     f"bodies.{name}.{given[0]}")
         ex = body.excitation
         if ex is not None:
             n = len(ex.omegas)
@@ -584,7 +589,8 @@ def _build(spec: CaseSpec, source: str | None, line_types: dict[str, LineType]) 
         for name, p in spec.points.items()
     }
     lines = {name: _line(name, line) for name, line in spec.lines.items()}
-    bodies = {name: _body(name, b, source) for name, b in (spec.bodies or {}).items()}
+    bodies = {name: _body(name, b, source, environment, units)
+              for name, b in (spec.bodies or {}).items()}
     if spec.analyses is None:
         analyses: tuple[Any, ...] = (_settings(StaticsSpec(kind="statics"), units),)
     else:
@@ -605,25 +611,34 @@ def _build(spec: CaseSpec, source: str | None, line_types: dict[str, LineType]) 
     )
 
 
-def _body(name: str, spec: Any, source: str | None) -> Body:
+def _body(name: str, spec: Any, source: str | None, environment: Environment,
+          units: str) -> Body:
     hs = spec.hydrostatics
     off = {(0, 1): 0, (0, 2): 1, (1, 2): 2}
     inertia = tuple(tuple(spec.inertia[i] if i == j else
                           spec.products_of_inertia[off[(min(i, j), max(i, j))]]
                           for j in range(3)) for i in range(3))
+    hydrostatics = Hydrostatics(kind=hs.kind, length=hs.length, width=hs.width,
+                                height=hs.height, diameter=hs.diameter,
+                                stiffness=hs.stiffness, volume=hs.volume,
+                                center_of_buoyancy=tuple(hs.center_of_buoyancy))
+    excitation, radiation = _excitation(spec.excitation), None
+    if spec.hydrodynamics is not None:
+        from .hydrodynamics import body_hydrodynamics
+
+        hydro = body_hydrodynamics(name, spec, environment, units, source)
+        excitation, radiation = hydro.excitation, hydro.radiation
+        if hs.kind == "none" and hydro.hydrostatics is not None:
+            hydrostatics = hydro.hydrostatics
     return Body(
         name=name, kind=spec.kind, position=tuple(spec.position),
         rotation=tuple(math.radians(a) for a in spec.rotation), mass=spec.mass,
         center_of_gravity=tuple(spec.center_of_gravity), inertia=inertia,
-        added_mass=spec.added_mass, damping=spec.damping,
-        hydrostatics=Hydrostatics(kind=hs.kind, length=hs.length, width=hs.width,
-                                  height=hs.height, diameter=hs.diameter,
-                                  stiffness=hs.stiffness, volume=hs.volume,
-                                  center_of_buoyancy=tuple(hs.center_of_buoyancy)),
+        added_mass=spec.added_mass, damping=spec.damping, hydrostatics=hydrostatics,
         force=(*spec.force, *spec.moment),
         force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"),
         drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads,
-        excitation=_excitation(spec.excitation))
+        excitation=excitation, radiation=radiation)
 
 
 def _waves(spec: Any) -> Waves:

@@ -392,6 +392,48 @@ class ExcitationSpec(_Spec):
     phase: list[list[Number]]
 
 
+class BemOmegaSpec(_Spec):
+    """``bodies.<name>.hydrodynamics.bem.omega``: ``n`` frequencies evenly spaced from
+    ``min`` to ``max`` [rad/s]."""
+
+    min: quantity("1/time", gt=0.0)
+    max: quantity("1/time", gt=0.0)
+    n: PositiveInt
+
+
+class BemDimensionsSpec(_Spec):
+    """``bodies.<name>.hydrodynamics.bem.dimensions``: ``length``, ``width``, ``height`` of a
+    box, ``diameter``, ``height`` of a vertical cylinder."""
+
+    length: quantity("length", gt=0.0) | None = None
+    width: quantity("length", gt=0.0) | None = None
+    height: quantity("length", gt=0.0) | None = None
+    diameter: quantity("length", gt=0.0) | None = None
+
+
+class BemSpec(_Spec):
+    """``bodies.<name>.hydrodynamics.bem``: compute the database with capytaine
+    (:mod:`moorline.io.hydrodynamics`). ``shape``: ``box``, ``cylinder`` or a mesh file
+    (relative to the case file, case length unit, water line at z = 0)."""
+
+    shape: str
+    dimensions: BemDimensionsSpec | None = None
+    draft: quantity("length", gt=0.0) | None = None
+    omega: BemOmegaSpec
+    heading_deg: quantity("angle") | list[quantity("angle")] | None = None
+    panel_size: quantity("length", gt=0.0) | None = None
+    lid: bool = False
+    infinite_frequency: bool = True
+
+
+class HydrodynamicsSpec(_Spec):
+    """``bodies.<name>.hydrodynamics``: a capytaine ``database`` (NetCDF file, relative to
+    the case file) or a ``bem`` computation (cached), exactly one."""
+
+    database: str | None = None
+    bem: BemSpec | None = None
+
+
 class BodySpec(_Spec):
     """``bodies.<name>``: a rigid body (see :class:`moorline.model.Body`). Matrices (inertia,
     added mass, damping, hydrostatic stiffness) are plain numbers in the case's units.
@@ -417,6 +459,7 @@ class BodySpec(_Spec):
     Cd: Coefficient = 1.0
     wave_loads: bool = False
     excitation: ExcitationSpec | None = None
+    hydrodynamics: HydrodynamicsSpec | None = None
 
 
 class PointSpec(_Spec):

@@ -37,10 +37,11 @@ class StaticsSettings:
         Newton: largest node displacement per iteration, as a fraction of the longest line's
         unstretched length (longer steps are scaled down; a guard against slack starts).
     current_drag
-        Include the drag of the environment's steady current on the lines and on points with
-        a drag area (the lines at rest in the current, as MoorPy's statics with a current).
-        A dynamics started from such a state keeps the current on from the start (its
-        ``ramp_time`` then ramps the waves only). Not with bodies yet.
+        Include the drag of the environment's steady current on the lines, on points with
+        a drag area and on bodies with a drag area (at their origin,
+        :func:`moorline.solvers.statics.body_current_drag`) (the system at rest in the
+        current, as MoorPy's statics with a current). A dynamics started from such a state
+        keeps the current on from the start (its ``ramp_time`` then ramps the waves only).
     """
 
     kind: Literal["statics"] = "statics"

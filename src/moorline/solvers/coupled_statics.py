@@ -31,12 +31,12 @@ FloatArray = NDArray[np.float64]
 
 
 class CoupledStatics:
-    """Residual and exact tangent of the coupled line-body statics (``exact_cable``: see
-    :class:`~moorline.solvers.equilibrium.StaticModel`)."""
+    """Residual and exact tangent of the coupled line-body statics (``exact_cable``,
+    ``current``: see :class:`~moorline.solvers.equilibrium.StaticModel`)."""
 
-    def __init__(self, mesh: Mesh, exact_cable: bool = False) -> None:
+    def __init__(self, mesh: Mesh, exact_cable: bool = False, current=None) -> None:
         self.mesh = mesh
-        self.model = StaticModel(mesh, exact_cable=exact_cable)
+        self.model = StaticModel(mesh, current, exact_cable=exact_cable)
         self.bodies = list(mesh.bodies)
         layout = BodyDofs.of(mesh, self.bodies)
         self.n_free, self.body_dof, self.n_unknowns = (layout.n_free, layout.body_dof,
@@ -159,8 +159,8 @@ class _SchurStep:
         return scipy.linalg.lu_solve(self.lu, r_bodies - self.correction)
 
 
-def solve_coupled(mesh: Mesh, x: FloatArray, settings: StaticsSettings, counters, hold
-                  ) -> tuple[bool, str, int, ForceState, FloatArray, BodyState]:
+def solve_coupled(mesh: Mesh, x: FloatArray, settings: StaticsSettings, counters, hold,
+                  current=None) -> tuple[bool, str, int, ForceState, FloatArray, BodyState]:
     """Static equilibrium of lines and bodies: Newton on the bodies' six dofs with the lines
     kept in equilibrium (partitioned); without free bodies, the lines' own solve.
 
@@ -170,9 +170,10 @@ def solve_coupled(mesh: Mesh, x: FloatArray, settings: StaticsSettings, counters
     with the line dofs condensed out: the Schur complement ``K_bb - K_bl K_ll^-1 K_lb``),
     backtracking on the bodies' out-of-balance force. A slack line gives a body almost no
     stiffness; a monolithic Newton step then throws the line through the seabed, where the
-    partitioned one cannot.
+    partitioned one cannot. ``current``: the steady current whose drag the lines carry (the
+    one ``hold`` solves with), so that the bodies feel the drag on their nodes' elements.
     """
-    problem = CoupledStatics(mesh, exact_cable=True)  # the law the lines' statics solve
+    problem = CoupledStatics(mesh, exact_cable=True, current=current)  # the lines' law
     poses = BodyState.initial(mesh)
     x = place_slaves(mesh, poses, x)
     if problem.n_unknowns == problem.n_free:  # no free body: the lines' solve is the answer

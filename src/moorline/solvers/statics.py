@@ -69,6 +69,7 @@ def solve_statics(
     settings: StaticsSettings | None = None,
     initial: FloatArray | None = None,
     mesh: Mesh | None = None,
+    body_force: FloatArray | None = None,
 ) -> StaticResult:
     """Find the static equilibrium of ``system``.
 
@@ -83,6 +84,10 @@ def solve_statics(
         (:func:`~moorline.solvers.initial_shape.initial_positions`).
     mesh
         A mesh of ``system`` if already built.
+    body_force
+        Extra constant forces at the body origins (n_bodies, 3), world axes (the stochastic
+        analysis' mean drag); with ``current_drag`` the bodies also carry the current's
+        drag (:func:`body_current_drag`).
 
     Returns
     -------
@@ -93,11 +98,52 @@ def solve_statics(
     settings = settings or _default_settings(system)
     mesh = mesh or discretize(system)
     current = _current_field(system) if settings.current_drag else None
-    if current is not None and mesh.body_names:
-        from ..errors import MoorlineError
+    if mesh.body_names and (current is not None or body_force is not None):
+        return _with_body_drag(system, settings, initial, mesh, current, body_force)
+    return _solve(system, settings, initial, mesh, current)
 
-        raise MoorlineError(f"statics of {system.name}: current_drag with bodies is not "
-                            "supported yet")
+
+MAX_BODY_DRAG_UPDATES = 20
+"""Most statics re-solved with the current's drag on the bodies at their new origins (a
+current profile; a uniform current needs none)."""
+
+
+def body_current_drag(mesh: Mesh, current, origins: FloatArray) -> FloatArray:
+    """The steady current's drag on each body (n_bodies, 3) at its origin ``origins``
+    (n_bodies, 3): ``1/2 rho Cd A_i |U_i| U_i`` per world direction, the time domain's law
+    (:class:`moorline.model.Body` ``drag_area``, ``Cd``) with the body at rest."""
+    if current is None or not len(mesh.bodies):
+        return np.zeros((len(mesh.bodies), 3))
+    U = current.kinematics(np.asarray(origins, dtype=float).reshape(-1, 3), 0.0)[0]
+    area = np.array([b.drag_area for b in mesh.bodies], dtype=float)
+    cd = np.array([b.Cd for b in mesh.bodies], dtype=float)[:, None]
+    return 0.5 * float(mesh.water_density) * cd * area * np.abs(U) * U
+
+
+def _with_body_drag(system: System, settings: StaticsSettings, initial: FloatArray | None,
+                    mesh: Mesh, current, extra: FloatArray | None = None) -> StaticResult:
+    """Statics with the current's drag on the lines and, as a constant force at each body
+    origin, on the bodies (:func:`body_current_drag`), re-evaluated at the solved origins
+    until it no longer changes (1e-9 relative), plus ``extra`` body forces (n_bodies, 3)."""
+    bodies = mesh.bodies
+    origins = np.array([b.position for b in bodies], dtype=float)
+    extra = np.zeros((len(bodies), 3)) if extra is None else extra
+    result = None
+    for _ in range(MAX_BODY_DRAG_UPDATES):
+        drag = body_current_drag(mesh, current, origins)
+        loaded = tuple(replace(b, force=(*(np.asarray(b.force[:3]) + d + e), *b.force[3:]))
+                       for b, d, e in zip(bodies, drag, extra, strict=True))
+        result = _solve(system, settings, initial, replace(mesh, bodies=loaded), current)
+        origins, initial = result.body_pose[:, :3], result.positions
+        new = body_current_drag(mesh, current, origins)
+        if not result.success or np.all(np.abs(new - drag)
+                                        <= 1e-9 * max(float(np.abs(drag).max()), 1e-300)):
+            break
+    return replace(result, mesh=replace(result.mesh, bodies=bodies))
+
+
+def _solve(system: System, settings: StaticsSettings, initial: FloatArray | None, mesh: Mesh,
+           current) -> StaticResult:
     model = StaticModel(mesh, current, exact_cable=True,
                         friction=system.environment.seabed.friction)
     x = (initial_positions(system, mesh, settings.start) if initial is None
@@ -123,7 +169,8 @@ def solve_statics(
 
     # bodies by Newton on their six dofs, the lines re-equilibrated (robust line statics)
     # with the bodies held at every trial pose; without bodies, the line statics alone
-    ok, message, iterations, state, x, poses = solve_coupled(mesh, x, settings, counters, hold)
+    ok, message, iterations, state, x, poses = solve_coupled(mesh, x, settings, counters, hold,
+                                                             model.current)
     pose = poses.as_array()
     return StaticResult(
         success=ok, message=message, method=settings.method, iterations=iterations,

@@ -50,9 +50,18 @@ amplitudes (DSA or NSA), ``x(n dt) = 2N irfft(H_x A)[n]`` (:mod:`moorline.waves.
 Rigid bodies (Tuah sec. 5.2, "force spectra on large bodies ... by the procedure of sec.
 3.3"): the unknowns are the free node dofs and six per free body, lines attached through the
 master-slave transformation (:func:`moorline.solvers.modal.body_modal_matrices`); constant
-added mass and radiation damping; the wave loads on a body from its exciting-force table
-(amplitude and phase over frequency, zero above the table) or the long-wave model of the time
-domain (``wave_loads``), and its quadratic drag linearized the same way per direction.
+added mass and radiation damping, or a body's frequency-dependent ``radiation`` table
+(:class:`moorline.model.RadiationTable`, e.g. from capytaine): ``A(omega)`` and
+``B(omega)`` interpolated linearly at each frequency, held constant beyond the table's ends
+(its first and last rows; a warning when more than 1 % of the sea's variance lies outside
+the table). The system at each frequency is then ``K - omega^2 (M + A(omega)) + i omega (C +
+B(omega))``: ``direct`` solves it as it is; ``foss`` takes its modes from ``K`` and ``M +
+A(omega_p)`` (``omega_p`` the spectral peak) and solves the coupled modal equations
+``Lambda - omega^2 (I + Phi^T dA Phi) + i omega Phi^T (C + B) Phi`` at each frequency (Foss's
+complex modes need constant matrices), exact with all modes. The wave loads on a body from
+its exciting-force table (amplitude and unwrapped phase interpolated over frequency, zero
+above the table) or the long-wave model of the time domain (``wave_loads``), and its
+quadratic drag linearized the same way per direction.
 
 Free points with their own hydrodynamics (buoys, clump weights: volume, added mass, drag
 area) get the fluid inertia and the linearized drag of the time domain.
@@ -71,12 +80,18 @@ current's steady drag, ``E[f] - f(U)``, as node loads, repeated until the mean p
 by less than ``tolerance`` times the largest displacement std (two statics typically;
 ``counters["mean_drag_offset"]``: how far the mean state moved from the current-only one,
 the error of a one-way analysis). Approximations: the tangent ``K`` about the mean state has
-no drag stiffness (the change of the mean drag with the element direction); bodies in a
-current are refused (the statics has no current drag on bodies).
+no drag stiffness (the change of the mean drag with the element direction). Bodies: their
+drag ``1/2 rho Cd A_i |w_i| w_i`` per world direction on the relative velocity at the origin
+(the time domain's law) is linearized per direction about the current ``U_i`` there,
+``c_i (E[w_i|w_i|] + 2 E|w_i| w_i')`` (closed form, :func:`moorline.solvers.drag_linearization.
+scalar_expectations`; without current ``2 E|w_i| = (8/pi)^(1/2) sigma_i``); the statics
+carries the current's steady drag on them (:func:`moorline.solvers.statics.body_current_drag`)
+and the mean state the excess of the mean drag.
 """
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import replace
 
@@ -97,6 +112,8 @@ from .assembly import solve_sparse
 from .bodies import long_wave_geometry
 from .modal import system_matrices
 from .statics import _current_field, equilibrium_for, solve_statics
+
+logger = logging.getLogger(__name__)
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -175,16 +192,33 @@ class _LinearModel:
                                  in enumerate(problem.body_dof) if d >= 0]).reshape(-1, 3)
         self.K, self.M = K, M
         self.environment = system.environment
+        self.radiation = [(d, body.radiation) for body, d in zip(self.bodies, self.body_dof,
+                                                                  strict=True)
+                          if body.radiation is not None]
         self.seabed_blocks = _seabed_damping_blocks(mesh, statics.positions, problem.model)
 
-    def body_kinematics(self, omega: FloatArray) -> _BodyWaves:
-        """The wave loads on the free bodies."""
-        return _BodyWaves(self, omega)
+    def radiation_blocks(self, omega: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """``A(omega)`` and ``B(omega)`` of the bodies with a radiation table, (n_w,
+        n_tables, 6, 6), linear in omega, constant beyond the table's ends."""
+        shape = (len(omega), len(self.radiation), 6, 6)
+        added, damping = np.zeros(shape), np.zeros(shape)
+        for k, (_, table) in enumerate(self.radiation):
+            w = np.asarray(table.omegas, dtype=float)
+            for out, values in ((added, table.added_mass), (damping, table.damping)):
+                v = np.asarray(values, dtype=float).reshape(len(w), 36)
+                out[:, k] = np.stack([np.interp(omega, w, v[:, j]) for j in range(36)],
+                                     axis=-1).reshape(-1, 6, 6)
+        return added, damping
 
-    def damping(self, element_blocks: FloatArray, sigma_b: FloatArray,
+    def body_kinematics(self, omega: FloatArray, current=None) -> _BodyWaves:
+        """The wave loads on the free bodies (``current``: the steady current)."""
+        return _BodyWaves(self, omega, current)
+
+    def damping(self, element_blocks: FloatArray, gain_b: FloatArray,
                 node_blocks: FloatArray | None = None) -> sp.csr_matrix:
         """Linearized line (and point) drag, the seabed contact damper of the resting nodes,
-        bodies' radiation damping and linearized body drag."""
+        bodies' radiation damping and linearized body drag (``gain_b``, (n_bodies, 3):
+        :meth:`_BodyWaves.gains`)."""
         if self.seabed_blocks is not None:
             node_blocks = (self.seabed_blocks if node_blocks is None
                            else node_blocks + self.seabed_blocks)
@@ -192,7 +226,7 @@ class _LinearModel:
         C = (self.P.T @ C @ self.P).tolil()
         for i, (body, d) in enumerate(zip(self.bodies, self.body_dof, strict=True)):
             block = _matrix6(body.damping)
-            block[:3, :3] += np.diag(_body_drag(body, self.rho, sigma_b[i]))
+            block[:3, :3] += np.diag(gain_b[i])
             C[d:d + 6, d:d + 6] = C[d:d + 6, d:d + 6].toarray() + block
         return C.tocsr()
 
@@ -219,11 +253,17 @@ class _LinearModel:
         return nodes, bodies
 
 
-def _body_drag(body, rho: float, sigma: FloatArray) -> FloatArray:
-    """Linearized drag coefficients per world direction of a body,
-    ``1/2 rho Cd A_i (8/pi)^(1/2) sigma_i`` (3,)."""
-    area = np.asarray(body.drag_area, dtype=float)
-    return 0.5 * rho * body.Cd * area * math.sqrt(8.0 / math.pi) * sigma
+def _body_drag(body, rho: float, sigma: FloatArray, mean: FloatArray | None = None
+               ) -> tuple[FloatArray, FloatArray]:
+    """Linearized drag per world direction of a body (3,) and its mean drag's excess over
+    the steady current's (3,): ``c_i 2 E|w_i|`` and ``c_i (E[w_i|w_i|] - U_i|U_i|)``,
+    ``c_i = 1/2 rho Cd A_i``, ``w_i ~ N(U_i, sigma_i^2)``; without a mean ``c_i (8/pi)^(1/2)
+    sigma_i`` and 0."""
+    c = 0.5 * rho * body.Cd * np.asarray(body.drag_area, dtype=float)
+    if mean is None:
+        return c * math.sqrt(8.0 / math.pi) * sigma, np.zeros(3)
+    e_sq, e_abs = drag_linearization.scalar_expectations(mean, sigma)
+    return 2.0 * c * e_abs, c * (e_sq - np.abs(mean) * mean)
 
 
 class _BodyWaves:
@@ -234,9 +274,11 @@ class _BodyWaves:
     at the origin, waterplane heave force), plus the linearized drag on the fluid velocity;
     and the standard deviations of the relative velocity at the origin."""
 
-    def __init__(self, model: _LinearModel, omega: FloatArray) -> None:
+    def __init__(self, model: _LinearModel, omega: FloatArray, current=None) -> None:
         mesh, env = model.mesh, model.environment
         self.model, self.omega = model, omega
+        self.mean = (None if current is None or not model.bodies
+                     else current.kinematics(model.origins, 0.0)[0])
         self.fixed = np.zeros((len(omega), len(model.bodies), 6), dtype=complex)
         self.H_v = np.zeros((len(omega), len(model.bodies), 3), dtype=complex)
         if not model.bodies:
@@ -254,9 +296,10 @@ class _BodyWaves:
                 w_tab = np.asarray(table.omegas, dtype=float)
                 amp = np.column_stack([np.interp(omega, w_tab, np.asarray(table.amplitude)[:, j],
                                                  right=0.0) for j in range(6)])
-                phase = np.radians(np.column_stack([
-                    np.interp(omega, w_tab, np.asarray(table.phase_deg)[:, j])
-                    for j in range(6)]))
+                unwrapped = np.unwrap(np.radians(np.asarray(table.phase_deg, dtype=float)),
+                                      axis=0)
+                phase = np.column_stack([np.interp(omega, w_tab, unwrapped[:, j])
+                                         for j in range(6)])
                 self.fixed[:, i] = amp * np.exp(1j * phase) * shift[:, None]
             elif body.wave_loads:
                 area_wp, volume = long_wave_geometry(body, float(model.origins[i, 2]),
@@ -265,11 +308,22 @@ class _BodyWaves:
                 self.fixed[:, i, :3] = H_a[:, i] @ (model.rho * volume * np.eye(3) + added).T
                 self.fixed[:, i, 2] += model.rho * mesh.gravity * area_wp * shift
 
-    def excitation(self, sigma_b: FloatArray) -> ComplexArray:
-        """Body forces (n_w, n_bodies, 6) with the drag linearized at ``sigma_b``."""
+    def gains(self, sigma_b: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Linearized drag coefficients (n_bodies, 3) at the relative-velocity standard
+        deviations ``sigma_b`` (about the current's mean when there is one) and the mean
+        drag's excess over the steady current's (n_bodies, 3)."""
+        out = [_body_drag(body, self.model.rho, sigma_b[i],
+                          None if self.mean is None else self.mean[i])
+               for i, body in enumerate(self.model.bodies)]
+        if not out:
+            return np.zeros((0, 3)), np.zeros((0, 3))
+        return np.array([g for g, _ in out]), np.array([e for _, e in out])
+
+    def excitation(self, gain_b: FloatArray) -> ComplexArray:
+        """Body forces (n_w, n_bodies, 6) with the drag coefficients ``gain_b``."""
         out = self.fixed.copy()
-        for i, body in enumerate(self.model.bodies):
-            out[:, i, :3] += self.H_v[:, i] * _body_drag(body, self.model.rho, sigma_b[i])
+        for i in range(len(self.model.bodies)):
+            out[:, i, :3] += self.H_v[:, i] * gain_b[i]
         return out
 
     def sigmas(self, X: ComplexArray, power: FloatArray) -> FloatArray:
@@ -349,25 +403,81 @@ class _PointWaves:
 
 
 class _Response:
-    """Frequency response of ``M U'' + C U' + K U = F`` over the free dofs."""
+    """Frequency response of ``M U'' + C U' + K U = F`` over the free dofs, plus the
+    frequency-dependent body terms ``(-omega^2 dA(omega) + i omega B(omega))`` of the
+    radiation tables (module docstring)."""
 
-    def __init__(self, K: sp.csr_matrix, M: sp.csr_matrix, settings: StochasticSettings) -> None:
-        self.K, self.M, self.settings = K, M, settings
+    def __init__(self, K: sp.csr_matrix, M: sp.csr_matrix, settings: StochasticSettings,
+                 omega: FloatArray | None = None, model: _LinearModel | None = None,
+                 omega_ref: float = 0.0) -> None:
+        self.K, self.settings = K, settings
+        self.frequency_terms = None
+        if model is not None and model.radiation and omega is not None:
+            added, damping = model.radiation_blocks(np.append(omega, omega_ref))
+            # the modal basis needs a symmetric mass (a BEM table is symmetric only to its
+            # discretization); the per-frequency terms carry the exact A(w) - A_ref
+            added[-1] = 0.5 * (added[-1] + np.swapaxes(added[-1], -1, -2))
+            dofs = [d for d, _ in model.radiation]
+            M = M.tolil()
+            for k, d in enumerate(dofs):
+                M[d:d + 6, d:d + 6] = M[d:d + 6, d:d + 6].toarray() + added[-1, k]
+            M = M.tocsr()
+            # -w^2 (A(w) - A(w_ref)) + i w B(w), on the bodies' 6x6 blocks
+            terms = (-(omega**2)[:, None, None, None] * (added[:-1] - added[-1:])
+                     + 1j * omega[:, None, None, None] * damping[:-1])
+            self.frequency_terms = (dofs, terms)
+        self.M = M
         if settings.method == "foss":
             lam, phi = sla.eigh(K.toarray(), M.toarray())
             if settings.n_modes > 0:
                 lam, phi = lam[: settings.n_modes], phi[:, : settings.n_modes]
             self.lam, self.phi = lam, phi
 
+    def _terms(self, j: int) -> sp.csr_matrix | None:
+        """The frequency-dependent body terms at frequency ``j`` as a sparse matrix."""
+        if self.frequency_terms is None:
+            return None
+        dofs, terms = self.frequency_terms
+        rows, cols, vals = [], [], []
+        base = np.arange(6)
+        for k, d in enumerate(dofs):
+            rows.append(np.repeat(base + d, 6))
+            cols.append(np.tile(base + d, 6))
+            vals.append(terms[j, k].ravel())
+        n = self.K.shape[0]
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                     np.concatenate(cols))), shape=(n, n))
+
     def solve(self, C: sp.csr_matrix, F: ComplexArray, omega: FloatArray) -> ComplexArray:
         """``U`` (n_w, n_dofs) for the forces ``F`` (n_w, n_dofs)."""
         if self.settings.method == "direct":
             out = np.empty_like(F)
             for j, w in enumerate(omega):
-                A = (self.K - w * w * self.M + 1j * w * C).tocsc()
-                out[j] = solve_sparse(A, F[j])
+                A = self.K - w * w * self.M + 1j * w * C
+                extra = self._terms(j)
+                if extra is not None:
+                    A = A + extra
+                out[j] = solve_sparse(A.tocsc(), F[j])
             return out
+        if self.frequency_terms is not None:
+            return self._modal(C, F, omega)
         return self._foss(C, F, omega)
+
+    def _modal(self, C: sp.csr_matrix, F: ComplexArray, omega: FloatArray) -> ComplexArray:
+        """The coupled modal equations solved at each frequency (with radiation tables)."""
+        phi, lam = self.phi, self.lam
+        Cu = phi.T @ (C @ phi)
+        dofs, terms = self.frequency_terms
+        rows = [phi[d:d + 6] for d in dofs]  # (6, n_modes) each
+        modal_force = F @ phi
+        out = np.empty((len(omega), phi.shape[1]), dtype=complex)
+        self.pole_gap = np.inf
+        for j, w in enumerate(omega):
+            Z = np.diag(lam - w * w).astype(complex) + 1j * w * Cu
+            for k, row in enumerate(rows):
+                Z += row.T @ terms[j, k] @ row
+            out[j] = np.linalg.solve(Z, modal_force[j])
+        return out @ phi.T
 
     def _foss(self, C: sp.csr_matrix, F: ComplexArray, omega: FloatArray) -> ComplexArray:
         """Tuah (1982) eq. 5.3.4-5.3.29: Foss's decoupling of the modal equations."""
@@ -420,7 +530,7 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     Raises
     ------
     MoorlineError
-        Without a random sea, or with a current and free bodies.
+        Without a random sea.
     ConvergenceError
         When the statics fails.
     """
@@ -433,9 +543,6 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
         raise MoorlineError(f"stochastic method must be 'foss' or 'direct', not "
                             f"{settings.method!r}")
     current = _current_field(system)
-    if current is not None and system.bodies:
-        raise MoorlineError(f"stochastic analysis of {system.name}: a current with bodies is "
-                            "not supported yet (the statics has no current drag on bodies)")
     if current is None:
         statics = equilibrium_for(system, statics, "stochastic analysis")
         lin = _linearize(system, settings, statics, None)
@@ -473,9 +580,10 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
     mid = 0.5 * (x0[a] + x0[b])
     H_v, H_a = kinematics_transfer(mid, omega, env.waves.heading_deg, env.depth, env.gravity)
     inertia = np.einsum("eij,wej->wei", _inertia_blocks(t, mesh, rho), H_a)
-    bodies = model.body_kinematics(omega)
+    bodies = model.body_kinematics(omega, current)
     points = _PointWaves(mesh, x0, omega, env, rho, current)
-    response = _Response(model.K, model.M, settings)
+    response = _Response(model.K, model.M, settings, omega, model, sea.spectrum.omega_p)
+    _check_table_range(system, model, omega, power)
     lines = _LineDrag(mesh, t, rho, None if current is None
                       else current.kinematics(mid, 0.0)[0])
 
@@ -508,9 +616,10 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
     for _ in range(settings.max_iterations):
         drag, _ = lines.linearize(normal, power, sigma_n, sigma_t)
         gain_p, _ = points.gains(U, power, sigma_p)
-        C = model.damping(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]), sigma_b,
+        gain_b, _ = bodies.gains(sigma_b)
+        C = model.damping(_node_pairs(drag * (0.25 * mesh.length0)[:, None, None]), gain_b,
                           points.damping_blocks(gain_p))
-        F = model.forces(line_forces(drag, gain_p), bodies.excitation(sigma_b))
+        F = model.forces(line_forces(drag, gain_p), bodies.excitation(gain_b))
         U, X = model.split(response.solve(C, F, omega))
         normal, s = relative(U)
         new_n, new_t = sigmas(normal, s)
@@ -523,6 +632,7 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
             converged = True
             break
     increment = np.zeros((mesh.n_nodes, 3))
+    body_increment = np.zeros((len(mesh.body_names), 3))
     if current is not None:  # the mean drag minus the current's steady drag, at the nodes
         _, per_length = lines.linearize(normal, power, sigma_n, sigma_t)
         share = per_length * (0.5 * mesh.length0)[:, None]
@@ -530,10 +640,13 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
         np.add.at(increment, b, share)
         if points.nodes.size:
             increment[points.nodes] += points.gains(U, power, sigma_p)[1]
+        free = [mesh.body_names.index(b.name) for b in model.bodies]
+        body_increment[free] = bodies.gains(sigma_b)[1]
     return _Linearized(mesh=mesh, sea=sea, omega=omega, amplitude=amplitude,
                        spectrum=spectrum, power=power, model=model, response=response,
                        length=length, t=t, U=U, X=X, sigma_n=sigma_n, sigma_t=sigma_t,
-                       history=history, converged=converged, increment=increment)
+                       history=history, converged=converged, increment=increment,
+                       body_increment=body_increment)
 
 
 class _LineDrag:
@@ -583,23 +696,29 @@ def _mean_state(system: System, settings: StochasticSettings, statics: StaticRes
     mesh0 = statics.mesh if statics is not None else discretize(system)
     base = mesh0.node_force
 
-    def solve(extra: FloatArray, start: FloatArray | None) -> StaticResult:
+    def solve(extra: FloatArray, extra_bodies: FloatArray | None,
+              start: FloatArray | None) -> StaticResult:
         mesh = replace(mesh0, node_force=base + extra)
-        st = equilibrium_for(system, solve_statics(system, static_settings, start, mesh),
-                             "stochastic analysis")
+        st = equilibrium_for(system, solve_statics(system, static_settings, start, mesh,
+                                                   extra_bodies), "stochastic analysis")
         return st
 
     start = None if statics is None else statics.positions
-    state = solve(np.zeros_like(base), start)
+    state = solve(np.zeros_like(base), None, start)
     current_only = state.positions
     lin = _linearize(system, settings, state, current)
     iterations, change, ok = 0, math.inf, False
     while iterations < settings.max_iterations:
         iterations += 1
-        new = solve(lin.increment, state.positions)
+        new = solve(lin.increment, lin.body_increment if len(mesh0.body_names) else None,
+                    state.positions)
         std = np.sqrt(np.einsum("w,wnc->nc", lin.power, np.abs(lin.U) ** 2))
-        scale = max(float(std.max(initial=0.0)), 1e-12)
-        change = float(np.abs(new.positions - state.positions).max(initial=0.0)) / scale
+        body_std = np.sqrt(np.einsum("w,wbc->bc", lin.power, np.abs(lin.X[..., :3]) ** 2))
+        scale = max(float(std.max(initial=0.0)), float(body_std.max(initial=0.0)), 1e-12)
+        moved = np.abs(new.body_pose[:, :3] - state.body_pose[:, :3]).max(initial=0.0) \
+            if len(mesh0.body_names) else 0.0
+        change = max(float(np.abs(new.positions - state.positions).max(initial=0.0)),
+                     float(moved)) / scale
         state = new
         lin = _linearize(system, settings, state, current)
         if change <= settings.tolerance:
@@ -668,6 +787,23 @@ def _result(system: System, settings: StochasticSettings, statics: StaticResult,
         body_std=np.sqrt(np.einsum("w,wbc->bc", power, np.abs(X) ** 2)),
         body_motion=series(X), counters=counters,
         success=converged, message=message, case=system.name, units=system.units)
+
+
+def _check_table_range(system: System, model: _LinearModel, omega: FloatArray,
+                       power: FloatArray) -> None:
+    """Warn when more than 1 % of the sea's variance lies outside a body's radiation table
+    (where ``A`` and ``B`` are held at the table's end values)."""
+    total = float(power.sum()) or 1.0
+    for d, table in model.radiation:
+        outside = (omega < table.omegas[0]) | (omega > table.omegas[-1])
+        share = float(power[outside].sum()) / total
+        if share > 0.01:
+            name = next(b.name for b, dof in zip(model.bodies, model.body_dof, strict=True)
+                        if dof == d)
+            logger.warning("stochastic analysis of %s: %.1f %% of the sea's variance is outside "
+                           "body %s's radiation table (%.3g to %.3g rad/s), where its added "
+                           "mass and damping are held at the table's end values", system.name,
+                           100 * share, name, table.omegas[0], table.omegas[-1])
 
 
 def _relative_change(new: FloatArray, old: FloatArray) -> float:
