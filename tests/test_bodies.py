@@ -154,3 +154,30 @@ def test_small_rotations_reduce_to_the_linear_small_angle_form(floating):
     linear = np.linalg.solve(K6, extra)
     assert dq[4] == pytest.approx(linear[4], rel=0.02)
     assert np.abs(dq[4]) < 0.01  # small: the linear form applies
+
+
+def test_free_body_on_one_single_element_line() -> None:
+    """A buoy held by one single-element line (no free line node: the line statics has no
+    unknowns, which crashed the banded factorization): the body rises until the element's
+    tension carries its net buoyancy less the half element's weight lumped on it."""
+    from moorline.model import Seabed
+
+    env = Environment(depth=100.0, water_density=1025.0, gravity=9.80665,
+                      seabed=Seabed(3e6, 0.0, 0.0))
+    lt = LineType("rope", diameter=0.05, mass_per_length=5.0, EA=1e7)
+    body = Body("buoy", kind="free", position=(0.0, 0.0, -50.0), mass=1000.0,
+                inertia=((100.0, 0, 0), (0, 100.0, 0), (0, 0, 100.0)),
+                hydrostatics=Hydrostatics(kind="matrix", stiffness=((0.0,) * 6,) * 6,
+                                          volume=3.0))
+    points = {"anchor": Point("anchor", "fixed", (0.0, 0.0, -100.0)),
+              "top": Point("top", "body", (0.0, 0.0, 0.0), body="buoy")}
+    system = System("one", environment=env, line_types={"rope": lt}, points=points,
+                    lines={"l": Line("l", "rope", 49.0, 1, "anchor", "top")},
+                    bodies={"buoy": body})
+    result = solve_statics(system)
+    assert result.success, result.message
+    g = 9.80665
+    w = (5.0 - 1025.0 * lt.area_displaced) * g
+    tension = (1025.0 * 3.0 - 1000.0) * g - 0.5 * w * 49.0
+    z = -100.0 + 49.0 * (1.0 + tension / 1e7)
+    assert result.body_pose[0, 2] == pytest.approx(z, abs=1e-9)

@@ -160,6 +160,11 @@ def _solve(system: System, settings: StaticsSettings, initial: FloatArray | None
         goal = held.copy()
         goal[fixed_rows] = target[fixed_rows]
         tol = _tolerance(model, x_held, settings)
+        if not mesh.free_nodes.any():  # every line node is held: nothing to solve here
+            x_new = x_held.copy()
+            _move_supports(model, x_new, held, goal, 1.0)
+            return _checked(model, tol, counters, True, "no free line nodes", 0,
+                            _residual(model, x_new, 1.0, counters)[1], x_new)
         out = solver[settings.method](model, x_held.copy(), held, goal, settings, counters)
         if not out[0] and settings.method == "newton":
             out = _regularized_fallback(model, x_held, held, goal, settings, counters, out)
