@@ -10,14 +10,7 @@ import pytest
 from scipy.integrate import quad
 
 from moorline.model import (
-    Body,
     DynamicsSettings,
-    Environment,
-    Hydrostatics,
-    Line,
-    LineType,
-    Motion,
-    Point,
     RadiationTable,
     System,
     WaveExcitation,
@@ -26,72 +19,28 @@ from moorline.model import (
 from moorline.physics import radiation as rad
 from moorline.solvers.dynamics import simulate
 from moorline.solvers.statics import solve_statics
+from moorline.verification.cummins import (
+    A_INF,
+    EA,
+    K0,
+    K_HYDRO,
+    LENGTH,
+    MASS,
+    WAVE,
+    X3,
+    heave_rao,
+    heave_steady_state,
+    heave_table,
+    known_kernel,
+    known_table,
+    known_transfer,
+    moored_body,
+    nested,
+)
 
-# a known kernel: K(t) = k0 e^{-a t} (cos b t - a / b sin b t), whose transform is
-# K^(w) = k0 i w / ((i w + a)^2 + b^2) (so K^(0) = 0: no damping at zero frequency)
-K0, ALPHA, BETA, A_INF = 3.0e4, 0.3, 0.8, 5.0e3
-MASS, K_HYDRO, EA, LENGTH, X3 = 2.0e4, 4.0e5, 2.0e6, 50.0, 3.0e5
-WAVE = 0.02  # wave amplitude [m]: the heave stays within the lines' 5 cm pre-stretch (linear)
-
-
-def known_transfer(w, k0=K0, a=ALPHA, b=BETA):
-    s = 1j * np.asarray(w, dtype=float)
-    return k0 * s / ((s + a) ** 2 + b**2)
-
-
-def known_kernel(t):
-    t = np.asarray(t, dtype=float)
-    return K0 * np.exp(-ALPHA * t) * (np.cos(BETA * t) - ALPHA / BETA * np.sin(BETA * t))
-
-
-def heave_table(w, A, B, A_inf=None) -> RadiationTable:
-    """A 6-dof table with heave entries only."""
-    def six(values):
-        out = np.zeros((len(w), 6, 6))
-        out[:, 2, 2] = values
-        return tuple(tuple(map(tuple, m)) for m in out)
-
-    inf = None if A_inf is None else tuple(map(tuple, np.diag([0, 0, A_inf, 0, 0, 0])))
-    return RadiationTable(tuple(map(float, w)), six(A), six(B), inf)
-
-
-def known_table(A_inf=None, shape=(K0, ALPHA, BETA), w_max=8.0, n=160) -> RadiationTable:
-    w = np.linspace(0.05, w_max, n)
-    Kh = known_transfer(w, *shape)
-    return heave_table(w, A_INF + Kh.imag / w, Kh.real, A_inf)
-
-
-# the kernel of the dynamic runs: broad, damping the body's heave (4.7 rad/s) by ~6 %
-DAMPED = (3.0e4, 1.0, 3.0)
-
-
-def moored_body(table=None, added=None, damping=None, push=0.0, excitation=None,
-                waves=None) -> System:
-    """A body on a heave spring (matrix hydrostatics) and four vertical massless taut lines
-    (axial springs EA / L), as in test_body_dynamics; heave is uncoupled from the rest."""
-    lt = LineType("rope", diameter=0.05, mass_per_length=0.0, EA=EA, displaced_area=0.0,
-                  Cd=0.0, Ca=0.0, Ct=0.0)
-    stiffness = np.diag([1e5, 1e5, K_HYDRO, 1e7, 1e7, 1e7])
-    pre = 4 * EA * 1e-3
-    def six(d):
-        return None if d is None else tuple(map(tuple, np.diag([0, 0, d, 0, 0, 0])))
-
-    body = Body("b", mass=MASS, inertia=((1e5, 0, 0), (0, 1e5, 0), (0, 0, 1e5)),
-                added_mass=six(added), damping=six(damping), radiation=table,
-                hydrostatics=Hydrostatics("matrix", stiffness=tuple(map(tuple, stiffness)),
-                                          volume=(MASS * 9.81 + pre) / (1025 * 9.81)),
-                force=(0.0, 0.0, -push, 0.0, 0.0, 0.0), excitation=excitation,
-                force_history=Motion("table", times=(0.0, 1e6),
-                                     values=((0.0, 0.0, push), (0.0, 0.0, push))))
-    points, lines = {}, {}
-    for k, (x, y) in enumerate([(2, 2), (-2, 2), (-2, -2), (2, -2)]):
-        points[f"p{k}"] = Point(f"p{k}", "body", (x, y, 0.0), body="b")
-        points[f"a{k}"] = Point(f"a{k}", "fixed", (x, y, -LENGTH * 1.001))
-        lines[f"l{k}"] = Line(f"l{k}", "rope", LENGTH, 4, f"a{k}", f"p{k}")
-    env = Environment(depth=60.0, water_density=1025.0, gravity=9.81,
-                      waves=waves or Waves())
-    return System("cummins", environment=env, line_types={"rope": lt}, points=points,
-                  lines=lines, bodies={"b": body})
+# The known kernels, the moored body and its RAO are the verification case's
+# (moorline.verification.cummins): K(t) = k0 e^{-a t} (cos b t - a/b sin b t), whose transform
+# K^(w) = k0 i w / ((i w + a)^2 + b^2) has K^(0) = 0 (no damping at zero frequency).
 
 
 # ---------------------------------------------------------------------- kernels
@@ -162,10 +111,6 @@ def test_memory_states_convolve_a_velocity_linear_over_each_step():
     assert model.force(z)[2] == pytest.approx(exact, rel=1e-9, abs=1e-9 * K0)
 
 
-def _nested(x):
-    return tuple(tuple(map(tuple, m)) for m in x)
-
-
 def _arrays(table: RadiationTable):
     return np.array(table.omegas), np.array(table.added_mass), np.array(table.damping)
 
@@ -187,7 +132,7 @@ def test_the_step_tangent_with_radiation_memory_equals_finite_differences(scheme
     w, A, B = _arrays(table)
     for (i, j), f in {(0, 0): 0.5, (4, 4): 30.0, (0, 4): 2.0, (4, 0): 2.0}.items():
         A[:, i, j], B[:, i, j] = f * A[:, 2, 2], f * B[:, 2, 2]
-    system = moored_body(RadiationTable(tuple(w), _nested(A), _nested(B)))
+    system = moored_body(RadiationTable(tuple(w), nested(A), nested(B)))
     start = solve_statics(system)
     settings = DynamicsSettings(dt=0.05, scheme=scheme, alpha=-0.2)
     fluid = _fluid(system, settings)
@@ -262,34 +207,16 @@ def test_free_decay_with_a_flat_damping_table_is_the_constant_damping_body():
     assert np.abs(z3 - z2).max() > 0.1 * abs(offset)
 
 
-def rao(omega: float) -> complex:
-    """Heave per unit wave amplitude of the moored body, frequency domain:
-    X3 / (C + K_moor - w^2 (M + A(w)) + i w B(w)) with A, B of the known kernel."""
-    Kh = known_transfer(omega, *DAMPED)
-    A, B = A_INF + Kh.imag / omega, Kh.real
-    C = K_HYDRO + 4 * EA / LENGTH
-    return X3 / (C - omega**2 * (MASS + A) + 1j * omega * B)
-
-
 @pytest.mark.parametrize("omega", [1.5, 3.0])
 def test_regular_wave_steady_state_matches_the_rao(omega):
     """The Cummins run in a regular wave (exciting-force table X3 per metre, A_inf from
-    Ogilvie) settles to the amplitude of the RAO solved above within 1 % (Newmark's
-    period error at 60 steps per period ~0.1 %, the fit 0.05 %). The heave mode (4.9 rad/s,
-    B = 4.9e3 there: decay time 9.5 s) is barely started by a 10 s ramp and has decayed
-    after 40 s."""
-    excitation = WaveExcitation(omegas=(0.05, 20.0), amplitude=((0, 0, X3, 0, 0, 0),) * 2,
-                                phase_deg=((0.0,) * 6,) * 2)
-    period = 2 * np.pi / omega
-    system = moored_body(known_table(shape=DAMPED, w_max=20.0, n=200), excitation=excitation,
-                         waves=Waves(kind="airy", height=2 * WAVE, period=period))
-    n = int(np.ceil(40.0 / period))
-    t, z = _heave(system, (n + 4) * period, period / 60, ramp=10.0)
-    late = t > n * period
-    amplitude = 0.5 * (z[late].max() - z[late].min())
-    assert amplitude == pytest.approx(WAVE * abs(rao(omega)), rel=1e-2)
+    Ogilvie) settles to the amplitude of the RAO (solved in the frequency domain with the
+    kernel's closed-form A(w), B(w)) within 1 % (Newmark's period error at 60 steps per period
+    ~0.1 %, the fit 0.05 %). The heave mode (4.9 rad/s, B = 4.9e3 there: decay time 9.5 s) is
+    barely started by a 10 s ramp and has decayed after 40 s."""
+    assert heave_steady_state(omega, 60) == pytest.approx(abs(heave_rao(omega)), rel=1e-2)
     # the constant-coefficient body with A and B at another frequency would not pass
-    assert abs(abs(rao(omega)) - abs(rao(1.2 * omega))) > 0.03 * abs(rao(omega))
+    assert abs(abs(heave_rao(omega)) - abs(heave_rao(1.2 * omega))) > 0.03 * abs(heave_rao(omega))
 
 
 def test_memory_states_are_saved_and_restored_by_the_coupling():

@@ -258,8 +258,9 @@ class MemoryModel:
     added_mass_infinite
         ``A_inf`` (6, 6).
     error
-        Largest fit error over the table, relative to the largest ``|K^_ij|`` of the entry,
-        per entry (6, 6).
+        Largest fit error of every entry over the table (6, 6), relative to
+        ``sqrt(D_i D_j)``, ``D_i`` the largest ``|K^_kk|`` of the translations or the
+        rotations as dof ``i`` (an entry of negligible size has a negligible error).
     """
 
     row: NDArray[np.int64]
@@ -343,7 +344,8 @@ def fit_memory(omegas: ArrayLike, added_mass: ArrayLike, damping: ArrayLike,
                max_pairs: int = 12) -> MemoryModel:
     """The :class:`MemoryModel` of a 6-dof table: ``A_inf`` (given, or
     :func:`infinite_frequency_added_mass`), then every entry with content (``max |K^_ij| >
-    1e-9 sqrt(max |K^_ii| max |K^_jj|)``) fitted by :func:`vector_fit` with 1, 2, ... up to
+    1e-9 sqrt(D_i D_j)``, ``D_i`` the largest ``max |K^_kk|`` of the translations or the
+    rotations, as ``i``) fitted by :func:`vector_fit` with 1, 2, ... up to
     ``max_pairs`` pole pairs until the error over the table, relative to the entry's largest
     ``|K^|``, is at most ``tolerance`` (else the best fit is kept; :attr:`MemoryModel.error`
     says). The fitted data: ``K^ = B + i w (A - A_inf)`` on the table's frequencies, and on
@@ -363,7 +365,10 @@ def fit_memory(omegas: ArrayLike, added_mass: ArrayLike, damping: ArrayLike,
     Kf = Bf + 1j * wf[:, None, None] * (Af - A_inf)
     table = slice(3, 3 + len(w))
     scale = np.abs(Kf).max(axis=0)
+    # an entry is empty below 1e-9 of the largest diagonal of its dofs' kinds (translations,
+    # rotations): numerical noise of a BEM code, e.g. the yaw of an axisymmetric hull
     diag = np.diag(scale)
+    diag = np.concatenate((np.full(3, diag[:3].max()), np.full(3, diag[3:].max())))
     rows, cols, poles, coefs = [], [], [], []
     error = np.zeros((6, 6))
     for i in range(6):
@@ -380,7 +385,7 @@ def fit_memory(omegas: ArrayLike, added_mass: ArrayLike, damping: ArrayLike,
                 if err <= tolerance:
                     break
             err, p, c = best
-            error[i, j] = err
+            error[i, j] = err * scale[i, j] / np.sqrt(diag[i] * diag[j])
             rows += [i] * len(p)
             cols += [j] * len(p)
             poles.append(p)

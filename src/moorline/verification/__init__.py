@@ -26,6 +26,7 @@ register("tuah-ex7-lift", "tuah_ex7_lift:run")
 register("stochastic-riser", "stochastic_riser:run")
 register("tuah-ex5-random", "tuah_ex5_random:run")
 register("tcheou-t2", "tcheou_t2:run")
+register("cummins", "cummins:run")  # the spar rows need the [bem] extra
 register("moorpy-statics", "moorpy_statics:run")  # other codes ([compare] extra)
 register("moordyn-dynamics", "moordyn_dynamics:run")  # other codes ([compare] extra)
 register("moordyn-body", "moordyn_body:run")  # other codes ([compare] extra)
