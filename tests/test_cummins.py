@@ -21,6 +21,7 @@ from moorline.solvers.dynamics import simulate
 from moorline.solvers.statics import solve_statics
 from moorline.verification.cummins import (
     A_INF,
+    DAMPED,
     EA,
     K0,
     K_HYDRO,
@@ -243,3 +244,28 @@ def test_memory_states_are_saved_and_restored_by_the_coupling():
     again = [c.step(q, np.zeros(3), 2.0 + 0.1 * k, 0.1) for k in range(10)]
     np.testing.assert_array_equal(np.array(first), np.array(again))
     np.testing.assert_array_equal(z_first, c._state.bodies.r)
+
+
+def test_random_sea_response_variance_is_the_sum_over_the_components():
+    """JONSWAP sea (Hs 4 cm, Tp 3 s, components up to 3.5 rad/s, below the heave mode, on the
+    60 s record's frequency grid): after the start-up the Cummins run's heave variance over
+    one whole record equals sum_m a_m^2 |H(w_m)|^2 / 2 with the frequency-domain RAO H solved
+    in the case (the cross terms vanish exactly over a record), within 2 % in the standard
+    deviation (Newmark's period error at the highest components, dt = 0.04 s: ~0.3 %; the
+    start-up transient left after 40 s: < 1 %)."""
+    from moorline.waves import fluid_field_from_environment
+
+    excitation = WaveExcitation(omegas=(0.05, 20.0), amplitude=((0, 0, X3, 0, 0, 0),) * 2,
+                                phase_deg=((0.0,) * 6,) * 2)
+    waves = Waves(kind="random", height=0.04, period=3.0, record_length=60.0, omega_max=3.5,
+                  seed=3)
+    system = moored_body(known_table(shape=DAMPED, w_max=20.0, n=200), excitation=excitation,
+                         waves=waves)
+    sea = fluid_field_from_environment(system.environment)
+    expected = np.sqrt(0.5 * np.sum(sea.amplitudes**2
+                                    * np.abs([heave_rao(w) for w in sea.omegas]) ** 2))
+    dt = 0.04
+    t, z = _heave(system, 100.0, dt, ramp=10.0)
+    window = (t >= 40.0 - 1e-9) & (t < 100.0 - 1e-9)
+    assert np.std(z[window]) == pytest.approx(expected, rel=0.02)
+    assert len(sea.omegas) > 20
