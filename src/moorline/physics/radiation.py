@@ -1,12 +1,12 @@
 """Radiation forces of a floating body in the time domain: the Cummins (1962) equation.
 
 A body with frequency-dependent added mass ``A(w)`` and damping ``B(w)`` (a hydrodynamic
-database) moves in the time domain under (Cummins 1962, eq. 14)
+database) moves in the time domain under Cummins' (1962) equation
 
     (M + A_inf) x'' + int_0^t K(t - s) x'(s) ds + C x = F(t),
 
 with the retardation (memory) kernels ``K_ij(t) = 2/pi int_0^inf B_ij(w) cos(w t) dw`` and,
-from Ogilvie (1964, eq. 2.27), ``A(w) = A_inf - 1/w int_0^inf K(t) sin(w t) dt``. In the
+from Ogilvie's (1964) relation, ``A(w) = A_inf - 1/w int_0^inf K(t) sin(w t) dt``. In the
 frequency domain the kernel's transform is ``K^(w) = int_0^inf K(t) e^{-i w t} dt = B(w) +
 i w (A(w) - A_inf)``.
 
@@ -27,7 +27,7 @@ This module holds pure, vectorized kernels over a table ``(omegas, A (n, ...), B
   table, ``mean_k (A(w_k) - (A(w_k) - A_inf)_Ogilvie)``;
 * :func:`fit_memory`: a state-space (sum of complex exponentials) model of every kernel,
   ``K_ij(t) = Re sum_m c_m e^{p_m t}``, fitted to ``K^(w) = B(w) + i w (A(w) - A_inf)`` in the
-  frequency domain (as recommended by Perez and Fossen 2008, 2009) by vector fitting
+  frequency domain (as recommended by Perez and Fossen 2008) by vector fitting
   (Gustavsen and Semlyen 1999): strictly proper (``K^ -> 0`` as ``w -> inf``), stable poles
   (unstable ones reflected), order raised until the fit is within a tolerance over the table;
 * :class:`MemoryModel`: the memory force ``mu(t) = int_0^t K(t - s) v(s) ds`` as states

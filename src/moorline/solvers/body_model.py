@@ -271,10 +271,7 @@ def memory_model(body) -> rad.MemoryModel | None:
     table = getattr(body, "radiation", None)
     if table is None:
         return None
-    if body.added_mass is not None or body.damping is not None:
-        raise ValueError(f"body {body.name!r}: a radiation table replaces added_mass and "
-                         "damping; give one or the other")
-    return _fitted(table)
+    return _fitted(table)  # Body refuses a table with constant added mass or damping
 
 
 @lru_cache(maxsize=16)
@@ -284,7 +281,7 @@ def _fitted(table) -> rad.MemoryModel:
     worst = float(mem.error.max(initial=0.0))
     if worst > 1e-2:
         logger.warning("radiation memory fit within %.2g %% only (largest entry error over "
-                       "the table)", 100 * worst)
+                       "the table, MemoryModel.error)", 100 * worst)
     return mem
 
 
