@@ -75,6 +75,7 @@ from ..physics import radiation as rad
 from ..solvers.dynamics import simulate
 from ..solvers.statics import solve_statics
 from .core import CaseSkipped, Row
+from .moordyn_dynamics import first_harmonic
 
 CASE = "cummins"
 SOURCE_K = "closed-form cosine transform"
@@ -164,12 +165,6 @@ def heave_rao(omega: float) -> complex:
     return X3 / (C - omega**2 * (MASS + A) + 1j * omega * B)
 
 
-def first_harmonic(t: np.ndarray, values: np.ndarray, omega: float) -> complex:
-    """Complex amplitude ``c`` of ``values ~ Re(c e^{-i w t})`` over whole periods of uniform
-    samples ``t`` (the start of each window's sample excluded)."""
-    return complex(2.0 / len(t) * np.sum(values * np.exp(1j * omega * t)))
-
-
 def _window(t: np.ndarray, start: float, periods: int, omega: float) -> np.ndarray:
     """Samples of whole periods from ``start`` (the last sample of the period excluded)."""
     end = start + periods * 2 * math.pi / omega
@@ -193,7 +188,7 @@ def heave_steady_state(omega: float, steps_per_period: int) -> float:
         raise RuntimeError(result.message)
     t, z = result.time, result.body_history("b")[:, 2]
     mine = _window(t, n * period, 4, omega)
-    return abs(first_harmonic(t[mine], z[mine] - z[mine].mean(), omega)) / WAVE
+    return first_harmonic(t[mine], z[mine], period)[0] / WAVE
 
 
 # ---------------------------------------------------------------------- rows (a)-(c)
@@ -372,7 +367,7 @@ def spar_rao(ds, omega: float) -> np.ndarray:
 
 
 def spar_steady_state(ds, omega: float, steps_per_period: int = 60) -> np.ndarray:
-    """First-harmonic complex amplitudes (6,) of the spar's Cummins run: a 15-period ramp
+    """First-harmonic amplitudes (6,) of the spar's Cummins run: a 15-period ramp
     (the surge and pitch modes, 128 s and 41 s, are barely damped: a 3-period ramp leaves
     them beating the harmonic by +-4 %, a 10-period one by +-0.4 %, as 1 / T_ramp^2), then
     the harmonic over periods 16-24."""
@@ -389,8 +384,7 @@ def spar_steady_state(ds, omega: float, steps_per_period: int = 60) -> np.ndarra
         raise RuntimeError(result.message)
     t, q = result.time, result.body_history("spar")
     mine = _window(t, 16 * period, 8, omega)
-    return np.array([first_harmonic(t[mine], q[mine, j] - q[mine, j].mean(), omega)
-                     for j in range(6)])
+    return np.array([first_harmonic(t[mine], q[mine, j], period)[0] for j in range(6)])
 
 
 SEA = {"height": 6.0, "period": 10.0, "record_length": 200.0, "omega_max": 2.0, "seed": 1}
