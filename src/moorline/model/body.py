@@ -153,3 +153,10 @@ class Body:
     wave_loads: bool = False
     excitation: WaveExcitation | None = None
     radiation: RadiationTable | None = None
+
+    def __post_init__(self) -> None:
+        if self.radiation is not None and (self.added_mass is not None
+                                           or self.damping is not None):
+            raise ValueError(f"body {self.name!r}: give either a radiation table or "
+                             "constant added_mass/damping, not both (the table replaces "
+                             "them)")

@@ -11,12 +11,16 @@ Body equation about its origin (rigid-body inertia with the centre of gravity of
     m (a_r + alpha x c + omega x (omega x c)) = F,
     c x m(...) + I_G alpha + omega x (I_G omega) = M,
 
-plus constant added mass ``A`` and radiation damping ``B`` (Tuah eq. 3.2.c.20), hydrostatics,
-gravity, constant and time-varying loads, drag, long-wave loads and exciting-force tables, and
-the lines' forces through the master-slave transformation. The physics are the kernels of
-:mod:`moorline.physics.rigid_body`; the body blocks of the Newton matrix are exact, the
-gyroscopic and centripetal terms and the rotation of the inertia included (the long-wave
-loads' dependence on the draft aside).
+plus constant added mass ``A`` and radiation damping ``B`` (Tuah eq. 3.2.c.20) or, for a body
+with a :class:`~moorline.model.RadiationTable`, the Cummins (1962) radiation force: the
+infinite-frequency added mass ``A_inf`` and minus the memory force ``mu = int_0^t K(t - s)
+v(s) ds`` (:mod:`moorline.physics.radiation`; its states advance exactly over a step for the
+Newmark velocity, linear in time, and ``d mu / d dq = (gamma / (beta h)) d mu / d v1``),
+hydrostatics, gravity, constant and time-varying loads, drag, long-wave loads and
+exciting-force tables, and the lines' forces through the master-slave transformation. The
+physics are the kernels of :mod:`moorline.physics.rigid_body`; the body blocks of the Newton
+matrix are exact, the gyroscopic and centripetal terms and the rotation of the inertia
+included (the long-wave loads' dependence on the draft aside).
 
 A system without bodies has an empty :class:`BodyModel`: every method is then a no-op, so the
 time stepper has one code path.
@@ -25,11 +29,13 @@ time stepper has one code path.
 from __future__ import annotations
 
 import logging
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
+from ..physics import radiation as rad
 from ..physics import rigid_body as rb
 from .bodies import BodyDofs, BodyState, body_loads, body_mass_matrix, long_wave_geometry, skew
 from .excitation import history_value, ramp
@@ -51,7 +57,9 @@ class BodyModel:
         self.bodies = list(mesh.bodies)
         self.layout = BodyDofs.of(mesh, self.bodies)
         self.body_dof = self.layout.body_dof
-        self.added = [_matrix(b.added_mass) for b in self.bodies]
+        self.memory = [memory_model(b) for b in self.bodies]
+        self.added = [_matrix(b.added_mass) if mem is None else mem.added_mass_infinite
+                      for b, mem in zip(self.bodies, self.memory, strict=True)]
         self.damping = [_matrix(b.damping) for b in self.bodies]
         self.origin0 = [np.asarray(b.position, dtype=float) for b in self.bodies]
         self._exciting: dict[int, tuple | None] = {}
@@ -120,13 +128,36 @@ class BodyModel:
                                + W @ W @ d_arm))
         return bx, bv, ba
 
+    # ------------------------------------------------------------------ radiation memory
+    def advance_memory(self, memory: tuple | None, b0: BodyState, b1: BodyState,
+                       h: float) -> tuple | None:
+        """The radiation memory states (one complex array per body, None for a body without
+        a table) after a step ``h`` from ``b0`` to ``b1`` (velocity linear over the step);
+        ``memory`` None: at rest. None when no body has a table."""
+        if all(mem is None for mem in self.memory):
+            return None
+        old = memory if memory is not None else (None,) * len(self.memory)
+        return tuple(None if mem is None else mem.advance(z, b0.vel[b], b1.vel[b], h)
+                     for b, (mem, z) in enumerate(zip(self.memory, old, strict=True)))
+
+    def memory_forces(self, memory: tuple | None) -> FloatArray:
+        """The memory forces ``mu`` (nb, 6) of the states (the bodies feel ``-mu``)."""
+        out = np.zeros((len(self.bodies), 6))
+        if memory is not None:
+            for b, (mem, z) in enumerate(zip(self.memory, memory, strict=True)):
+                if mem is not None:
+                    out[b] = mem.force(z)
+        return out
+
     # ------------------------------------------------------------------ forces
     def forces(self, bs: BodyState, node_other: FloatArray, node_inertial: FloatArray,
-               arms: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
+               arms: FloatArray, t: float, memory: tuple | None = None
+               ) -> tuple[FloatArray, FloatArray]:
         """Generalized forces on the free bodies about their origins, (nb, 6) each: the
-        non-inertial part (loads, damping, fluid, excitation, the attached nodes' forces
-        through ``T^T``) and the inertial part (minus rigid-body inertia and added mass, and
-        the attached nodes' inertial forces)."""
+        non-inertial part (loads, damping, radiation memory of the states ``memory``, fluid,
+        excitation, the attached nodes' forces through ``T^T``) and the inertial part (minus
+        rigid-body inertia and added mass, and the attached nodes' inertial forces)."""
+        mu = self.memory_forces(memory)
         nb = len(self.bodies)
         other, inertial = np.zeros((nb, 6)), np.zeros((nb, 6))
         m = self.mesh
@@ -139,7 +170,7 @@ class BodyModel:
             gen, _ = body_loads(body, bs.r[b], bs.R[b], m.gravity, m.water_density)
             gen[:3] += f_o.sum(axis=0) + _history(body, t)
             gen[3:] += np.cross(arm, f_o).sum(axis=0)
-            gen -= self.damping[b] @ bs.vel[b]
+            gen -= self.damping[b] @ bs.vel[b] + mu[b]
             gen[:3] += self._fluid_loads(body, bs, b, t)[0]
             gen += self._excitation(body, b, t)
             other[b] = gen
@@ -150,10 +181,11 @@ class BodyModel:
         return other, inertial
 
     def blocks(self, bs: BodyState, node_forces: FloatArray, arms: FloatArray, t: float,
-               ca: float, cv: float, ck: float, dq: FloatArray | None = None
-               ) -> list[FloatArray]:
+               ca: float, cv: float, ck: float, dq: FloatArray | None = None,
+               h: float | None = None) -> list[FloatArray]:
         """Body blocks (6, 6) of the effective tangent ``ca M + cv C + ck K`` of the free
-        bodies: rigid mass and added mass, damping and drag, hydrostatics, the rotation of the
+        bodies: rigid mass and added mass, damping (with the radiation memory's ``d mu /
+        d v1`` over the step ``h``) and drag, hydrostatics, the rotation of the
         attached nodes' moment arms under their forces ``node_forces`` (as weighted in the
         residual), and the exact derivative of the rigid-body inertia (never HHT-weighted):
         ``ca d_acc + (cv / ck) d_vel + d_rot``. Derivatives with respect to a rotation are
@@ -171,6 +203,10 @@ class BodyModel:
             for f, arm in zip(node_forces[m.slave_node[mine]], arms[mine], strict=True):
                 arm_terms[3:, 3:] -= skew(f) @ skew(arm)
             damp = self.damping[b].copy()
+            if self.memory[b] is not None:
+                if h is None:
+                    raise ValueError("the radiation memory's tangent needs the step h")
+                damp += self.memory[b].velocity_derivative(h)
             damp[:3, :3] -= self._fluid_loads(body, bs, b, t)[1]
             _, d_acc, d_vel, d_rot = self._inertia(body, bs, b)
             turned = ck * stiff + arm_terms + d_rot  # derivatives for R <- exp([e x]) R
@@ -227,6 +263,26 @@ class BodyModel:
             return np.zeros(6)
         a, w, shift, amp, phase, ramp_time = terms
         return rb.wave_excitation(t, a, w, shift, amp, phase, ramp(t, ramp_time)[0])
+
+
+def memory_model(body) -> rad.MemoryModel | None:
+    """The radiation memory of a body's :class:`~moorline.model.RadiationTable` (None
+    without one), fitted once per table (:func:`moorline.physics.radiation.fit_memory`)."""
+    table = getattr(body, "radiation", None)
+    if table is None:
+        return None
+    return _fitted(table)  # Body refuses a table with constant added mass or damping
+
+
+@lru_cache(maxsize=16)
+def _fitted(table) -> rad.MemoryModel:
+    mem = rad.fit_memory(table.omegas, table.added_mass, table.damping,
+                         table.added_mass_infinite)
+    worst = float(mem.error.max(initial=0.0))
+    if worst > 1e-2:
+        logger.warning("radiation memory fit within %.2g %% only (largest entry error over "
+                       "the table, MemoryModel.error)", 100 * worst)
+    return mem
 
 
 def _matrix(value) -> FloatArray:

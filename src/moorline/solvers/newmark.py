@@ -50,7 +50,9 @@ class StepState:
     """The state at the end of a completed step.
 
     ``body_other`` holds the bodies' non-inertial generalized forces (nb, 6) at this state
-    (HHT weights them with the next step's).
+    (HHT weights them with the next step's); ``memory`` the radiation memory states of the
+    bodies with a radiation table (:meth:`BodyModel.advance_memory`; None: at rest), so a
+    repeated or cut step starts from them.
     """
 
     t: float
@@ -61,6 +63,7 @@ class StepState:
     evaluation: Evaluation
     bodies: BodyState | None = None
     body_other: FloatArray | None = None
+    memory: tuple | None = None
 
 
 @dataclass(frozen=True)
@@ -94,6 +97,7 @@ class _Trial:
     node_forces: FloatArray | None  # (n_nodes, 3) nodal forces as weighted in the residual,
     #                                 which attached nodes pass to their bodies (with bodies
     #                                 or HHT; else None)
+    memory: tuple | None = None  # the bodies' radiation memory states at the trial
 
     @property
     def has_tangent(self) -> bool:
@@ -186,9 +190,10 @@ class Stepper:
         v1 = s0.v + h * ((1 - g) * s0.a + g * a1)
         fixed = ~self.free
         v1[fixed], a1[fixed] = st.constrained[1], st.constrained[2]
-        bs, arms = None, np.zeros((0, 3))
+        bs, arms, memory = None, np.zeros((0, 3)), None
         if s0.bodies is not None:
             bs = self.bodies.advance(s0.bodies, dq, h, b, g)
+            memory = self.bodies.advance_memory(s0.memory, s0.bodies, bs, h)
             x1 = x1.copy()
             arms = self.bodies.place(x1, v1, a1, bs)
         t1 = s0.t + h
@@ -208,7 +213,8 @@ class Stepper:
         r[: self.layout.n_free] = gather_free(node, self.dof)
         body_other = None
         if bs is not None:
-            body_other, body_inertial = self.bodies.forces(bs, other, inertial, arms, t1)
+            body_other, body_inertial = self.bodies.forces(bs, other, inertial, arms, t1,
+                                                           memory)
             weighted = body_other if not alpha else ((1 + alpha) * body_other
                                                      - alpha * self._body_other(s0))
             for k, d in enumerate(self.bodies.body_dof):
@@ -220,7 +226,7 @@ class Stepper:
                 damping = (1 + alpha) * damping - alpha * (self.C_rayleigh
                                                            @ self._velocity(s0.v, s0.bodies))
             r -= damping
-        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other, node_forces)
+        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other, node_forces, memory)
 
     def factorize(self, u, trial: _Trial):
         """Factorization of the effective tangent (eq. 4.2.9a) at the trial."""
@@ -249,7 +255,7 @@ class Stepper:
         T = self._map(arms)
         lines = T.T @ (ck * (K @ Px + C @ Pv) + M @ Pa)
         body = self.bodies.blocks(trial.bodies, trial.node_forces, arms,
-                                  self._current.s0.t + h, ca, cv, ck, u[1])
+                                  self._current.s0.t + h, ca, cv, ck, u[1], h)
         out = lines + self._body_matrix(body)
         if self.C_rayleigh is not None:
             out = out + cv * self.C_rayleigh
@@ -307,7 +313,7 @@ class Stepper:
     def _state(self, trial: _Trial) -> StepState:
         st = self._current
         return StepState(st.s0.t + st.h, trial.x, trial.v, trial.a, trial.ev.material,
-                         trial.ev, trial.bodies, trial.body_other)
+                         trial.ev, trial.bodies, trial.body_other, trial.memory)
 
     def _one_shot(self, u, h: float) -> tuple[StepState, bool, float]:
         """Residual feedback / purely incremental: one solve per step, no iteration."""
@@ -379,7 +385,7 @@ class Stepper:
         ev = s0.evaluation
         m_s = self.model.node_mass[:, None]
         return self.bodies.forces(s0.bodies, ev.nodal - ev.inertial, ev.inertial - m_s * a,
-                                  arms, s0.t)[0]
+                                  arms, s0.t, s0.memory)[0]
 
     def _setup_rayleigh(self, s0: StepState) -> None:
         """Rayleigh damping ``a0 M + a1 K0`` from the mass and tangent at the start."""
