@@ -380,13 +380,24 @@ def system_matrices(mesh: Mesh, positions: FloatArray, body_pose: FloatArray,
     for b, body in enumerate(problem.bodies):
         d = problem.body_dof[b]
         if d >= 0:
-            added = np.asarray(body.added_mass if body.added_mass is not None
-                               else np.zeros((6, 6)), dtype=float)
+            added = _body_added_mass(body)
             if not settings.added_mass:
                 added = 0.0 * added
             M[d:d + 6, d:d + 6] = (M[d:d + 6, d:d + 6].toarray()
                                    + body_mass_matrix(body, poses.R[b]) + added)
     return K, M.tocsr(), P, problem
+
+
+def _body_added_mass(body) -> FloatArray:
+    """A body's constant added mass; with a radiation table its infinite-frequency added
+    mass (the instantaneous inertia of the Cummins equation: the modes leave out the
+    frequency dependence, A(w_n) - A_inf, and the radiation damping)."""
+    if getattr(body, "radiation", None) is not None:
+        from .body_model import memory_model
+
+        return np.asarray(memory_model(body).added_mass_infinite, dtype=float)
+    return np.asarray(body.added_mass if body.added_mass is not None else np.zeros((6, 6)),
+                      dtype=float)
 
 
 def body_mode_shapes(phi: FloatArray, P, problem, mesh: Mesh) -> FloatArray:
