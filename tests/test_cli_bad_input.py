@@ -25,8 +25,6 @@ WITH_FIELD = [
     ("unknown_analysis_kind", "analyses[0].kind"),
     ("unknown_units_system", "units"),
     ("current_drag_with_bodies", "analyses[0].current_drag"),
-    ("harmonic_with_bodies", "analyses[1].kind"),
-    ("harmonic_viscoelastic", "analyses[1].kind"),
     ("motion_period_below_two_steps", "points.fairlead.motion.period"),
 ]
 

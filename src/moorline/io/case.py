@@ -51,7 +51,6 @@ from .schema import (
     MAX_MAGNITUDE,
     MIN_MAGNITUDE,
     CaseSpec,
-    HarmonicSpec,
     LineSpec,
     MotionSpec,
     PointSpec,
@@ -290,14 +289,6 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
         if isinstance(analysis, StaticsSpec) and analysis.current_drag and spec.bodies:
             fail("statics with the current's drag is not supported yet for systems with "
                  "bodies (remove current_drag or the bodies)", f"analyses[{k}].current_drag")
-        if isinstance(analysis, HarmonicSpec):
-            if spec.bodies:
-                fail("harmonic balance of systems with bodies is not supported yet (use a "
-                     "dynamics analysis)", f"analyses[{k}].kind")
-            viscous = [n for n, lt in spec.line_types.items() if lt.material != "elastic"]
-            if viscous:
-                fail(f"harmonic balance needs elastic lines (line type {viscous[0]!r} is "
-                     f"viscoelastic: its state has a history)", f"analyses[{k}].kind")
         if analysis.kind == "offset":
             from ..offset_group import OffsetGroupError, resolve_group
 
