@@ -734,53 +734,8 @@ def solve_harmonic(system: System, settings: HarmonicSettings,
     tolerance = settings.tolerance * balance.scale
     out, counters, message = _newton(balance.evaluate, balance.initial(), tolerance,
                                      settings.max_iterations, name)
-    steps = 0
-    if not out.converged and not out.reason.startswith("singular"):
-        out, message, steps = _continuation(balance, tolerance, settings.max_iterations, name,
-                                            counters)
-    extra = {"continuation_steps": steps} if steps else {}
-    return balance.result(out.u, out.trial.extra, out.history[1:],
-                          {**counters.as_dict(), **extra}, out.converged, message)
-
-
-def _continuation(balance: HarmonicBalance, tolerance: float, max_iterations: int,
-                  name: str, counters: Counters, max_steps: int = 64):
-    """Newton homotopy from the static state when Newton from it fails: solve
-    ``R(u) - (1 - lam) R(u_0) = 0`` for ``lam`` rising from 0 (``u_0``, the static state,
-    solves it) to 1 (the harmonic balance), each step from the last solution. ``R(u_0)`` is
-    the excitation's projection on the harmonics (the static loads balance), so for forced
-    systems this scales the forcing. The step in ``lam`` starts at 1/4, halves after a
-    failed solve (down to 1/256) and grows by half after an easy one (under 6 iterations).
-
-    Returns the last Newton outcome, its message and the number of steps solved.
-    """
-    u0 = balance.initial()
-    r0 = balance.evaluate(u0, False)[0]
-    u, lam, step, steps, out, message = u0, 0.0, 0.25, 0, None, ""
-    for _ in range(max_steps):
-        target = min(1.0, lam + step)
-
-        def evaluate(v, tangent, target=target):
-            R, J, extra = balance.evaluate(v, tangent)
-            return R - (1.0 - target) * r0, J, extra
-
-        trial, counters, message = _newton(evaluate, u, tolerance, max_iterations, name,
-                                           counters)
-        if trial.converged:
-            u, lam, steps, out = trial.u, target, steps + 1, trial
-            if lam >= 1.0:
-                return out, "", steps
-            if len(trial.history) < 6:
-                step *= 1.5
-        else:
-            out = out or trial
-            step *= 0.5
-            if step < 1.0 / 256:
-                break
-    last = trial if out is None or lam < 1.0 else out
-    return last, (f"{name}: Newton did not converge, also by continuation in the excitation "
-                  f"(reached {lam:.3g} of it; residual {last.norm:.3g}, tolerance "
-                  f"{tolerance:.3g})"), steps
+    return balance.result(out.u, out.trial.extra, out.history[1:], counters.as_dict(),
+                          out.converged, message)
 
 
 def _resample(values: FloatArray, times: FloatArray, t_out: FloatArray, omega: float,

@@ -133,10 +133,14 @@ def interpolate_radiation(table, omegas: FloatArray) -> tuple[FloatArray, FloatA
 
 
 def radiation_matrices(table, omega: float, n: int) -> tuple[FloatArray, FloatArray]:
-    """``A(k w)``, ``B(k w)`` per harmonic term (2 n + 1, 6, 6): the mean (``k = 0``), then
-    the cosine and the sine of every harmonic ``k`` (the same matrices for both)."""
-    k = np.concatenate(([0], np.repeat(np.arange(1, n + 1), 2)))
-    return interpolate_radiation(table, k * omega)
+    """``A(k w)``, ``B(k w)`` per harmonic term (2 n + 1, 6, 6): the mean, then the cosine
+    and the sine of every harmonic ``k`` (the same matrices for both). The mean's are zero:
+    the radiation force has no mean (``B(0) = 0``, and a periodic motion's mean
+    acceleration vanishes)."""
+    k = np.repeat(np.arange(1, n + 1), 2)
+    A, B = interpolate_radiation(table, k * omega)
+    zero = np.zeros((1, 6, 6))
+    return np.concatenate((zero, A)), np.concatenate((zero, B))
 
 
 __all__ = ["angular_kinematics", "interpolate_radiation", "left_jacobians",
