@@ -12,6 +12,10 @@ Two systems whose periodic response is known exactly, so that the harmonic-balan
   :class:`~moorline.model.RadiationTable` whose ``A(w)``, ``B(w)`` differ at every tabulated
   frequency and are tabulated at the forcing frequency itself (the reference reads the table
   there, no interpolation enters it);
+* **the body in a regular wave** (:func:`wave_body`): the same body without the force,
+  excited by an exciting-force table (``F = a |X| cos(w t + phase)`` at its origin, the
+  lines weightless and without drag, so the table is the only wave load):
+  ``z = Re(a |X| e^{i phase} e^{i w t} / (k - (m + A) w^2 + i B w))``;
 * **a mass on a viscoelastic bar** (:func:`sls_oscillator`): a point mass at the end of one
   weightless standard-linear-solid element in air, pretensioned by a constant force along the
   element and forced harmonically along it. The strain is linear in the motion, so the
@@ -29,6 +33,7 @@ from __future__ import annotations
 
 import cmath
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -43,6 +48,8 @@ from ..model import (
     Point,
     RadiationTable,
     System,
+    WaveExcitation,
+    Waves,
 )
 from ..solvers.harmonic import solve_harmonic
 from .core import Row
@@ -117,6 +124,33 @@ def heave_response(omega: float, radiation: bool = False) -> complex:
     return 1.0 / (heave_stiffness() - (MASS + added) * omega**2 + 1j * damping * omega)
 
 
+EXCITING, EXCITING_PHASE, WAVE_AMPLITUDE = 3.0e4, 40.0, 0.2  # N/m, deg, m
+
+
+def wave_body(omega: float) -> System:
+    """:func:`spring_body` in a regular Airy wave of amplitude ``WAVE_AMPLITUDE`` (100 m of
+    water), excited by a heave exciting-force table tabulated at ``(0.5, 1, 2) w`` (other
+    values off the forcing frequency) instead of the force history."""
+    system = spring_body(omega, force=0.0)
+    table = WaveExcitation(
+        (0.5 * omega, omega, 2.0 * omega),
+        ((0, 0, 1e4, 0, 0, 0), (0, 0, EXCITING, 0, 0, 0), (0, 0, 5e4, 0, 0, 0)),
+        ((0,) * 6, (0, 0, EXCITING_PHASE, 0, 0, 0), (0, 0, -20.0, 0, 0, 0)))
+    body = replace(system.bodies["b"], excitation=table, force_history=None)
+    env = replace(system.environment, depth=100.0,
+                  waves=Waves("airy", height=2 * WAVE_AMPLITUDE, period=2 * math.pi / omega))
+    return replace(system, name="harmonic-wave-body", environment=env, bodies={"b": body})
+
+
+def wave_heave(omega: float) -> complex:
+    """The complex amplitude ``c`` of ``Im(c e^{i w t})`` of the body's heave in
+    :func:`wave_body`: ``Re(C e^{i w t}) = Im(i C e^{i w t})``, ``C = a |X| e^{i phase}
+    / (k - (m + A) w^2 + i B w)``."""
+    C = WAVE_AMPLITUDE * EXCITING * cmath.exp(1j * math.radians(EXCITING_PHASE)) * \
+        heave_response(omega)
+    return 1j * C
+
+
 def sls_oscillator(omega: float, force: float = BAR_FORCE) -> System:
     """A point mass on one weightless viscoelastic element along ``x`` in air, pretensioned
     by ``BAR_PRELOAD`` and forced by ``force sin(w t)`` along the element."""
@@ -171,6 +205,12 @@ def run(quick: bool = False) -> list[Row]:
             rows += _rows(f"body heave, {label}, w/w_n {ratio}", z,
                           heave_response(omega, radiation), "m/N",
                           "closed form 1 / (k - (m + A) w^2 + i B w)")
+    omega = 0.8 * w_body
+    result = solve_harmonic(wave_body(omega), HarmonicSettings(period=2 * math.pi / omega,
+                                                               harmonics=3))
+    rows += _rows("body heave in a regular wave, exciting-force table, w/w_n 0.8",
+                  first_harmonic(result.body_coefficients[:, 0, 2]), wave_heave(omega), "m",
+                  "closed form a |X| e^{i phase} / (k - (m + A) w^2 + i B w)")
     w_bar = math.sqrt((BAR_EA + BAR_EA1) / BAR_L0 / BAR_MASS)
     for ratio in ratios:
         omega = ratio * w_bar
