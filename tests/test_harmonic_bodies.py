@@ -155,6 +155,35 @@ def test_viscoelastic_bar_matches_the_complex_modulus(ratio):
         assert abs(elastic - exact) > 1e-2 * abs(exact)  # the Maxwell branch matters here
 
 
+def test_a_fixed_body_holds_its_points_like_fixed_points():
+    """A free point between two taut strings, one held by a fixed body (attached 1 m from
+    the body origin, the body turned), forced harmonically: the same periodic response as
+    with a fixed point at the attachment (to round-off), and the body stays at its pose."""
+    half, tension, ea, mass = 5.0, 1000.0, 1.0e7, 10.0
+    string = LineType("s", diameter=0.01, mass_per_length=1e-9, EA=ea, Cd=0.0, Ca=0.0)
+    end = half * (1 + tension / ea)
+    history = Motion("harmonic", amplitude=(0.0, 0.0, 0.5), period=1.0)
+    held = Body("held", kind="fixed", position=(end, 0.0, -1.0), rotation=(0.3, 0.0, 0.0))
+    arm = (0.0, float(np.sin(0.3)), float(np.cos(0.3)))  # body frame: the origin + 1 m up
+    points = {"a": Point("a", "fixed", (-end, 0.0, 0.0)),
+              "m": Point("m", "free", (0.0, 0.0, 0.0), mass=mass, force_history=history),
+              "b": Point("b", "body", arm, body="held")}
+    lines = {"left": Line("left", "s", half, 2, "a", "m"),
+             "right": Line("right", "s", half, 2, "m", "b")}
+    env = Environment(water_density=0.0, gravity=0.0)
+    with_body = System("held", environment=env, line_types={"s": string}, points=points,
+                       lines=lines, bodies={"held": held})
+    plain = System("plain", environment=env, line_types={"s": string},
+                   points={**points, "b": Point("b", "fixed", (end, 0.0, 0.0))}, lines=lines)
+    settings = HarmonicSettings(period=1.0, harmonics=3)
+    one, two = solve_harmonic(with_body, settings), solve_harmonic(plain, settings)
+    assert one.success and two.success, (one.message, two.message)
+    assert np.abs(two.coefficients[1:]).max() > 1e-4  # it moves
+    assert np.allclose(one.coefficients, two.coefficients, rtol=0, atol=1e-10)
+    assert np.allclose(one.body_pose[:, 0, :3], [end, 0.0, -1.0], rtol=0, atol=1e-12)
+    assert np.allclose(one.body_pose[:, 0, 3:], [0.3, 0.0, 0.0], rtol=0, atol=1e-12)
+
+
 # ---------------------------------------------------------------------- time domain
 def buoy(material: str = "elastic", segments: int = 6, force=(1500.0, 0.0, 800.0),
          period: float = 6.0, radiation: bool = False, lines: int = 3) -> System:
