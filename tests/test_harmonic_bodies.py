@@ -288,7 +288,7 @@ def test_jacobian_equals_finite_differences(material, radiation):
         numeric[:, i] = (balance.evaluate(u + e, False)[0]
                          - balance.evaluate(u - e, False)[0]) / (2 * h)
     assert np.abs(J - numeric).max() < 1e-6 * np.abs(J).max()
-    body = balance.body_model.body_dof[0] * balance.n_terms  # the body's rows alone
+    body = balance.bodies.model.body_dof[0] * balance.n_terms  # the body's rows alone
     rows = slice(body, body + 6 * balance.n_terms)
     assert np.abs(J[rows] - numeric[rows]).max() < 1e-6 * np.abs(J[rows]).max()
 

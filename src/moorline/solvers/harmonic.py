@@ -58,15 +58,13 @@ from numpy.typing import NDArray
 from ..errors import MoorlineError
 from ..mesh import dynamic_mesh
 from ..model import HarmonicSettings, System
-from ..physics.rigid_body import rotation_matrix, rotation_vector
 from ..results import HarmonicResult, StaticResult
 from .assembly import BlockPattern, factorize, gather_free, scatter_free
-from .bodies import BodyState, transformation
-from .body_model import BodyModel
+from .bodies import BodyState
 from .dynamic_model import DynamicModel
 from .excitation import Excitation
-from .harmonic_bodies import angular_kinematics, radiation_matrices
-from .harmonic_material import maxwell_operator
+from .harmonic_bodies import BodyTerms, Collector
+from .harmonic_material import maxwell_jacobian, maxwell_operator
 from .newton import Counters, NewtonPolicy, TangentCache
 from .newton import solve as newton_solve
 from .statics import equilibrium_for
@@ -151,13 +149,9 @@ class HarmonicBalance:
         self.forces = [excitation.point_forces(self.shift + t, mesh.n_nodes)
                        for t in self.times]
         self.coupled = bool(mesh.body_names)
-        self.body_model = self.static_bodies = None
-        self.n_u = mesh.n_dofs
-        if self.coupled:
-            self.static_bodies = BodyState.from_pose(statics.body_pose)
-            self.body_model = BodyModel(mesh, fluid, self.static_bodies)
-            self.n_u = self.body_model.layout.n_unknowns
-        self.radiation = self._radiation_tables()
+        self.bodies = (BodyTerms(mesh, fluid, statics.body_pose, self.basis, self.omega,
+                                 self.model.node_mass) if self.coupled else None)
+        self.n_u = self.bodies.n_u if self.coupled else mesh.n_dofs
         ve = np.flatnonzero(mesh.viscoelastic)
         self.viscoelastic = ve
         self.maxwell_map = (maxwell_operator(self.basis[0], self.omega, mesh.EA1[ve],
@@ -171,15 +165,6 @@ class HarmonicBalance:
         self.scale = max(float(np.abs(self.model.external).max(initial=0.0)),
                          float(np.abs(statics.tension).max(initial=0.0)),
                          max(weights, default=0.0), 1e-12)
-
-    def _radiation_tables(self) -> dict[int, tuple[FloatArray, FloatArray]]:
-        """``A(k w)``, ``B(k w)`` per harmonic term of the free bodies with a radiation
-        table, by body index."""
-        if self.body_model is None:
-            return {}
-        return {b: radiation_matrices(body.radiation, self.omega, self.settings.harmonics)
-                for b, body in enumerate(self.body_model.bodies)
-                if body.radiation is not None and self.body_model.body_dof[b] >= 0}
 
     @property
     def n_unknowns(self) -> int:
@@ -199,35 +184,8 @@ class HarmonicBalance:
         X = np.zeros((self.n_terms, self.n_u))
         X[0, :self.mesh.n_dofs] = gather_free(self.x_static, self.mesh.dof_of_node)
         if self.coupled:
-            for b, d in enumerate(self.body_model.body_dof):
-                if d >= 0:
-                    X[0, d:d + 3] = self.static_bodies.r[b]
+            self.bodies.initial(X)
         return self.unknowns(X)
-
-    def body_motion(self, X: FloatArray) -> tuple[list[BodyState], dict]:
-        """The bodies' states at every instant and, per free body, the kinematic chain
-        ``(J, d omega / d phi, d alpha / d phi, d alpha / d phi')`` (each (n_t, 3, 3)) and
-        the generalized velocity and acceleration (n_t, 6)."""
-        bm, s0 = self.body_model, self.static_bodies
-        nb, n_t = len(bm.bodies), self.n_t
-        r = np.repeat(s0.r[None], n_t, axis=0)
-        R = np.repeat(s0.R[None], n_t, axis=0)
-        vel, acc = np.zeros((n_t, nb, 6)), np.zeros((n_t, nb, 6))
-        chains = {}
-        E, dE, ddE = self.basis
-        for b, d in enumerate(bm.body_dof):
-            if d < 0:
-                continue
-            c = X[:, d:d + 6]
-            x, v, a = E @ c, dE @ c, ddE @ c
-            w, al, J, dw, da, dd = angular_kinematics(x[:, 3:], v[:, 3:], a[:, 3:])
-            r[:, b] = x[:, :3]
-            R[:, b] = rotation_matrix(x[:, 3:]) @ s0.R[b]
-            vel[:, b, :3], vel[:, b, 3:] = v[:, :3], w
-            acc[:, b, :3], acc[:, b, 3:] = a[:, :3], al
-            chains[b] = (J, dw, da, dd)
-        states = [BodyState(r[j], R[j], vel[j], acc[j]) for j in range(n_t)]
-        return states, {"chains": chains, "vel": vel, "acc": acc}
 
     def states(self, X: FloatArray, bodies: list[BodyState] | None = None
                ) -> list[tuple[FloatArray, FloatArray, FloatArray]]:
@@ -244,7 +202,7 @@ class HarmonicBalance:
                                          for arr in (xs, vs, as_))
             x[~free], v[~free], a[~free] = self.constrained[j]
             if bodies is not None:
-                self.body_model.place(x, v, a, bodies[j])
+                self.bodies.model.place(x, v, a, bodies[j])
             out.append((x, v, a))
         return out
 
@@ -287,12 +245,12 @@ class HarmonicBalance:
         mesh, model, n_t = self.mesh, self.model, self.n_t
         dof, E = mesh.dof_of_node, self.basis[0]
         X = self.coefficients_of(u)
-        bodies, motion = self.body_motion(X) if self.coupled else (None, None)
+        bodies, motion = self.bodies.motion(X) if self.coupled else (None, None)
         states = self.states(X, bodies)
         maxwell = self._maxwell(states)
         R = np.zeros((self.n_terms, self.n_u))
         tension = np.zeros((n_t, mesh.n_elements))
-        collected = _Collector(self.n_u) if tangent and self.coupled else None
+        collected = Collector(self.n_u) if tangent and self.coupled else None
         tangents = np.empty((3, n_t, self.pattern.nnz)) if tangent and not self.coupled \
             else None
         maps = []  # per instant: (rows map T^T, columns map P_x) for the Maxwell terms
@@ -309,12 +267,13 @@ class HarmonicBalance:
                     tangents[1, j] = self.pattern.values(ev.C, ev.node_C)
                     tangents[2, j] = self.pattern.values(ev.Ma, nodes_m)
                 continue
-            r_j, mats, pair = self._coupled_instant(x, a, bodies[j], motion, j, t, ev, tangent)
+            r_j, mats, pair = self.bodies.instant(x, a, bodies[j], motion, j, t, ev, tangent)
             R += np.outer(E[j], r_j)
             if tangent:
                 collected.add(j, mats)
                 maps.append(pair)
-        R += self._radiation_residual(motion)
+        if self.coupled:
+            R += self.bodies.radiation_residual(motion)
         if not tangent:
             return self.unknowns(R) / n_t, None, tension
         if self.coupled:
@@ -322,212 +281,25 @@ class HarmonicBalance:
             J = self._jacobian(values, indices, indptr)
         else:
             J = self._jacobian(tangents, self.pattern.indices, self.pattern.indptr)
-        extra = [self._maxwell_jacobian(states, maps), self._radiation_jacobian(motion),
-                 self._neutral_mean(J)]
+        extra = [self._maxwell_jacobian(states, maps)]
+        if self.coupled:
+            extra += [self.bodies.radiation_jacobian(motion), self.bodies.neutral_mean(J)]
         for part in extra:
             if part is not None:
                 J = J + part
         return self.unknowns(R) / n_t, J, tension
 
-    def _neutral_mean(self, J: sp.spmatrix) -> sp.csr_matrix | None:
-        """A vanishing shift (1e-9 of the largest diagonal entry) of the free bodies' mean
-        rows: a body free to turn about an axis with nothing resisting it (the yaw of a
-        buoy on one line attached on its axis) has a neutral mean there, which leaves the
-        Jacobian singular; the harmonics have inertia. As in the coupled statics
-        (:mod:`moorline.solvers.coupled_statics`), the shift changes the Newton step, not
-        the solution (the residual is unshifted)."""
-        if not self.coupled:
-            return None
-        first = [d for d in self.body_model.body_dof if d >= 0]
-        if not first:
-            return None
-        idx = ((np.asarray(first)[:, None] + np.arange(6)) * self.n_terms).ravel()
-        shift = 1e-9 * float(np.abs(J.diagonal()).max(initial=1.0))
-        size = self.n_unknowns
-        return sp.csr_matrix((np.full(idx.size, shift), (idx, idx)), shape=(size, size))
-
-    def _coupled_instant(self, x, a, bs: BodyState, motion: dict, j: int, t: float, ev,
-                         tangent: bool):
-        """Residual (n_u,) of one instant of a system with bodies and, with ``tangent``, its
-        derivatives with respect to the generalized coordinates, velocities and
-        accelerations ``(K, C, M)`` (sparse, n_u x n_u), and the maps ``(T^T, P_x)`` of
-        the lines' forces to the unknowns and of the unknowns to the node positions."""
-        mesh, bm, layout = self.mesh, self.body_model, self.body_model.layout
-        m_s = self.model.node_mass[:, None]
-        other, inertial = ev.nodal - ev.inertial, ev.inertial - m_s * a
-        arms = np.einsum("kij,kj->ki", bs.R[mesh.slave_body], mesh.slave_arm)
-        r = np.zeros(self.n_u)
-        r[:layout.n_free] = gather_free(m_s * a - ev.nodal, mesh.dof_of_node)
-        body_other, body_inertial = bm.forces(bs, other, inertial, arms, t)
-        for b, d in enumerate(bm.body_dof):
-            if d >= 0:
-                r[d:d + 6] = -(body_other[b] + body_inertial[b])
-        if not tangent:
-            return r, None, None
-        pat = layout.pattern
-        nodes_m = self.model.node_mass[:, None, None] * np.eye(3)
-        if ev.node_M is not None:
-            nodes_m = nodes_m + ev.node_M
-        Kl, Cl, Ml = (pat.assemble(ev.K, ev.node_K), pat.assemble(ev.C, ev.node_C),
-                      pat.assemble(ev.Ma, nodes_m))
-        chain = self._chain(bs, motion, j)
-        # the attached nodes' kinematics with respect to the body's pose (d r, d theta),
-        # velocity and acceleration (Newmark factors 0/1 pick the parts apart)
-        zeros = np.zeros((len(bm.bodies), 6))
-        bx, bv0, ba0 = bm.kinematic_blocks(bs, arms, zeros, 0.0, 0.0)
-        _, bv1, ba1 = bm.kinematic_blocks(bs, arms, zeros, 0.0, 1.0)
-        ba2 = bm.kinematic_blocks(bs, arms, zeros, 1.0, 0.0)[2]
-        sv, sa_v, sa_a = bv1 - bv0, ba1 - ba0, ba2 - ba0
-        sb = mesh.slave_body
-        Tq, Vq, Vqd, Aq, Aqd, Aqdd = (chain[k][sb] for k in range(6))
-        blocks = {"xq": bx @ Tq, "vq": bv0 @ Tq + sv @ Vq, "vqd": sv @ Vqd,
-                  "aq": ba0 @ Tq + sa_v @ Vq + sa_a @ Aq, "aqd": sa_v @ Vqd + sa_a @ Aqd,
-                  "aqdd": sa_a @ Aqdd}
-        scale = {"xq": 1.0, "vq": 0.0, "vqd": 1.0, "aq": 0.0, "aqd": 0.0, "aqdd": 1.0}
-        P = {k: transformation(mesh, layout.ext_dofs, layout.n_free, bm.body_dof, arms,
-                               blocks[k], scale[k]) for k in blocks}
-        Tt = transformation(mesh, layout.ext_dofs, layout.n_free, bm.body_dof, arms).T
-        K = Tt @ (Kl @ P["xq"] + Cl @ P["vq"] + Ml @ P["aq"])
-        C = Tt @ (Cl @ P["vqd"] + Ml @ P["aqd"])
-        M = Tt @ (Ml @ P["aqdd"])
-        node_forces = other + inertial
-        base = bm.blocks(bs, node_forces, arms, t, 0.0, 0.0, 1.0)
-        with_m = bm.blocks(bs, node_forces, arms, t, 1.0, 0.0, 1.0)
-        with_c = bm.blocks(bs, node_forces, arms, t, 0.0, 1.0, 1.0)
-        Kb, Cb, Mb = [], [], []
-        for b in range(len(bm.bodies)):
-            kb, cb, mb = base[b], with_c[b] - base[b], with_m[b] - base[b]
-            tq, vq, vqd, aq, aqd, aqdd = (chain[k][b] for k in range(6))
-            Kb.append(kb @ tq + cb @ vq + mb @ aq)
-            Cb.append(cb @ vqd + mb @ aqd)
-            Mb.append(mb @ aqdd)
-        mats = [(K + self._body_matrix(Kb)).tocoo(), (C + self._body_matrix(Cb)).tocoo(),
-                (M + self._body_matrix(Mb)).tocoo()]
-        return r, mats, (Tt, P["xq"])
-
-    def _chain(self, bs: BodyState, motion: dict, j: int) -> list[FloatArray]:
-        """Per body (nb, 6, 6): how its pose change ``(d r, d theta)``, velocity and
-        acceleration follow the generalized ``(q, q', q'')`` at instant ``j``:
-        ``Tq, Vq, Vq', Aq, Aq', Aq''`` (identity-like for held bodies: unused)."""
-        nb = len(self.body_model.bodies)
-        eye = np.eye(3)
-        out = [np.zeros((nb, 6, 6)) for _ in range(6)]
-        for b in range(nb):
-            J = dw = da = dd = None
-            if b in motion["chains"]:
-                J, dw, da, dd = (c[j] for c in motion["chains"][b])
-            else:
-                J, dw, da, dd = eye, np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3))
-            for k in (0, 2, 5):  # Tq, Vq', Aq'': diag(I, J)
-                out[k][b, :3, :3], out[k][b, 3:, 3:] = eye, J
-            out[1][b, 3:, 3:], out[3][b, 3:, 3:], out[4][b, 3:, 3:] = dw, da, dd
-        return out
-
-    def _body_matrix(self, blocks: list[FloatArray]) -> sp.csr_matrix:
-        """The free bodies' (6, 6) blocks as a sparse matrix over the unknowns."""
-        rows, cols, vals = [], [], []
-        for d, block in zip(self.body_model.body_dof, blocks, strict=True):
-            if d < 0:
-                continue
-            i, k = np.meshgrid(np.arange(6) + d, np.arange(6) + d, indexing="ij")
-            rows.append(i.ravel())
-            cols.append(k.ravel())
-            vals.append(np.asarray(block).ravel())
-        n = self.n_u
-        if not rows:
-            return sp.csr_matrix((n, n))
-        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
-                                                    np.concatenate(cols))), shape=(n, n))
-
-    def _radiation_residual(self, motion: dict | None) -> FloatArray:
-        """``sum_j E_j[k] (A_k acc_j + B_k vel_j)`` of the bodies with a radiation table
-        (the harmonic-``k`` row with ``A(k w)``, ``B(k w)``), (2 n + 1, n_u)."""
-        R = np.zeros((self.n_terms, self.n_u))
-        E = self.basis[0]
-        for b, (A, B) in self.radiation.items():
-            d = self.body_model.body_dof[b]
-            vel, acc = motion["vel"][:, b], motion["acc"][:, b]  # (n_t, 6)
-            R[:, d:d + 6] += np.einsum("jk,kpq,jq->kp", E, A, acc) + \
-                np.einsum("jk,kpq,jq->kp", E, B, vel)
-        return R
-
-    def _radiation_jacobian(self, motion: dict | None) -> sp.csr_matrix | None:
-        """The derivative of :meth:`_radiation_residual` (dense per body, sparse overall)."""
-        if not self.radiation:
-            return None
-        E, dE, ddE = self.basis
-        m, n_t = self.n_terms, self.n_t
-        rows, cols, vals = [], [], []
-        for b, (A, B) in self.radiation.items():
-            d = self.body_model.body_dof[b]
-            chain = [np.zeros((n_t, 6, 6)) for _ in range(5)]  # Vq, Vq', Aq, Aq', Aq''
-            J, dw, da, dd = motion["chains"][b]
-            for c in (chain[1], chain[4]):
-                c[:, :3, :3], c[:, 3:, 3:] = np.eye(3), J
-            chain[0][:, 3:, 3:], chain[2][:, 3:, 3:], chain[3][:, 3:, 3:] = dw, da, dd
-            d_vel = np.einsum("jl,jrq->jlrq", E, chain[0]) + np.einsum("jl,jrq->jlrq", dE,
-                                                                        chain[1])
-            d_acc = (np.einsum("jl,jrq->jlrq", E, chain[2])
-                     + np.einsum("jl,jrq->jlrq", dE, chain[3])
-                     + np.einsum("jl,jrq->jlrq", ddE, chain[4]))
-            block = (np.einsum("jk,kpr,jlrq->pkql", E, A, d_acc)
-                     + np.einsum("jk,kpr,jlrq->pkql", E, B, d_vel)) / n_t
-            idx = (d + np.arange(6))[:, None] * m + np.arange(m)[None, :]  # (6, m)
-            rows.append(np.broadcast_to(idx[:, :, None, None], block.shape).ravel())
-            cols.append(np.broadcast_to(idx[None, None], block.shape).ravel())
-            vals.append(block.ravel())
-        size = self.n_unknowns
-        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
-                                                    np.concatenate(cols))),
-                             shape=(size, size))
-
     def _maxwell_jacobian(self, states, maps) -> sp.csr_matrix | None:
-        """The non-local part of the viscoelastic elements' Jacobian: the tension at instant
-        ``j`` through the Maxwell force ``Q_j = sum_i L_ji eps_i`` depends on the strain at
-        every instant ``i``:
-        ``(1 / N_t) sum_ji E_j^T g_j L_ji h_i^T E_i``, ``g_j = d R_j / d T`` (minus the
-        element's nodal forces per unit tension, mapped to the unknowns by ``T^T``) and
-        ``h_i = d eps_i / d u`` (through the master-slave map ``P_x``)."""
+        """The viscoelastic elements' non-local Jacobian
+        (:func:`~moorline.solvers.harmonic_material.maxwell_jacobian`)."""
         if self.maxwell_map is None:
             return None
-        mesh, ve, n_t, m = self.mesh, self.viscoelastic, self.n_t, self.n_terms
-        E = self.basis[0]
-        el = mesh.elements[ve]
-        ext = self.body_model.layout.ext_map if self.coupled else mesh.dof_of_node
-        n_ext = self.body_model.layout.ext_dofs if self.coupled else mesh.n_dofs
-        G = np.zeros((n_t, self.n_u, len(ve)))
-        H = np.zeros((n_t, len(ve), self.n_u))
-        for j, (x, _, _) in enumerate(states):
-            chord = x[el[:, 1]] - x[el[:, 0]]
-            unit = chord / np.linalg.norm(chord, axis=1)[:, None]
-            g_ext, h_ext = np.zeros((n_ext, len(ve))), np.zeros((len(ve), n_ext))
-            for side, sign in ((0, -1.0), (1, 1.0)):
-                d = ext[el[:, side]]  # (n_ve, 3)
-                for c in range(3):
-                    ok = d[:, c] >= 0
-                    e_ok = np.flatnonzero(ok)
-                    g_ext[d[ok, c], e_ok] += sign * unit[ok, c]
-                    h_ext[e_ok, d[ok, c]] += sign * unit[ok, c] / mesh.length0[ve][ok]
-            if self.coupled:
-                Tt, Px = maps[j]
-                G[j], H[j] = Tt @ g_ext, (Px.T @ h_ext.T).T
-            else:
-                G[j], H[j] = g_ext, h_ext
-        rows, cols, vals = [], [], []
-        for e in range(len(ve)):
-            r = np.flatnonzero(np.abs(G[:, :, e]).max(axis=0) > 0)
-            c = np.flatnonzero(np.abs(H[:, e, :]).max(axis=0) > 0)
-            block = np.einsum("jr,jk,ji,ic,il->rkcl", G[:, r, e], E, self.maxwell_map[e],
-                              H[:, e, c], E) / n_t
-            ri = (r[:, None] * m + np.arange(m)).reshape(len(r), m, 1, 1)
-            ci = (c[:, None] * m + np.arange(m)).reshape(1, 1, len(c), m)
-            rows.append(np.broadcast_to(ri, block.shape).ravel())
-            cols.append(np.broadcast_to(ci, block.shape).ravel())
-            vals.append(block.ravel())
-        size = self.n_unknowns
-        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
-                                                    np.concatenate(cols))),
-                             shape=(size, size))
+        mesh = self.mesh
+        extended = ((self.bodies.model.layout.ext_map, self.bodies.model.layout.ext_dofs)
+                    if self.coupled else (mesh.dof_of_node, mesh.n_dofs))
+        return maxwell_jacobian(mesh, self.viscoelastic, self.maxwell_map, self.basis[0],
+                                self.n_u, [x for x, _, _ in states], extended,
+                                maps if self.coupled else None)
 
     def _jacobian(self, tangents: FloatArray, indices: NDArray, indptr: NDArray
                   ) -> sp.bsr_matrix:
@@ -554,7 +326,7 @@ class HarmonicBalance:
         coefficients = np.zeros((self.n_terms, mesh.n_nodes, 3))
         for k in range(self.n_terms):
             coefficients[k][free] = scatter_free(X[k, :mesh.n_dofs], dof)[free]
-        bodies = self.body_motion(X)[0] if self.coupled else None
+        bodies = self.bodies.motion(X)[0] if self.coupled else None
         xc = np.array([x[~free] for x, _, _ in self.states(X, bodies)])  # (n_t, n_c, 3)
         fit = np.linalg.lstsq(self.basis[0], xc.reshape(n_t, -1), rcond=None)[0]
         coefficients[:, ~free] = fit.reshape(self.n_terms, -1, 3)
@@ -562,7 +334,7 @@ class HarmonicBalance:
         tension_out = _resample(tension, self.times, t_out, self.omega, n)
         body = {}
         if self.coupled:
-            body = self._body_output(X, E_out)
+            body = self.bodies.output(X, E_out)
         return HarmonicResult(period=self.period, omega=self.omega, coefficients=coefficients,
                               time=t_out, positions=positions, tension=tension_out,
                               static_positions=self.x_static.copy(),
@@ -574,51 +346,6 @@ class HarmonicBalance:
                               message=message or f"converged in {len(history)} Newton "
                                                  f"iterations ({n} harmonics)",
                               case=self.system_name, units=self.units, **body)
-
-    def _body_output(self, X: FloatArray, E_out: FloatArray) -> dict[str, FloatArray]:
-        """Body coefficients (2 n + 1, nb, 6) of the origin and of the rotation vector
-        relative to the static orientation (held bodies: their static pose), and the pose
-        (origin, rotation vector) over one period (n_out, nb, 6)."""
-        bm, s0 = self.body_model, self.static_bodies
-        coef = np.zeros((self.n_terms, len(bm.bodies), 6))
-        coef[0, :, :3] = s0.r
-        for b, d in enumerate(bm.body_dof):
-            if d >= 0:
-                coef[:, b] = X[:, d:d + 6]
-        motion = np.einsum("tk,kbc->tbc", E_out, coef)
-        pose = motion.copy()
-        pose[:, :, 3:] = rotation_vector(rotation_matrix(motion[:, :, 3:]) @ s0.R[None])
-        return {"body_coefficients": coef, "body_pose": pose}
-
-
-class _Collector:
-    """The instants' sparse tangents (K, C, M over the unknowns) gathered on the union of
-    their sparsity patterns."""
-
-    def __init__(self, n: int) -> None:
-        self.n = n
-        self.keys: list[NDArray] = []
-        self.vals: list[NDArray] = []
-        self.where: list[tuple[int, int, int]] = []
-
-    def add(self, j: int, mats: list[sp.coo_matrix]) -> None:
-        for b, mat in enumerate(mats):
-            self.keys.append(mat.row.astype(np.int64) * self.n + mat.col)
-            self.vals.append(mat.data)
-            self.where.append((b, j, len(mat.data)))
-
-    def values(self, n_t: int) -> tuple[NDArray, NDArray, FloatArray]:
-        """The pattern's ``indices``, ``indptr`` and the values (3, n_t, nnz)."""
-        keys = np.concatenate(self.keys)
-        unique, slot = np.unique(keys, return_inverse=True)
-        values = np.zeros((3 * n_t, len(unique)))
-        which = np.concatenate([np.full(k, b * n_t + j) for b, j, k in self.where])
-        np.add.at(values, (which, slot), np.concatenate(self.vals))
-        rows = unique // self.n
-        indptr = np.concatenate(([0], np.cumsum(np.bincount(rows, minlength=self.n))))
-        return ((unique % self.n).astype(np.int32), indptr.astype(np.int32),
-                values.reshape(3, n_t, -1))
-
 
 def _check_wave_period(system: System, period: float) -> None:
     """A regular wave must repeat over the analysis period (and a random sea never does)."""

@@ -28,9 +28,13 @@ the force of harmonic ``k`` is ``-A(k w) a_k - B(k w) v_k`` (``a_k``, ``v_k`` th
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ..physics.rigid_body import skew
+from ..physics.rigid_body import rotation_matrix, rotation_vector, skew
+from .assembly import gather_free
+from .bodies import BodyState, transformation
+from .body_model import BodyModel
 
 FloatArray = NDArray[np.float64]
 
@@ -143,5 +147,266 @@ def radiation_matrices(table, omega: float, n: int) -> tuple[FloatArray, FloatAr
     return np.concatenate((zero, A)), np.concatenate((zero, B))
 
 
-__all__ = ["angular_kinematics", "interpolate_radiation", "left_jacobians",
-           "radiation_matrices"]
+
+
+class BodyTerms:
+    """The bodies' part of the harmonic-balance equations: their motion at the instants,
+    each instant's coupled residual and tangent, radiation per harmonic and the output.
+
+    Parameters
+    ----------
+    mesh
+        The mesh (with bodies).
+    fluid
+        The fluid field (exciting-force tables, drag).
+    pose
+        The bodies' static poses (n_bodies, 6).
+    basis
+        ``E, E', E''`` at the instants (n_t, 2 n + 1) each.
+    omega
+        Fundamental circular frequency.
+    node_mass
+        Lumped node masses (n_nodes,).
+    """
+
+    def __init__(self, mesh, fluid, pose: FloatArray, basis: tuple[FloatArray, ...],
+                 omega: float, node_mass: FloatArray) -> None:
+        self.mesh, self.basis, self.node_mass = mesh, basis, node_mass
+        self.n_t, self.n_terms = basis[0].shape
+        self.static = BodyState.from_pose(pose)
+        self.model = BodyModel(mesh, fluid, self.static)
+        self.n_u = self.model.layout.n_unknowns
+        n = (self.n_terms - 1) // 2
+        self.radiation = {b: radiation_matrices(body.radiation, omega, n)
+                          for b, body in enumerate(self.model.bodies)
+                          if body.radiation is not None and self.model.body_dof[b] >= 0}
+
+    def initial(self, X: FloatArray) -> None:
+        """Put the free bodies' static origins in the mean of the coefficients (in place)."""
+        for b, d in enumerate(self.model.body_dof):
+            if d >= 0:
+                X[0, d:d + 3] = self.static.r[b]
+
+    def motion(self, X: FloatArray) -> tuple[list[BodyState], dict]:
+        """The bodies' states at every instant and, per free body, the kinematic chain
+        ``(J, d omega / d phi, d alpha / d phi, d alpha / d phi')`` (each (n_t, 3, 3)) and
+        the generalized velocity and acceleration (n_t, 6)."""
+        bm, s0 = self.model, self.static
+        nb, n_t = len(bm.bodies), self.n_t
+        r = np.repeat(s0.r[None], n_t, axis=0)
+        R = np.repeat(s0.R[None], n_t, axis=0)
+        vel, acc = np.zeros((n_t, nb, 6)), np.zeros((n_t, nb, 6))
+        chains = {}
+        E, dE, ddE = self.basis
+        for b, d in enumerate(bm.body_dof):
+            if d < 0:
+                continue
+            c = X[:, d:d + 6]
+            x, v, a = E @ c, dE @ c, ddE @ c
+            w, al, J, dw, da, dd = angular_kinematics(x[:, 3:], v[:, 3:], a[:, 3:])
+            r[:, b] = x[:, :3]
+            R[:, b] = rotation_matrix(x[:, 3:]) @ s0.R[b]
+            vel[:, b, :3], vel[:, b, 3:] = v[:, :3], w
+            acc[:, b, :3], acc[:, b, 3:] = a[:, :3], al
+            chains[b] = (J, dw, da, dd)
+        states = [BodyState(r[j], R[j], vel[j], acc[j]) for j in range(n_t)]
+        return states, {"chains": chains, "vel": vel, "acc": acc}
+
+    def instant(self, x, a, bs: BodyState, motion: dict, j: int, t: float, ev,
+                tangent: bool):
+        """Residual (n_u,) of one instant of a system with bodies and, with ``tangent``, its
+        derivatives with respect to the generalized coordinates, velocities and
+        accelerations ``(K, C, M)`` (sparse, n_u x n_u), and the maps ``(T^T, P_x)`` of
+        the lines' forces to the unknowns and of the unknowns to the node positions."""
+        mesh, bm, layout = self.mesh, self.model, self.model.layout
+        m_s = self.node_mass[:, None]
+        other, inertial = ev.nodal - ev.inertial, ev.inertial - m_s * a
+        arms = np.einsum("kij,kj->ki", bs.R[mesh.slave_body], mesh.slave_arm)
+        r = np.zeros(self.n_u)
+        r[:layout.n_free] = gather_free(m_s * a - ev.nodal, mesh.dof_of_node)
+        body_other, body_inertial = bm.forces(bs, other, inertial, arms, t)
+        for b, d in enumerate(bm.body_dof):
+            if d >= 0:
+                r[d:d + 6] = -(body_other[b] + body_inertial[b])
+        if not tangent:
+            return r, None, None
+        pat = layout.pattern
+        nodes_m = self.node_mass[:, None, None] * np.eye(3)
+        if ev.node_M is not None:
+            nodes_m = nodes_m + ev.node_M
+        Kl, Cl, Ml = (pat.assemble(ev.K, ev.node_K), pat.assemble(ev.C, ev.node_C),
+                      pat.assemble(ev.Ma, nodes_m))
+        chain = self._chain(bs, motion, j)
+        # the attached nodes' kinematics with respect to the body's pose (d r, d theta),
+        # velocity and acceleration (Newmark factors 0/1 pick the parts apart)
+        zeros = np.zeros((len(bm.bodies), 6))
+        bx, bv0, ba0 = bm.kinematic_blocks(bs, arms, zeros, 0.0, 0.0)
+        _, bv1, ba1 = bm.kinematic_blocks(bs, arms, zeros, 0.0, 1.0)
+        ba2 = bm.kinematic_blocks(bs, arms, zeros, 1.0, 0.0)[2]
+        sv, sa_v, sa_a = bv1 - bv0, ba1 - ba0, ba2 - ba0
+        sb = mesh.slave_body
+        Tq, Vq, Vqd, Aq, Aqd, Aqdd = (chain[k][sb] for k in range(6))
+        blocks = {"xq": bx @ Tq, "vq": bv0 @ Tq + sv @ Vq, "vqd": sv @ Vqd,
+                  "aq": ba0 @ Tq + sa_v @ Vq + sa_a @ Aq, "aqd": sa_v @ Vqd + sa_a @ Aqd,
+                  "aqdd": sa_a @ Aqdd}
+        scale = {"xq": 1.0, "vq": 0.0, "vqd": 1.0, "aq": 0.0, "aqd": 0.0, "aqdd": 1.0}
+        P = {k: transformation(mesh, layout.ext_dofs, layout.n_free, bm.body_dof, arms,
+                               blocks[k], scale[k]) for k in blocks}
+        Tt = transformation(mesh, layout.ext_dofs, layout.n_free, bm.body_dof, arms).T
+        K = Tt @ (Kl @ P["xq"] + Cl @ P["vq"] + Ml @ P["aq"])
+        C = Tt @ (Cl @ P["vqd"] + Ml @ P["aqd"])
+        M = Tt @ (Ml @ P["aqdd"])
+        node_forces = other + inertial
+        base = bm.blocks(bs, node_forces, arms, t, 0.0, 0.0, 1.0)
+        with_m = bm.blocks(bs, node_forces, arms, t, 1.0, 0.0, 1.0)
+        with_c = bm.blocks(bs, node_forces, arms, t, 0.0, 1.0, 1.0)
+        Kb, Cb, Mb = [], [], []
+        for b in range(len(bm.bodies)):
+            kb, cb, mb = base[b], with_c[b] - base[b], with_m[b] - base[b]
+            tq, vq, vqd, aq, aqd, aqdd = (chain[k][b] for k in range(6))
+            Kb.append(kb @ tq + cb @ vq + mb @ aq)
+            Cb.append(cb @ vqd + mb @ aqd)
+            Mb.append(mb @ aqdd)
+        mats = [(K + self._body_matrix(Kb)).tocoo(), (C + self._body_matrix(Cb)).tocoo(),
+                (M + self._body_matrix(Mb)).tocoo()]
+        return r, mats, (Tt, P["xq"])
+
+    def _chain(self, bs: BodyState, motion: dict, j: int) -> list[FloatArray]:
+        """Per body (nb, 6, 6): how its pose change ``(d r, d theta)``, velocity and
+        acceleration follow the generalized ``(q, q', q'')`` at instant ``j``:
+        ``Tq, Vq, Vq', Aq, Aq', Aq''`` (identity-like for held bodies: unused)."""
+        nb = len(self.model.bodies)
+        eye = np.eye(3)
+        out = [np.zeros((nb, 6, 6)) for _ in range(6)]
+        for b in range(nb):
+            J = dw = da = dd = None
+            if b in motion["chains"]:
+                J, dw, da, dd = (c[j] for c in motion["chains"][b])
+            else:
+                J, dw, da, dd = eye, np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3))
+            for k in (0, 2, 5):  # Tq, Vq', Aq'': diag(I, J)
+                out[k][b, :3, :3], out[k][b, 3:, 3:] = eye, J
+            out[1][b, 3:, 3:], out[3][b, 3:, 3:], out[4][b, 3:, 3:] = dw, da, dd
+        return out
+
+    def _body_matrix(self, blocks: list[FloatArray]) -> sp.csr_matrix:
+        """The free bodies' (6, 6) blocks as a sparse matrix over the unknowns."""
+        rows, cols, vals = [], [], []
+        for d, block in zip(self.model.body_dof, blocks, strict=True):
+            if d < 0:
+                continue
+            i, k = np.meshgrid(np.arange(6) + d, np.arange(6) + d, indexing="ij")
+            rows.append(i.ravel())
+            cols.append(k.ravel())
+            vals.append(np.asarray(block).ravel())
+        n = self.n_u
+        if not rows:
+            return sp.csr_matrix((n, n))
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                    np.concatenate(cols))), shape=(n, n))
+
+    def radiation_residual(self, motion: dict | None) -> FloatArray:
+        """``sum_j E_j[k] (A_k acc_j + B_k vel_j)`` of the bodies with a radiation table
+        (the harmonic-``k`` row with ``A(k w)``, ``B(k w)``), (2 n + 1, n_u)."""
+        R = np.zeros((self.n_terms, self.n_u))
+        E = self.basis[0]
+        for b, (A, B) in self.radiation.items():
+            d = self.model.body_dof[b]
+            vel, acc = motion["vel"][:, b], motion["acc"][:, b]  # (n_t, 6)
+            R[:, d:d + 6] += np.einsum("jk,kpq,jq->kp", E, A, acc) + \
+                np.einsum("jk,kpq,jq->kp", E, B, vel)
+        return R
+
+    def radiation_jacobian(self, motion: dict | None) -> sp.csr_matrix | None:
+        """The derivative of :meth:`_radiation_residual` (dense per body, sparse overall)."""
+        if not self.radiation:
+            return None
+        E, dE, ddE = self.basis
+        m, n_t = self.n_terms, self.n_t
+        rows, cols, vals = [], [], []
+        for b, (A, B) in self.radiation.items():
+            d = self.model.body_dof[b]
+            chain = [np.zeros((n_t, 6, 6)) for _ in range(5)]  # Vq, Vq', Aq, Aq', Aq''
+            J, dw, da, dd = motion["chains"][b]
+            for c in (chain[1], chain[4]):
+                c[:, :3, :3], c[:, 3:, 3:] = np.eye(3), J
+            chain[0][:, 3:, 3:], chain[2][:, 3:, 3:], chain[3][:, 3:, 3:] = dw, da, dd
+            d_vel = np.einsum("jl,jrq->jlrq", E, chain[0]) + np.einsum("jl,jrq->jlrq", dE,
+                                                                        chain[1])
+            d_acc = (np.einsum("jl,jrq->jlrq", E, chain[2])
+                     + np.einsum("jl,jrq->jlrq", dE, chain[3])
+                     + np.einsum("jl,jrq->jlrq", ddE, chain[4]))
+            block = (np.einsum("jk,kpr,jlrq->pkql", E, A, d_acc)
+                     + np.einsum("jk,kpr,jlrq->pkql", E, B, d_vel)) / n_t
+            idx = (d + np.arange(6))[:, None] * m + np.arange(m)[None, :]  # (6, m)
+            rows.append(np.broadcast_to(idx[:, :, None, None], block.shape).ravel())
+            cols.append(np.broadcast_to(idx[None, None], block.shape).ravel())
+            vals.append(block.ravel())
+        size = self.n_terms * self.n_u
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                    np.concatenate(cols))),
+                             shape=(size, size))
+
+    def neutral_mean(self, J: sp.spmatrix) -> sp.csr_matrix | None:
+        """A vanishing shift (1e-9 of the largest diagonal entry) of the free bodies' mean
+        rows: a body free to turn about an axis with nothing resisting it (the yaw of a
+        buoy on one line attached on its axis) has a neutral mean there, which leaves the
+        Jacobian singular; the harmonics have inertia. As in the coupled statics
+        (:mod:`moorline.solvers.coupled_statics`), the shift changes the Newton step, not
+        the solution (the residual is unshifted)."""
+        first = [d for d in self.model.body_dof if d >= 0]
+        if not first:
+            return None
+        idx = ((np.asarray(first)[:, None] + np.arange(6)) * self.n_terms).ravel()
+        shift = 1e-9 * float(np.abs(J.diagonal()).max(initial=1.0))
+        size = self.n_terms * self.n_u
+        return sp.csr_matrix((np.full(idx.size, shift), (idx, idx)), shape=(size, size))
+
+    def output(self, X: FloatArray, E_out: FloatArray) -> dict[str, FloatArray]:
+        """Body coefficients (2 n + 1, nb, 6) of the origin and of the rotation vector
+        relative to the static orientation (held bodies: their static pose), and the pose
+        (origin, rotation vector) over one period (n_out, nb, 6)."""
+        bm, s0 = self.model, self.static
+        coef = np.zeros((self.n_terms, len(bm.bodies), 6))
+        coef[0, :, :3] = s0.r
+        for b, d in enumerate(bm.body_dof):
+            if d >= 0:
+                coef[:, b] = X[:, d:d + 6]
+        motion = np.einsum("tk,kbc->tbc", E_out, coef)
+        pose = motion.copy()
+        pose[:, :, 3:] = rotation_vector(rotation_matrix(motion[:, :, 3:]) @ s0.R[None])
+        return {"body_coefficients": coef, "body_pose": pose}
+
+
+
+class Collector:
+    """The instants' sparse tangents (K, C, M over the unknowns) gathered on the union of
+    their sparsity patterns."""
+
+    def __init__(self, n: int) -> None:
+        self.n = n
+        self.keys: list[NDArray] = []
+        self.vals: list[NDArray] = []
+        self.where: list[tuple[int, int, int]] = []
+
+    def add(self, j: int, mats: list[sp.coo_matrix]) -> None:
+        for b, mat in enumerate(mats):
+            self.keys.append(mat.row.astype(np.int64) * self.n + mat.col)
+            self.vals.append(mat.data)
+            self.where.append((b, j, len(mat.data)))
+
+    def values(self, n_t: int) -> tuple[NDArray, NDArray, FloatArray]:
+        """The pattern's ``indices``, ``indptr`` and the values (3, n_t, nnz)."""
+        keys = np.concatenate(self.keys)
+        unique, slot = np.unique(keys, return_inverse=True)
+        values = np.zeros((3 * n_t, len(unique)))
+        which = np.concatenate([np.full(k, b * n_t + j) for b, j, k in self.where])
+        np.add.at(values, (which, slot), np.concatenate(self.vals))
+        rows = unique // self.n
+        indptr = np.concatenate(([0], np.cumsum(np.bincount(rows, minlength=self.n))))
+        return ((unique % self.n).astype(np.int32), indptr.astype(np.int32),
+                values.reshape(3, n_t, -1))
+
+
+__all__ = ["BodyTerms", "Collector", "angular_kinematics", "interpolate_radiation",
+           "left_jacobians", "radiation_matrices"]
