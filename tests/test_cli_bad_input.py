@@ -24,8 +24,6 @@ WITH_FIELD = [
     ("position_component_text", "points.anchor.position[2]"),
     ("unknown_analysis_kind", "analyses[0].kind"),
     ("unknown_units_system", "units"),
-    ("harmonic_with_bodies", "analyses[1].kind"),
-    ("harmonic_viscoelastic", "analyses[1].kind"),
     ("motion_period_below_two_steps", "points.fairlead.motion.period"),
 ]
 

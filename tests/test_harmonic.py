@@ -130,20 +130,17 @@ def test_unforced_system_stays_static():
     assert np.allclose(result.positions, static.positions[None], atol=1e-12)
 
 
-def test_refuses_bodies_viscoelastic_and_bad_settings():
+def test_refuses_bad_settings_and_a_wave_period_that_does_not_divide():
     system = string_mass(1.0)
     with pytest.raises(MoorlineError):
         solve_harmonic(system, HarmonicSettings(period=0.0))
-    visco = replace(system, line_types={"s": replace(system.line_types["s"],
-                                                     material="viscoelastic", EA1=1e6,
-                                                     tau=1.0)})
-    with pytest.raises(MoorlineError, match="elastic lines only"):
-        solve_harmonic(visco, HarmonicSettings(period=1.0))
-    from moorline.verification import tuah_ex5
+    from moorline.model import Waves
 
-    disc, static = tuah_ex5.static_state()
-    with pytest.raises(MoorlineError, match="bodies"):
-        solve_harmonic(disc, HarmonicSettings(period=3.0), static)
+    wavy = replace(system, environment=replace(system.environment, water_density=1025.0,
+                                               gravity=9.81, depth=50.0,
+                                               waves=Waves("airy", height=1.0, period=3.0)))
+    with pytest.raises(MoorlineError, match="wave period"):
+        solve_harmonic(wavy, HarmonicSettings(period=4.0))
 
 
 def test_example_case_runs_from_the_cli(tmp_path, undescribed):

@@ -234,8 +234,6 @@ BAD_CASES = [
     ("random_gamma_below_one", "environment.waves.gamma", "must be >= 1"),
     ("random_record_length_zero", "environment.waves.record_length", "must be > 0"),
     ("stochastic_without_random_sea", "analyses[1].kind", "needs a random sea"),
-    ("harmonic_with_bodies", "analyses[1].kind", "systems with bodies is not supported"),
-    ("harmonic_viscoelastic", "analyses[1].kind", "needs elastic lines"),
     ("motion_period_below_two_steps", "points.fairlead.motion.period",
      "shorter than two time steps"),
     ("body_point_unknown_body", "points.fairlead.body", "unknown body 'hull'"),

@@ -146,6 +146,10 @@ VARIABLES: dict[str, dict[str, tuple[str, str]]] = {
         "position": ("length", "node position over one period"),
         "tension": ("force", "element tension over one period"),
         "static_position": ("length", "static node position"),
+        "body_coefficients": ("{length} (surge, sway, heave), rad (roll, pitch, yaw: rotation "
+                              "vector about the static orientation)",
+                              "Fourier coefficients of the body motion"),
+        "body_pose": _BODY["body_pose"][0:1] + ("pose of the body origin over one period",),
     },
     "fatigue": {
         "fatigue_method": ("1", "fatigue damage method (rainflow, narrow_band, dirlik)"),

@@ -22,6 +22,7 @@ from matplotlib.text import Text
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from numpy.typing import NDArray
 
+from .datasets import BODY_DOFS
 from .plot_configuration import (
     CMAP,
     best_azimuth,
@@ -653,8 +654,9 @@ def figure_harmonic(dataset: xr.Dataset, snapshots: int = 8) -> Figure:
     span = float(np.ptp(static[:, [0, 2]], axis=0).max()) or 1.0
     amp = float(np.abs(dyn).max()) or 1.0
     scale = max(1.0, 0.05 * span / amp)
-    fig = Figure(figsize=(10.0, 5.0), layout="constrained")
-    ax, ax_t = fig.subplots(1, 2)
+    bodies = "body_pose" in dataset
+    fig = Figure(figsize=(15.0 if bodies else 10.0, 5.0), layout="constrained")
+    ax, ax_t, *ax_b = fig.subplots(1, 3 if bodies else 2)
     order = np.argsort(static[:, 0] + 1e-9 * static[:, 2])
     mean = pos.mean(axis=0)
     for j in np.linspace(0, len(pos), snapshots, endpoint=False).astype(int):
@@ -674,11 +676,39 @@ def figure_harmonic(dataset: xr.Dataset, snapshots: int = 8) -> Figure:
     ax_t.set_xlabel("element")
     ax_t.set_ylabel(f"tension [{unit}]")
     ax_t.legend(fontsize=7)
-    for a in (ax, ax_t):
+    if bodies:
+        _harmonic_bodies(ax_b[0], dataset, length)
+    for a in (ax, ax_t, *ax_b):
         a.grid(True, linewidth=0.3)
     fig.suptitle(f"harmonic balance: period {float(dataset.attrs.get('period', 0)):.4g}, "
                  f"{dataset.attrs.get('harmonics', '?')} harmonics")
     return fig
+
+
+def _harmonic_bodies(ax, dataset: xr.Dataset, length: str) -> None:
+    """The bodies' motion about their mean over one period: translations (solid, left axis)
+    and rotations in degrees (dashed, right axis)."""
+    pose = np.asarray(dataset["body_pose"].values, dtype=float)  # (time, body, dof)
+    phase = np.arange(len(pose)) / max(len(pose), 1)
+    turn = ax.twinx()
+    for b, name in enumerate(dataset["body"].values):
+        motion = pose[:, b] - pose[:, b].mean(axis=0)
+        for k, dof in enumerate(BODY_DOFS):
+            if np.ptp(motion[:, k]) <= 1e-12 * (1.0 + np.abs(pose[:, b, k]).max()):
+                continue
+            if k < 3:
+                ax.plot(phase, motion[:, k], linewidth=0.9, label=f"{name} {dof}")
+            else:
+                turn.plot(phase, np.degrees(motion[:, k]), "--", linewidth=0.9,
+                          label=f"{name} {dof}")
+    ax.set_xlabel("t / T")
+    ax.set_ylabel(f"translation about the mean [{length}]")
+    turn.set_ylabel("rotation about the mean [deg]")
+    ax.set_title("bodies over one period")
+    lines = ax.get_legend_handles_labels()
+    more = turn.get_legend_handles_labels()
+    if lines[0] or more[0]:
+        ax.legend(lines[0] + more[0], lines[1] + more[1], fontsize=7)
 
 
 plot_sweep_trends = _writer(figure_sweep_trends, "sweep_trends")

@@ -652,6 +652,11 @@ class HarmonicResult:
         Newton iterations and the largest harmonic residual after each.
     success, status, message, case, units
         How it ended (``converged`` or ``failed``) and for output.
+    body_coefficients
+        Per body (2 n + 1, n_bodies, 6): coefficients of the origin and of the rotation
+        vector relative to the static orientation (``R = exp([phi x]) R_static``).
+    body_pose
+        One period of the bodies' poses (n_t, n_bodies, 6): origin and rotation vector.
     """
 
     period: float
@@ -671,9 +676,17 @@ class HarmonicResult:
     message: str = ""
     case: str = ""
     units: str = "SI"
+    body_coefficients: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
+    body_pose: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
 
     def __post_init__(self) -> None:
         _settle_status(self, Status.CONVERGED)
+
+    def body_amplitude(self, body: str, harmonic: int = 1) -> FloatArray:
+        """Amplitude ``sqrt(A_k^2 + B_k^2)`` of harmonic ``k`` of a body's six dofs."""
+        b = self.mesh.body_names.index(body)
+        a, c = (self.body_coefficients[2 * harmonic - 1 + i, b] for i in (0, 1))
+        return np.sqrt(a * a + c * c)
 
     def amplitude(self, harmonic: int = 1) -> FloatArray:
         """Amplitude ``sqrt(A_k^2 + B_k^2)`` of harmonic ``k`` per node and axis."""
@@ -690,6 +703,10 @@ class HarmonicResult:
                 "static_position": (("node", "xyz"), self.static_positions)}
         coords = {"term": terms, "time": self.time, "node": np.arange(self.mesh.n_nodes),
                   "element": np.arange(self.mesh.n_elements), "xyz": ["x", "y", "z"]}
+        if self.mesh.body_names and len(self.body_pose):
+            data["body_coefficients"] = (("term", "body", "dof"), self.body_coefficients)
+            data["body_pose"] = (("time", "body", "dof"), self.body_pose)
+            coords.update(body=list(self.mesh.body_names), dof=list(BODY_DOFS))
         attrs = group_attrs("harmonic", case=self.case, units=self.units,
                             success=self.success, status=self.status, message=self.message,
                             counters={"iterations": self.iterations, **self.counters},

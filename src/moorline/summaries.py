@@ -228,11 +228,17 @@ def stochastic_summary(result: Any) -> dict[str, Any]:
 
 def harmonic_summary(result: Any) -> dict[str, Any]:
     """The ``--json`` object of a :class:`~moorline.results.HarmonicResult`: Newton
-    iterations, largest first-harmonic amplitude, tension range per element."""
-    return {**_outcome(result), "iterations": int(result.iterations),
-            "max_first_harmonic_amplitude": float(result.amplitude(1).max(initial=0.0)),
-            "tension_min": [float(v) for v in result.tension.min(axis=0)],
-            "tension_max": [float(v) for v in result.tension.max(axis=0)]}
+    iterations, largest first-harmonic amplitude, tension range per element and, with bodies,
+    each body's first-harmonic amplitude per dof."""
+    out = {**_outcome(result), "iterations": int(result.iterations),
+           "max_first_harmonic_amplitude": float(result.amplitude(1).max(initial=0.0)),
+           "tension_min": [float(v) for v in result.tension.min(axis=0)],
+           "tension_max": [float(v) for v in result.tension.max(axis=0)]}
+    if len(getattr(result, "body_pose", ())):
+        out["bodies"] = {name: {"first_harmonic_amplitude": [
+            float(v) for v in result.body_amplitude(name, 1)]}
+            for name in result.mesh.body_names}
+    return out
 
 
 def _per_line(values: Any, names: Any) -> dict[str, dict[str, float]]:

@@ -51,7 +51,6 @@ from .schema import (
     MAX_MAGNITUDE,
     MIN_MAGNITUDE,
     CaseSpec,
-    HarmonicSpec,
     LineSpec,
     MotionSpec,
     PointSpec,
@@ -287,14 +286,6 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
         if env.current.headings is not None and len(env.current.headings) != n:
             fail(f"headings must have {n} entries like z_levels", "environment.current.headings")
     for k, analysis in enumerate(spec.analyses or ()):
-        if isinstance(analysis, HarmonicSpec):
-            if spec.bodies:
-                fail("harmonic balance of systems with bodies is not supported yet (use a "
-                     "dynamics analysis)", f"analyses[{k}].kind")
-            viscous = [n for n, lt in spec.line_types.items() if lt.material != "elastic"]
-            if viscous:
-                fail(f"harmonic balance needs elastic lines (line type {viscous[0]!r} is "
-                     f"viscoelastic: its state has a history)", f"analyses[{k}].kind")
         if analysis.kind == "offset":
             from ..offset_group import OffsetGroupError, resolve_group
 

@@ -121,8 +121,15 @@ class DynamicModel:
 
     def evaluate(self, x: FloatArray, v: FloatArray, a: FloatArray, t: float,
                  previous: MaterialState, dt: float, tangent: bool,
-                 point_forces: FloatArray | None = None) -> Evaluation:
-        """Forces at a trial state ``(x, v, a)`` at time ``t``; tangents if ``tangent``."""
+                 point_forces: FloatArray | None = None,
+                 maxwell: FloatArray | None = None) -> Evaluation:
+        """Forces at a trial state ``(x, v, a)`` at time ``t``; tangents if ``tangent``.
+
+        ``maxwell``: the Maxwell-branch forces of the viscoelastic elements given (n_el,)
+        instead of integrated from ``previous`` (harmonic balance solves them per harmonic,
+        :mod:`moorline.solvers.harmonic_material`): their tension is then the linear law
+        ``EA eps + Q`` and its tangent ``EA`` (``Q``'s own dependence on the strain history
+        is the caller's)."""
         m = self.mesh
         el = m.elements
         if self._fused is not None:  # compiled element loads, elastic elements only
@@ -143,7 +150,7 @@ class DynamicModel:
                               previous.maxwell), el_forces, **out)
         length, unit = element.element_geometry(x, el)
         dv = v[el[:, 1]] - v[el[:, 0]]
-        T, dT_dl, state, share = self._axial_tension(length, unit, dv, previous, dt)
+        T, dT_dl, state, share = self._axial_tension(length, unit, dv, previous, dt, maxwell)
         el_forces = element.nodal_forces(T, unit)
         forces = el_forces.copy()
         out = {}
@@ -179,14 +186,19 @@ class DynamicModel:
         return (nodal + hydro.sum_to_nodes(shear, m.elements, m.n_nodes), el_forces + shear,
                 out)
 
-    def _axial_tension(self, length, unit, dv, previous, dt):
+    def _axial_tension(self, length, unit, dv, previous, dt, given=None):
         m = self.mesh
         strain = length / m.length0 - 1.0
         T, dT_deps = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
                                            m.slack_smoothing, **m.axial_law)
         dT_deps = dT_deps * m.length0
         maxwell = previous.maxwell
-        if self.any_viscoelastic:
+        if self.any_viscoelastic and given is not None:
+            ve = m.viscoelastic
+            T, dT_deps, maxwell = T.copy(), dT_deps.copy(), np.asarray(given, dtype=float)
+            T[ve] = m.EA[ve] * strain[ve] + maxwell[ve]
+            dT_deps[ve] = m.EA[ve]
+        elif self.any_viscoelastic:
             ve = m.viscoelastic
             T, dT_deps, maxwell = T.copy(), dT_deps.copy(), previous.maxwell.copy()
             T[ve], maxwell[ve], dT_deps[ve] = self._viscoelastic(

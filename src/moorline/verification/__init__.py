@@ -29,6 +29,7 @@ register("tcheou-t2", "tcheou_t2:run")
 register("bending", "bending:run")
 register("bem-rao", "bem_rao:run")  # capytaine ([bem] extra)
 register("cummins", "cummins:run")  # the spar rows need the [bem] extra
+register("harmonic-body", "harmonic_body:run")
 register("moorpy-statics", "moorpy_statics:run")  # other codes ([compare] extra)
 register("moordyn-dynamics", "moordyn_dynamics:run")  # other codes ([compare] extra)
 register("moordyn-body", "moordyn_body:run")  # other codes ([compare] extra)
