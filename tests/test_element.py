@@ -52,7 +52,7 @@ def test_tension_is_linear_in_stretch_and_tiny_in_compression():
     assert T[1] == pytest.approx(-100.0 * 1e-6 * 0.1, rel=1e-12)
 
 
-@pytest.mark.parametrize("depth_in", [0.0005, 0.002, 0.05])  # in the blend band and beyond
+@pytest.mark.parametrize("depth_in", [-0.0002, 0.0002, 0.002, 0.05])  # in the band, beyond
 def test_seabed_contact_derivatives_and_energy_match_finite_differences(depth_in):
     height, vz = np.array([-depth_in]), np.array([-0.3])
     k, c, ramp = np.array([5.0e4]), np.array([2.0e3]), np.array([0.001])
@@ -70,11 +70,12 @@ def test_seabed_contact_derivatives_and_energy_match_finite_differences(depth_in
     dE = (seabed.contact_energy(height - h, k, ramp)
           - seabed.contact_energy(height + h, k, ramp)) / (2 * h)
     assert spring == pytest.approx(dE, rel=1e-5)
-    # beyond the band: MoorDyn's spring k p; inside it below k p
-    if depth_in > ramp[0]:
+    # beyond the band (ramp / 2 deep): MoorDyn's spring k p; inside it above k p (the band
+    # starts ramp / 2 above the surface)
+    if depth_in > ramp[0] / 2:
         assert spring == pytest.approx(k[0] * depth_in, rel=1e-12)
     else:
-        assert 0.0 < spring < k[0] * depth_in
+        assert spring > k[0] * depth_in
 
 
 def test_seabed_force_is_continuous_at_touchdown():

@@ -1,21 +1,24 @@
-"""Flat seabed contact: a penalty spring and damper on nodes below ``z = -depth``.
+"""Flat seabed contact: a penalty spring and damper on nodes at the seabed ``z = -depth``.
 
 MoorDyn's model (kBot, cBot per unit contact area) switches both on at first contact, so the
 force has a kink (spring) and a jump (damper) as a node lands. An implicit Newton iteration
-cycles across such switches instead of converging. Here both blend in over the first
-``ramp`` of penetration ``p`` (a few millimetres: at least the static penetration of a lying
-line, :func:`contact_ramp`):
+cycles across such switches instead of converging. Here both blend in over a band ``ramp``
+(a few millimetres: at least the static penetration of a lying line, :func:`contact_ramp`)
+centred on the seabed surface: with the penetration ``p`` and ``q = p + ramp / 2``,
 
-    spring  k p^2 (2 ramp - p) / ramp^2   for p < ramp,   k p   beyond,
-    damper  -c v_z min(p / ramp, 1).
+    spring  k q^2 / (2 ramp)   for -ramp/2 < p < ramp/2,   k p   beyond,
+    damper  -c v_z min(q / ramp, 1).
 
-The spring is C1 (value ``k ramp`` and slope ``k`` at ``p = ramp``, zero slope at first
-contact) and never above MoorDyn's ``k p``; the damper is continuous. Beyond ``ramp`` both are
-MoorDyn's, so a lying line rests at MoorDyn's penetration ``w / k`` on a soft seabed (an
-earlier blend, ``k p^2 / (2 ramp)`` then ``k (p - ramp / 2)``, put it ``ramp / 2`` deeper:
-0.35 % in the statics of a deck with kBot = 1e5 Pa/m). Unlike MoorDyn, the total never pulls:
-a node lifting off faster than the spring pushes feels no seabed force (MoorDyn's damper
-sucks it down; that suction also leaves implicit steps without a solution near the seabed).
+The spring is C1 with a stiffness rising monotonically from 0 to ``k`` (a C1 blend that is
+``k p`` beyond the band and starts at ``p = 0`` would need a stiffness above ``k`` inside it,
+which harmonic balance and Newton do not like), the damper continuous. Beyond ``ramp / 2``
+both are MoorDyn's, so a line lying on a soft seabed rests at MoorDyn's penetration
+``w / k`` (an earlier blend over ``0 < p < ramp``, ``k p^2 / (2 ramp)`` then ``k (p - ramp /
+2)``, put it ``ramp / 2`` deeper: 0.35 % in the statics of a deck with kBot = 1e5 Pa/m); on
+a stiff seabed a lying node carries its weight within the band, at most ``ramp / 2`` above
+the surface. Unlike MoorDyn, the total never pulls: a node lifting off faster than the
+spring pushes feels no seabed force (MoorDyn's damper sucks it down; that suction also
+leaves implicit steps without a solution near the seabed).
 """
 
 from __future__ import annotations
@@ -51,14 +54,15 @@ def contact_force(
         Upward force and its derivatives with respect to ``z`` and ``v_z`` (n_nodes,).
     """
     p = -height
-    touching = p > 0
-    share = np.clip(p / ramp, 0.0, 1.0)
-    full = p >= ramp
-    spring = np.where(full, k * p, k * p * share * (2.0 - share))
+    q = p + 0.5 * ramp
+    touching = q > 0
+    share = np.clip(q / ramp, 0.0, 1.0)
+    full = q >= ramp
+    spring = np.where(full, k * p, 0.5 * k * q * share)
     total = spring - c * share * vz
     pushing = touching & (total > 0)  # the seabed pushes, it never pulls a lifting node down
     force = np.where(pushing, total, 0.0)
-    d_spring = np.where(full, k, k * share * (4.0 - 3.0 * share))  # d(spring)/dp
+    d_spring = np.where(full, k, k * share)  # d(spring)/dp
     d_damp = np.where(~full, c * vz / ramp, 0.0)  # d(c share vz)/dp
     d_dz = np.where(pushing, -d_spring + d_damp, 0.0)
     d_dv = np.where(pushing, -c * share, 0.0)
@@ -67,31 +71,24 @@ def contact_force(
 
 def contact_energy(height: FloatArray, k: FloatArray, ramp: FloatArray) -> float:
     """Energy stored in the seabed springs (the potential of :func:`contact_force` with
-    ``c = 0``): ``k (2 ramp p^3 / 3 - p^4 / 4) / ramp^2`` below ``ramp``,
-    ``k (p^2 / 2 - ramp^2 / 12)`` beyond."""
-    p = np.maximum(-height, 0.0)
-    full = p >= ramp
+    ``c = 0``): ``k q^3 / (6 ramp)`` within the band, ``k (p^2 / 2 + ramp^2 / 24)`` beyond."""
+    p = -height
+    q = np.maximum(p + 0.5 * ramp, 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        partial = k * p**3 * (2.0 * ramp / 3.0 - p / 4.0) / ramp**2
-    energy = np.where(full, k * (0.5 * p**2 - ramp**2 / 12.0), partial)
-    return float(np.sum(np.where(p > 0, energy, 0.0)))
+        partial = k * q**3 / (6.0 * ramp)
+    energy = np.where(q >= ramp, k * (0.5 * p**2 + ramp**2 / 24.0), partial)
+    return float(np.sum(np.where(q > 0, energy, 0.0)))
 
 
 def resting_penetration(load: FloatArray, k: FloatArray, ramp: FloatArray) -> FloatArray:
     """Penetration at which the spring of :func:`contact_force` carries ``load``: ``load / k``
-    from ``k ramp`` on, below it the root in ``(0, ramp)`` of ``k p^2 (2 ramp - p) / ramp^2 =
-    load`` (increasing there; bisection to machine precision); 0 where ``k`` or the load is
-    not positive."""
+    from ``k ramp / 2`` on, below it ``sqrt(2 ramp load / k) - ramp / 2`` (negative: the
+    node rests within the band above the surface); 0 where ``k`` or the load is not
+    positive."""
     load = np.maximum(np.asarray(load, dtype=float), 0.0)
-    k, ramp = np.broadcast_to(k, load.shape), np.broadcast_to(ramp, load.shape)
     with np.errstate(divide="ignore", invalid="ignore"):
-        q = np.where(k * ramp > 0, load / (k * ramp), 0.0)  # u^2 (2 - u) = q, u = p / ramp
-        lo, hi = np.zeros_like(q), np.ones_like(q)
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            below = mid * mid * (2.0 - mid) < q
-            lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
-        p = np.where(q >= 1.0, load / k, 0.5 * (lo + hi) * ramp)
+        p = np.where(load >= 0.5 * k * ramp, load / k,
+                     np.sqrt(2.0 * ramp * load / k) - 0.5 * ramp)
     return np.where((k > 0) & (load > 0), p, 0.0)
 
 

@@ -49,17 +49,23 @@ class BodyModel:
 
     ``start``: the bodies' state at the start of the run (the static poses); the wave phases
     of exciting-force tables refer to its positions (default: the case's body positions).
+    ``radiation_memory``: a body's radiation table as the Cummins equation (its
+    infinite-frequency added mass and the memory force); ``False`` leaves both out, for a
+    frequency-domain caller that applies ``A(w)`` and ``B(w)`` itself (harmonic balance).
     """
 
-    def __init__(self, mesh: Mesh, fluid, start: BodyState | None = None) -> None:
+    def __init__(self, mesh: Mesh, fluid, start: BodyState | None = None,
+                 radiation_memory: bool = True) -> None:
         self.mesh = mesh
         self.fluid = fluid
         self.bodies = list(mesh.bodies)
         self.layout = BodyDofs.of(mesh, self.bodies)
         self.body_dof = self.layout.body_dof
-        self.memory = [memory_model(b) for b in self.bodies]
+        self.memory = [memory_model(b) if radiation_memory else None for b in self.bodies]
         self.added = [_matrix(b.added_mass) if mem is None else mem.added_mass_infinite
                       for b, mem in zip(self.bodies, self.memory, strict=True)]
+        # without the memory, a tabulated body has no constant added mass (its caller adds
+        # A(w)); Body refuses a table next to constant coefficients, so _matrix gives zeros
         self.damping = [_matrix(b.damping) for b in self.bodies]
         self.origin0 = [np.asarray(b.position, dtype=float) for b in self.bodies]
         self._exciting: dict[int, tuple | None] = {}

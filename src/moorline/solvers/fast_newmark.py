@@ -102,16 +102,17 @@ def _seabed(x, v, seabed_z, k, c, ramp, mu, v_slip, force, kzz, czz, fric_c, fri
             for s in range(2):
                 fric_c[n, r, s] = 0.0
         p = seabed_z - x[n, 2]
-        if p <= 0.0:
+        q = p + 0.5 * ramp[n]
+        if q <= 0.0:
             continue
-        share = min(p / ramp[n], 1.0)
-        full = p >= ramp[n]
-        spring = k[n] * p if full else k[n] * p * share * (2.0 - share)
+        share = min(q / ramp[n], 1.0)
+        full = q >= ramp[n]
+        spring = k[n] * p if full else 0.5 * k[n] * q * share
         total = spring - c[n] * share * v[n, 2]
         if total <= 0.0:
             continue
         force[n, 2] += total
-        d_spring = k[n] if full else k[n] * share * (4.0 - 3.0 * share)
+        d_spring = k[n] if full else k[n] * share
         d_damp = 0.0 if full else c[n] * v[n, 2] / ramp[n]
         kzz[n] = d_spring - d_damp  # -d(total)/dz
         czz[n] = c[n] * share       # -d(total)/dvz

@@ -174,7 +174,7 @@ class BodyTerms:
         self.mesh, self.basis, self.node_mass = mesh, basis, node_mass
         self.n_t, self.n_terms = basis[0].shape
         self.static = BodyState.from_pose(pose)
-        self.model = BodyModel(mesh, fluid, self.static)
+        self.model = BodyModel(mesh, fluid, self.static, radiation_memory=False)
         self.n_u = self.model.layout.n_unknowns
         n = (self.n_terms - 1) // 2
         self.radiation = {b: radiation_matrices(body.radiation, omega, n)

@@ -16,9 +16,10 @@ vanishing wave amplitude:
   Morison fluid inertia ``rho A L0 / 2 [(1 + Ca)(I - t t^T) + (1 + Cat) t t^T] a_f`` with the
   Airy acceleration at the element midpoint (Tuah eq. 3.2.a.2, 3.2.a.10). The quadratic drag
   ``|u| u`` has a zero derivative at rest: it drops out of the small-amplitude limit.
-* **Seabed**: a penalty spring and damper per node, blended in over a ``ramp`` of penetration
-  (``k p^2 (2 ramp - p) / ramp^2`` below ``ramp``, ``k p`` beyond, damping ``c min(p / ramp,
-  1)``; ``k``, ``c`` per unit contact area times ``D`` times the node's tributary length;
+* **Seabed**: a penalty spring and damper per node, blended in over a band ``ramp`` centred
+  on the surface (``k q^2 / (2 ramp)``, ``q = p + ramp / 2``, for ``|p| < ramp / 2``; ``k p``
+  beyond; damping ``c min(q / ramp, 1)``; ``k``, ``c`` per unit contact area times ``D``
+  times the node's tributary length;
   ``ramp = max(w L_trib / k, D / 4)``): the documented law of the case's seabed.
 * **Coupling**: the fairlead node rides on the body, ``x_f = r + R a`` (Tuah eq. 3.3.6-3.3.7).
 
@@ -159,11 +160,11 @@ def _seabed(leg: Leg, sea: Sea, z: FloatArray, vz: FloatArray | None = None) -> 
     k = leg.seabed_stiffness * leg.diameter * L0
     ramp = max(leg.weight_per_length * L0 / k, 0.25 * leg.diameter)
     p = -(z + sea.depth)
-    pc = np.clip(p, 0, None)
-    spring = np.where(p >= ramp, k * p, k * pc**2 * (2 * ramp - pc) / ramp**2)
+    q = np.clip(p + 0.5 * ramp, 0, None)
+    spring = np.where(q >= ramp, k * p, k * q**2 / (2 * ramp))
     if vz is not None:
-        spring = spring - leg.seabed_damping * leg.diameter * L0 * np.clip(p / ramp, 0, 1) * vz
-    return np.where(p > 0, spring, 0.0)
+        spring = spring - leg.seabed_damping * leg.diameter * L0 * np.clip(q / ramp, 0, 1) * vz
+    return np.where(q > 0, spring, 0.0)
 
 
 def _leg_forces(leg: Leg, sea: Sea, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -312,7 +313,7 @@ def _matrices(s: LinearSystem, R0: FloatArray, inner0: list[FloatArray], mass: s
             p = -(x[1:-1, 2] + s.sea.depth)
             kk = leg.seabed_stiffness * leg.diameter * L0
             ramp = max(leg.weight_per_length * L0 / kk, 0.25 * leg.diameter)
-            share = np.where(p > 0, np.clip(p / ramp, 0, 1), 0.0)
+            share = np.clip((p + 0.5 * ramp) / ramp, 0, 1)
             for i, sh in enumerate(share, start=1):
                 P = maps[i][2]
                 C += leg.seabed_damping * leg.diameter * L0 * sh * np.outer(P, P)
