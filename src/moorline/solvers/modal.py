@@ -360,11 +360,13 @@ def body_modal_matrices(system: System, mesh: Mesh, positions: FloatArray,
 
 
 def system_matrices(mesh: Mesh, positions: FloatArray, body_pose: FloatArray,
-                    settings: ModalSettings, problem=None, taut_axial: bool = False):
+                    settings: ModalSettings, problem=None, taut_axial: bool = False,
+                    tabulated_added_mass: bool = True):
     """Stiffness ``K``, mass ``M`` over the unknowns (free node dofs, then six per free body;
     none without bodies), the master-slave map ``P`` and the coupled statics ``problem``
     (see :func:`body_modal_matrices` for the arguments): the one place modal, strumming and
-    stochastic analyses get their matrices."""
+    stochastic analyses get their matrices. ``tabulated_added_mass=False`` leaves out the
+    added mass of bodies with a radiation table (a frequency-domain caller adds ``A(w)``)."""
     from .bodies import BodyState, body_mass_matrix, rotation_matrix, transformation, world_arms
     from .coupled_statics import CoupledStatics
 
@@ -380,7 +382,8 @@ def system_matrices(mesh: Mesh, positions: FloatArray, body_pose: FloatArray,
     for b, body in enumerate(problem.bodies):
         d = problem.body_dof[b]
         if d >= 0:
-            added = _body_added_mass(body)
+            added = (_body_added_mass(body) if tabulated_added_mass
+                     or getattr(body, "radiation", None) is None else np.zeros((6, 6)))
             if not settings.added_mass:
                 added = 0.0 * added
             M[d:d + 6, d:d + 6] = (M[d:d + 6, d:d + 6].toarray()

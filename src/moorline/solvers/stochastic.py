@@ -182,7 +182,8 @@ class _LinearModel:
         mesh = dynamic_mesh(with_loads_of(statics.mesh, system), statics.positions)
         self.mesh, self.rho = mesh, float(mesh.water_density)
         modal = ModalSettings(mass=settings.mass, added_mass=settings.added_mass)
-        K, M, P, problem = system_matrices(mesh, statics.positions, statics.body_pose, modal)
+        K, M, P, problem = system_matrices(mesh, statics.positions, statics.body_pose, modal,
+                                           tabulated_added_mass=False)  # A(w) added below
         self.P, self.n_free = P, problem.n_free
         self.pattern, self.ext_map = problem.pattern, problem.ext_map
         self.bodies = [b for b, d in zip(problem.bodies, problem.body_dof, strict=True)
