@@ -269,3 +269,33 @@ def test_random_sea_response_variance_is_the_sum_over_the_components():
     window = (t >= 40.0 - 1e-9) & (t < 100.0 - 1e-9)
     assert np.std(z[window]) == pytest.approx(expected, rel=0.02)
     assert len(sea.omegas) > 20
+
+
+def test_additional_damping_adds_to_the_radiation_damping():
+    """``additional_damping`` (viscous damping outside the potential-flow table, OC3's
+    additional linear damping): a body with the flat table of B0 / 2 and an additional B0 / 2
+    decays as the body with the table of B0 (the memory and the constant damping add up),
+    and without a table additional damping is the same as constant damping."""
+    B0, A0, push = 2.0e4, 5.0e3, 2.0e4
+    w = np.geomspace(0.01, 1000.0, 150)
+
+    def table(b):
+        B = np.full(len(w), b)
+        return heave_table(w, A0 + rad.added_mass_offset(w, B, w), B, A_inf=A0)
+
+    extra = nested(np.diag([0, 0, 0.5 * B0, 0, 0, 0])[None])[0]
+    k = K_HYDRO + 4 * EA / LENGTH
+    period = 2 * np.pi / np.sqrt(k / (MASS + A0))
+    half = moored_body(table(0.5 * B0), push=push)
+    half = replace(half, bodies={"b": replace(half.bodies["b"], additional_damping=extra)})
+    _, z1 = _heave(half, 3 * period, period / 100)
+    _, z2 = _heave(moored_body(table(B0), push=push), 3 * period, period / 100)
+    offset = z2[0] - z2[-1]
+    assert np.abs(z1 - z2).max() < 3e-3 * abs(offset)
+    plain = moored_body(added=A0, push=push)
+    plain = replace(plain, bodies={"b": replace(plain.bodies["b"],
+                                                additional_damping=nested(np.diag(
+                                                    [0, 0, B0, 0, 0, 0])[None])[0])})
+    _, z3 = _heave(plain, 3 * period, period / 100)
+    _, z4 = _heave(moored_body(added=A0, damping=B0, push=push), 3 * period, period / 100)
+    assert np.allclose(z3, z4, rtol=0, atol=1e-12 * abs(offset))

@@ -143,7 +143,7 @@ def _body(b: Body) -> dict[str, Any]:
         data["products_of_inertia"] = products
     if any(b.drag_area):
         data.update(drag_area=list(b.drag_area), Cd=b.Cd)
-    for key in ("added_mass", "damping"):
+    for key in ("added_mass", "damping", "additional_damping"):
         if getattr(b, key) is not None:
             data[key] = [list(r) for r in getattr(b, key)]
     if b.force_history is not None:

@@ -451,6 +451,7 @@ class BodySpec(_Spec):
                                    AfterValidator(_three)] = (0.0,) * 3
     added_mass: Matrix6 | None = None
     damping: Matrix6 | None = None
+    additional_damping: Matrix6 | None = None
     hydrostatics: HydrostaticsSpec = Field(default_factory=HydrostaticsSpec)
     force: Force3 = (0.0, 0.0, 0.0)
     moment: Annotated[list[quantity("force*length")], AfterValidator(_three)] = (0.0,) * 3

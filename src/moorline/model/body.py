@@ -128,6 +128,10 @@ class Body:
     radiation
         Frequency-dependent added mass and damping (:class:`RadiationTable`); when given,
         ``added_mass`` and ``damping`` must be ``None`` (the table replaces them).
+    additional_damping
+        Constant 6x6 linear damping added to the radiation damping (viscous damping not in a
+        potential-flow table, e.g. OC3-Hywind's additional linear damping, Jonkman 2010
+        table 5-1), about the body origin, world axes; allowed with or without ``radiation``.
     wave_loads
         Long-wave (small-body) excitation from the fluid field at the body origin: the
         Froude-Krylov and added-mass force ``(rho V + A) a_fluid`` and the waterplane heave
@@ -153,6 +157,7 @@ class Body:
     wave_loads: bool = False
     excitation: WaveExcitation | None = None
     radiation: RadiationTable | None = None
+    additional_damping: Matrix6 | None = None
 
     def __post_init__(self) -> None:
         if self.radiation is not None and (self.added_mass is not None

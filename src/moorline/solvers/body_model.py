@@ -66,7 +66,8 @@ class BodyModel:
                       for b, mem in zip(self.bodies, self.memory, strict=True)]
         # without the memory, a tabulated body has no constant added mass (its caller adds
         # A(w)); Body refuses a table next to constant coefficients, so _matrix gives zeros
-        self.damping = [_matrix(b.damping) for b in self.bodies]
+        self.damping = [_matrix(b.damping) + _matrix(getattr(b, "additional_damping", None))
+                        for b in self.bodies]
         self.origin0 = [np.asarray(b.position, dtype=float) for b in self.bodies]
         self._exciting: dict[int, tuple | None] = {}
         if start is not None:

@@ -226,7 +226,7 @@ class _LinearModel:
         C = self.pattern.assemble(element_blocks, node_blocks)
         C = (self.P.T @ C @ self.P).tolil()
         for i, (body, d) in enumerate(zip(self.bodies, self.body_dof, strict=True)):
-            block = _matrix6(body.damping)
+            block = _matrix6(body.damping) + _matrix6(body.additional_damping)
             block[:3, :3] += np.diag(gain_b[i])
             C[d:d + 6, d:d + 6] = C[d:d + 6, d:d + 6].toarray() + block
         return C.tocsr()
