@@ -241,11 +241,11 @@ def test_coupled_body_stiffness_against_moorpy(tmp_path):
     """MoorPy case 7b (one catenary line on a coupled body, its fairlead off the body's axes):
     `moorline stiffness` of the converted deck against MoorPy 1.3's 6x6 of the same file
     (``Body.getStiffnessA``, analytic, lines only). MoorPy's line is the closed-form elastic
-    catenary, moorline's 80 elements: their largest difference (on K55) is the
-    discretization's, 1.0 %, 0.13 %, 0.035 % and 0.026 % of the largest term at 40, 80, 160
-    and 320 elements (it jitters with where the touchdown falls in an element, as the OC3
-    line's anchor force does); the tolerance is 2e-3 of it (the 0.2 % of moorpy-statics'
-    stiffness rows)."""
+    catenary on a rigid seabed, moorline's 80 elements on a penalty seabed: their largest
+    difference (on K55) is 0.30 %, 0.08 %, 0.14 % and 0.13 % of the largest term at 80, 160,
+    320 and 640 elements: the discretization (it jitters with where the touchdown falls in an
+    element) down to the seabed contact's blend-in band (:mod:`moorline.physics.seabed`;
+    the converged 0.13 %); the tolerance is 5e-3 of it."""
     import json
 
     moorpy = pytest.importorskip("moorpy")
@@ -261,7 +261,7 @@ def test_coupled_body_stiffness_against_moorpy(tmp_path):
     ms.solveEquilibrium()
     theirs = np.asarray(ms.bodyList[0].getStiffnessA(lines_only=True))
     scale = np.abs(theirs).max()
-    assert np.abs(ours - theirs).max() < 2e-3 * scale
+    assert np.abs(ours - theirs).max() < 5e-3 * scale
 
 
 @pytest.mark.parametrize("deck", PUBLIC_DECKS)

@@ -159,7 +159,8 @@ class StaticResult:
 
     def seabed_length(self, line: str) -> float:
         """Unstretched length of the line resting on the seabed: the tributary lengths of its
-        nodes below the seabed plane (resolution: one element)."""
+        nodes, each times the share of its weight the seabed carries (:meth:`seabed_share`:
+        the touchdown node counts in part)."""
         m = self.mesh
         k = m.line_index(line)
         nodes, elements = m.line_nodes[k], m.line_elements[k]
@@ -168,8 +169,14 @@ class StaticResult:
         tributary = np.zeros(len(nodes))
         tributary[:-1] += 0.5 * m.length0[elements]
         tributary[1:] += 0.5 * m.length0[elements]
-        touching = self.positions[nodes, 2] < m.seabed_z
-        return float(tributary[touching].sum())
+        return float(np.dot(tributary, self.seabed_share()[nodes]))
+
+    def seabed_share(self) -> FloatArray:
+        """Share of each node's own weight the seabed carries, (n_nodes,): 1 where the line
+        lies, 0 where it hangs."""
+        from .solvers.equilibrium import StaticModel
+
+        return StaticModel(self.mesh).seabed_share(self.positions)
 
     def to_xarray(self) -> xr.Dataset:
         """The result as an :class:`xarray.Dataset` (dims node, element, xyz, line, end, point).

@@ -199,6 +199,16 @@ class StaticModel:
         return seabed.contact_force(x[:, 2] - self.mesh.seabed_z, zero,
                                     self.node_seabed_stiffness, zero, self.seabed_ramp)
 
+    def seabed_share(self, x: FloatArray) -> FloatArray:
+        """Share of each node's own weight the seabed carries at positions ``x`` (0 to 1:
+        1 lying, between at the touchdown node; :mod:`moorline.physics.seabed`)."""
+        if not np.isfinite(self.mesh.seabed_z):
+            return np.zeros(self.mesh.n_nodes)
+        load = -self.external[:, 2]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            share = np.where(load > 0, self._seabed(x)[0] / load, 0.0)
+        return np.clip(share, 0.0, 1.0)
+
     def resting_penetration(self) -> FloatArray:
         """Per node, the seabed penetration at which the contact carries the node's own load
         (n_nodes,): where a node lying on a flat seabed rests."""

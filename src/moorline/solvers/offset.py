@@ -204,13 +204,13 @@ def _record(out: Sweep, k: int, result: StaticResult, state: OffsetGroupState,
 
 def _touchdown(result: StaticResult, line: int, anchor_end: str) -> float:
     """Horizontal distance from the anchor end of a line to its lying node farthest along
-    the line from it (NaN when no node lies on the seabed)."""
+    the line from it (the seabed carrying at least half its weight; NaN when none)."""
     mesh = result.mesh
     nodes = mesh.line_nodes[line]
     if anchor_end == "b":
         nodes = nodes[::-1]
     x = result.positions[nodes]
-    lying = np.flatnonzero(x[:, 2] < mesh.seabed_z)
+    lying = np.flatnonzero(result.seabed_share()[nodes] >= 0.5)
     if not lying.size:
         return float("nan")
     return float(np.hypot(*(x[lying[-1], :2] - x[0, :2])))
