@@ -75,9 +75,11 @@ def moving_run(tmp_path_factory: pytest.TempPathFactory) -> dict:
                                  "-q"])
     assert result.exit_code == 0, result.output
     results = tmp / "out" / "oc3_outputs" / "results.nc"
-    result = runner.invoke(cli, ["export", str(results), "--moordyn", "--out",
-                                 str(tmp / "md"), "-q"])
+    result = runner.invoke(cli, ["export", str(results), "--moordyn", "--line-outputs", "pts",
+                                 "--out", str(tmp / "md"), "-q"])
     assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in (tmp / "md").iterdir()) == [
+        "oc3_outputs.out", *(f"oc3_outputs_Line{k}.out" for k in (1, 2, 3))]
     return {"case": case, "results": results, "out": tmp / "md" / "oc3_outputs.out"}
 
 
@@ -107,6 +109,25 @@ def test_out_file_parses_back_with_the_results_values(moving_run) -> None:
     assert rows[:, 1].max() - rows[:, 1].min() > 1e3
 
 
+def test_line_file_holds_nodes_and_segments(moving_run) -> None:
+    """oc3_outputs_Line1.out for the flags ``pts``: node positions from end A (the anchor
+    first), segment tensions, strains; the strain at t = 0 (at rest: no damping) is
+    T / EA of the elastic chain (EA = 384.243e6 N)."""
+    from moorline.io.writers import read_group
+
+    names, units, rows, _ = parse_out(moving_run["out"].with_name("oc3_outputs_Line1.out"))
+    assert names == ["Time", *(f"Node{i}p{x}" for i in range(21) for x in "xyz"),
+                     *(f"Seg{i}Te" for i in range(1, 21)), *(f"Seg{i}St" for i in range(1, 21))]
+    assert units == ["(s)", *["(m)"] * 63, *["(N)"] * 20, *["(-)"] * 20]
+    ds = read_group(moving_run["results"], "dynamics")
+    position = rows[:, 1:64].reshape(len(rows), 21, 3)
+    np.testing.assert_allclose(position[:, 0], [[853.87, 0.0, -320.0]] * len(rows), atol=1e-4)
+    np.testing.assert_allclose(position[:, -1], ds["position"].values[:, 3], rtol=1e-7)
+    elements = np.flatnonzero(ds["element_line"].values == "line1")
+    np.testing.assert_allclose(rows[:, 64:84], ds["tension"].values[:, elements], rtol=1e-7)
+    np.testing.assert_allclose(rows[0, 84:], rows[0, 64:84] / 384.243e6, rtol=1e-6)
+
+
 def test_default_channels_are_the_end_tensions(moving_run) -> None:
     """Without channels: FairTen<n> then AnchTen<n> of every line (MoorDyn would write only
     Time), in the same layout."""
@@ -127,6 +148,9 @@ def test_export_moordyn_bad_input(moving_run, tmp_path: Path) -> None:
     both = CliRunner().invoke(cli, ["export", str(moving_run["results"]), "--moordyn",
                                     "--text"])
     assert both.exit_code == 2
+    alone = CliRunner().invoke(cli, ["export", str(moving_run["results"]), "--line-outputs",
+                                     "p"])
+    assert alone.exit_code == 2
     statics = tmp_path / "statics.nc"
     with netCDF4.Dataset(moving_run["results"]) as source, \
             netCDF4.Dataset(statics, "w") as target:  # the root and the statics group only
@@ -211,3 +235,35 @@ def test_same_layout_as_moordyns_own_out_file(moving_run, tmp_path: Path) -> Non
     assert {len(line) for line in our_lines} == {len(line) for line in lines}
     for k, name in enumerate(names[1:], start=1):
         assert rows[-1, k] == pytest.approx(our_rows[0, k], rel=5e-4), name
+
+
+@pytest.mark.compare
+def test_same_line_file_layout_as_moordyn(moving_run, tmp_path: Path) -> None:
+    """MoorDyn-C on oc3_outputs.dat itself (line 1 flagged ``pt``; its IC converged with
+    threshIC 1e-5, TmaxIC 500 s) writes oc3_outputs_Line1.out: moorline's file for the same
+    flags has byte-identical name and unit rows and rows of the same width. Values at rest:
+    segment tensions to 5e-4 (the statics difference measured in
+    tests/test_moordyn_io.py::test_channels_match_moordyn_out_file), node positions to 5e-4
+    of the line's length (the same relative difference)."""
+    moordyn = pytest.importorskip("moordyn")
+    import shutil
+
+    from moorline.io.moordyn_out import line_out_text
+    from moorline.io.writers import read_group
+
+    deck = Path(shutil.copy(DATA / "oc3_outputs.dat", tmp_path / "oc3_outputs.dat"))
+    system = load_case(moving_run["case"])
+    x = np.concatenate([system.points[f"fairlead{k}"].position for k in (1, 2, 3)])
+    md = moordyn.Create(str(deck))
+    try:
+        moordyn.Init(md, x, np.zeros(9))
+        moordyn.Step(md, x, np.zeros(9), 0.0, 0.1)
+    finally:
+        moordyn.Close(md)
+    names, _, rows, lines = parse_out(tmp_path / "oc3_outputs_Line1.out")
+    ds = read_group(moving_run["results"], "dynamics")
+    (tmp_path / "ours.out").write_text(line_out_text(ds, 1, "pt"))
+    ours, _, our_rows, our_lines = parse_out(tmp_path / "ours.out")
+    assert our_lines[:2] == lines[:2] and len(our_lines[2]) == len(lines[2])
+    np.testing.assert_allclose(our_rows[0, 64:], rows[-1, 64:], rtol=5e-4)
+    np.testing.assert_allclose(our_rows[0, 1:64], rows[-1, 1:64], rtol=0, atol=5e-4 * 902.2)

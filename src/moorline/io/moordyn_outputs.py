@@ -209,7 +209,7 @@ def parse_channel(name: str) -> Channel | None:
     return None
 
 
-def _line_nodes(ds: Any, k: int) -> tuple[np.ndarray, np.ndarray]:
+def line_indices(ds: Any, k: int) -> tuple[np.ndarray, np.ndarray]:
     """Node indices of the ``k``-th line from end A to end B (``line_nodes``) and its
     element indices in that order (the mesh numbers a line's elements from end A)."""
     nodes = np.asarray(ds["line_nodes"].values)[k]
@@ -241,7 +241,7 @@ def channel_series(channel: Channel, ds: Any) -> np.ndarray:
             return np.asarray(ds[var].values)[:, node, xyz.index(channel.quantity[1])]
         total = np.zeros((ds.sizes["time"], 3))
         for k in range(ds.sizes["line"]):
-            nodes, _ = _line_nodes(ds, k)
+            nodes, _ = line_indices(ds, k)
             for j, end_node in enumerate((nodes[0], nodes[-1])):
                 if int(end_node) == node:
                     total = total + end_force[:, k, j]
@@ -249,7 +249,7 @@ def channel_series(channel: Channel, ds: Any) -> np.ndarray:
             return np.linalg.norm(total, axis=-1)
         return total[:, xyz.index(channel.quantity[1])]
     k = channel.number - 1
-    nodes, elements = _line_nodes(ds, k)
+    nodes, elements = line_indices(ds, k)
     n_seg = len(elements)
     node = {"A": 0, "B": n_seg}.get(channel.node, channel.node)  # type: ignore[arg-type]
     if not 0 <= int(node) <= n_seg:
