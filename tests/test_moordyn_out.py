@@ -267,3 +267,31 @@ def test_same_line_file_layout_as_moordyn(moving_run, tmp_path: Path) -> None:
     assert our_lines[:2] == lines[:2] and len(our_lines[2]) == len(lines[2])
     np.testing.assert_allclose(our_rows[0, 64:], rows[-1, 64:], rtol=5e-4)
     np.testing.assert_allclose(our_rows[0, 1:64], rows[-1, 1:64], rtol=0, atol=5e-4 * 902.2)
+
+
+def test_us_case_writes_its_own_units(tmp_path: Path) -> None:
+    """A US case (cases/tuah_ex7.yaml, ft and lbf) with 0.2 s of dynamics and channels of
+    each kind: the units row holds the results' units (lbf, ft, ft/s), the numbers are in
+    them (FairTen1 equals the results' end force in lbf)."""
+    from moorline.io.writers import read_group
+
+    case = yaml.safe_load((Path(__file__).parents[1] / "cases" / "tuah_ex7.yaml").read_text())
+    case["analyses"].append({"kind": "dynamics", "duration": 0.2, "dt": 0.05})
+    case["output"] = {"every": 0.1, "channels": ["FairTen1", "L1N1PZ", "L2N1VX", "P1FZ"]}
+    path = tmp_path / "us.yaml"
+    path.write_text(yaml.safe_dump(case))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(cli, ["run", str(path), "--out", str(out), "--no-plots", "-q"])
+    assert result.exit_code == 0, result.output
+    (results,) = out.glob("*/results.nc")
+    result = CliRunner().invoke(cli, ["export", str(results), "--moordyn", "--out",
+                                      str(tmp_path / "md"), "-q"])
+    assert result.exit_code == 0, result.output
+    (written,) = (tmp_path / "md").glob("*.out")
+    names, units, rows, _ = parse_out(written)
+    assert names == ["Time", "FairTen1", "L1N1PZ", "L2N1VX", "P1FZ"]
+    assert units == ["(s)", "lbf", "ft", "ft/s", "lbf"]
+    ds = read_group(results, "dynamics")
+    assert ds["end_force"].attrs["units"] == "lbf"
+    fair = np.linalg.norm(ds["end_force"].values[:, 0, 1], axis=-1)
+    np.testing.assert_allclose(rows[:, 1], fair, rtol=1e-7)
