@@ -112,9 +112,12 @@ def time_options(system: System) -> dict[str, float]:
 
 def deck_channels(system: System, warn: Callable[[str], None] | None = None) -> list[str]:
     """The ``OUTPUTS`` rows of ``system``'s channels (one name a row): those moorline can
-    compute on this system. MoorDyn-C v2.7 refuses a deck naming a line, point or node it
-    does not have, so such names are left out, with a warning (as unsupported names:
-    moorline would not read them back)."""
+    compute on this system, each with a warning for the others. MoorDyn-C v2.7 refuses a
+    deck naming a line, point, rod or body it does not have (or a node beyond
+    ``NumSegs``), and the names moorline does not read may be such names (``R1N2T``,
+    ``Body1PX`` of a deck whose rods and bodies became points); moorline-only names
+    (``FairSegTen<n>``) and v1 names (``Con<n>FX``) are kept: MoorDyn skips them with a
+    warning."""
     import logging
 
     warn = warn or logging.getLogger(__name__).warning
