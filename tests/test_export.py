@@ -82,18 +82,14 @@ def test_dynamics_csv_has_moordyn_columns_and_values(box_run, tmp_path):
 
 def test_fairten_is_the_moordyn_channel_of_the_deck_writer(box_run, tmp_path):
     """The same number as the ``OUTPUTS`` channel ``FairTen2`` of a converted deck."""
-    from moorline.io import load_case
     from moorline.io.moordyn_outputs import channel_series, parse_channel
     from moorline.io.writers import read_group
 
     results, case = box_run
-    path = tmp_path / "case.yaml"
-    path.write_text(yaml.safe_dump(case))
-    system = load_case(path)
     ds = read_group(results, "dynamics")
     names, _, rows = _read(_export(results, tmp_path) / "dynamics.csv")
     for name in ("FairTen2", "AnchTen3"):
-        expected = channel_series(parse_channel(name), ds, system)  # type: ignore[arg-type]
+        expected = channel_series(parse_channel(name), ds)  # type: ignore[arg-type]
         np.testing.assert_allclose(rows[:, names.index(name)].astype(float), expected,
                                    rtol=1e-14)
 

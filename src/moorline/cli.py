@@ -888,29 +888,47 @@ def stiffness(case: Path, body: str | None, points: str | None, reference: str |
 @click.argument("results", type=click.Path(dir_okay=False, path_type=Path))
 @click.option("--csv", "as_csv", is_flag=True, help="CSV files (the default).")
 @click.option("--text", "as_text", is_flag=True, help="Fixed-width text tables (.txt).")
+@click.option("--moordyn", "as_moordyn", is_flag=True,
+              help="MoorDyn's main output file <case>.out of each dynamics group (the case's "
+                   "OUTPUTS channels; FairTen/AnchTen of every line without).")
+@click.option("--line-outputs", "line_flags", default="", metavar="FLAGS",
+              help="With --moordyn: MoorDyn's per-line files <case>_Line<n>.out of every line "
+                   "for these LineOutputs flags (p positions, v velocities, t segment "
+                   "tensions, s strains).")
 @click.option("--out", "out", type=click.Path(file_okay=False, path_type=Path), default=None,
               help="Output directory (default: the results file's directory).")
 @_common_options
-def export(results: Path, as_csv: bool, as_text: bool, out: Path | None, quiet: bool,
-           verbose: bool) -> None:
+def export(results: Path, as_csv: bool, as_text: bool, as_moordyn: bool, line_flags: str,
+           out: Path | None, quiet: bool, verbose: bool) -> None:
     """Write the tables of RESULTS (a results.nc): time series and per-line tables.
 
     One file per table (see moorline.io.export): dynamics groups give Time, FairTen<n>,
     AnchTen<n> (MoorDyn's channel names) and Body<m>Surge...; statics a table per line
     (node, arc length, x, y, z, tension) and the end forces; the other groups their
     natural tables (spectra against omega, offset curves per heading). The first line
-    holds the column names, the second their units.
+    holds the column names, the second their units. --moordyn writes instead MoorDyn's
+    main output file of each dynamics group, in MoorDyn-C 2.7's layout
+    (moorline.io.moordyn_out): <case>.out (<group>.out with several), its channels those
+    of the case's output.channels (a deck's OUTPUTS); --line-outputs FLAGS adds MoorDyn's
+    per-line files <case>_Line<n>.out of every line.
     """
     _configure_logging(verbose)
     from .io.export import export_results
+    from .io.moordyn_out import export_moordyn
 
-    if as_csv and as_text:
-        _fail("--csv and --text: choose one", EXIT_BAD_INPUT)
+    if as_csv + as_text + as_moordyn > 1:
+        _fail("--csv, --text and --moordyn: choose one", EXIT_BAD_INPUT)
+    if line_flags and not as_moordyn:
+        _fail("--line-outputs goes with --moordyn", EXIT_BAD_INPUT)
     if not results.is_file():
         _fail(f"{results}: no such file", EXIT_BAD_INPUT)
+    directory = out if out is not None else results.parent
     try:
-        files = export_results(results, out if out is not None else results.parent,
-                               text=as_text)
+        files = export_moordyn(results, directory, line_flags) if as_moordyn else \
+            export_results(results, directory, text=as_text)
     except (KeyError, ValueError) as exc:
         raise CaseError(f"{results}: cannot export: {exc}") from None
+    if as_moordyn and not files:
+        _fail(f"{results}: no dynamics analysis to export as a MoorDyn .out file",
+              EXIT_BAD_INPUT)
     _note(f"wrote {', '.join(str(f) for f in files)}", quiet)

@@ -426,7 +426,8 @@ def _run_analyses(context: RunContext, analyses: list[Any], kinds: list[str]) ->
 
     system = context.system
     start_results(context.results, {"case": system.name, "units": system.units,
-                                    "moorline_version": __version__, "analyses": ""})
+                                    "moorline_version": __version__, "analyses": "",
+                                    "moordyn_channels": " ".join(system.output.channels)})
     label = ""
     try:
         for kind, analysis, label in zip(kinds, analyses, _labels(kinds), strict=True):

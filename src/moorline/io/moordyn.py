@@ -68,7 +68,7 @@ from ..physics.load_strain import StrainTable
 from .files import MAX_CASE_BYTES, file_problem
 from .moordyn_bodies import body_attachment, body_problems, body_section
 from .moordyn_kinematics import water_kinematics
-from .moordyn_outputs import output_channels, time_settings
+from .moordyn_outputs import deck_channels, output_channels, time_options, time_settings
 from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
 from .schema import check_number
 from .strain_table import read_strain_table
@@ -770,6 +770,11 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
     constant point force becomes extra ``Volume`` (MoorDyn points have no force column).
     Bodies that MoorDyn can express (:mod:`moorline.io.moordyn_bodies`) become ``BODIES``
     rows and their points ``Body<k>`` points (read back by :func:`read_moordyn_deck`).
+    The case's ``output.channels`` become the ``OUTPUTS`` section (those moorline can compute,
+    :func:`~moorline.io.moordyn_outputs.deck_channels`); its first dynamics analysis gives
+    ``TMax`` (its duration) and ``dtOut`` (``output.every``, also written without dynamics
+    when it is not the default), as :func:`~moorline.io.moordyn_outputs.time_settings`
+    reads them back. ``dtM`` is the ``dt`` argument, not the analysis's implicit step.
 
     Parameters
     ----------
@@ -814,7 +819,7 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
         logger.warning("MoorDyn deck %s: %s not written", path, omission)
     settings: dict[str, object] = {"dtIC": float(dt_ic), "TmaxIC": float(tmax_ic),
                                    "threshIC": float(thresh_ic), "writeLog": 0,
-                                   "disableOutTime": 1}
+                                   "disableOutTime": 1, **time_options(system)}
     if time_scheme:
         settings["tScheme"] = time_scheme
     settings.update(extra_options or {})
@@ -831,7 +836,8 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
         _rule("LINES"), "ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs",
         "(#)  (name)  (#)  (#)  (m)  (-)  (-)", *_line_rows(system),
         _rule("OPTIONS"), *_option_rows(system, dt, settings),
-        _rule("OUTPUTS"), _rule("need this line"),
+        _rule("OUTPUTS"), *deck_channels(system), *(["END"] if system.output.channels else []),
+        _rule("need this line"),
     ]
     path = Path(path)
     path.write_text("\n".join(text) + "\n", encoding="utf-8")

@@ -96,6 +96,54 @@ def time_settings(raw: Mapping[str, str], outputs: tuple[str, ...], current: boo
     return (statics,), output
 
 
+def time_options(system: System) -> dict[str, float]:
+    """The deck options of ``system``'s time settings, as :func:`time_settings` reads them:
+    ``TMax`` (the first dynamics analysis's duration) and ``dtOut`` (``output.every``, with a
+    dynamics analysis or when it is not the default). moorline's implicit step is not
+    MoorDyn's ``dtM`` (an explicit step, about 100 times smaller) and is not written."""
+    dynamics = system.first("dynamics")
+    options: dict[str, float] = {}
+    if dynamics is not None:
+        options["TMax"] = float(dynamics.duration)
+    if dynamics is not None or system.output.every != OutputSettings().every:
+        options["dtOut"] = float(system.output.every)
+    return options
+
+
+def deck_channels(system: System, warn: Callable[[str], None] | None = None) -> list[str]:
+    """The ``OUTPUTS`` rows of ``system``'s channels (one name a row): those moorline can
+    compute on this system, each with a warning for the others. MoorDyn-C v2.7 refuses a
+    deck naming a line, point, rod or body it does not have (or a node beyond
+    ``NumSegs``), and the names moorline does not read may be such names (``R1N2T``,
+    ``Body1PX`` of a deck whose rods and bodies became points); moorline-only names
+    (``FairSegTen<n>``) and v1 names (``Con<n>FX``) are kept: MoorDyn skips them with a
+    warning."""
+    import logging
+
+    warn = warn or logging.getLogger(__name__).warning
+    kept = []
+    for name in system.output.channels:
+        channel = parse_channel(name)
+        problem = "not supported by moorline" if channel is None else _missing(channel, system)
+        if problem:
+            warn(f"output channel {name!r} not written to the deck: {problem}")
+        else:
+            kept.append(name)
+    return kept
+
+
+def _missing(channel: Channel, system: System) -> str:
+    """Why ``system`` has not the object or node ``channel`` names ('' when it has)."""
+    objects = list(system.points if channel.what == "point" else system.lines)
+    if not 1 <= channel.number <= len(objects):
+        return f"there are {len(objects)} {channel.what}s"
+    if channel.what == "line" and isinstance(channel.node, int):
+        segments = system.lines[objects[channel.number - 1]].segments
+        if channel.node > segments:
+            return f"line {channel.number} has nodes 0..{segments}"
+    return ""
+
+
 def output_channels(section: Any, warn: Callable[[str], None]) -> tuple[str, ...]:
     """The channel names of an ``OUTPUTS`` section (``END`` and commas dropped)."""
     if section is None:
@@ -164,80 +212,104 @@ def parse_channel(name: str) -> Channel | None:
     return None
 
 
-def _line_nodes(ds: Any, system: System, line: str) -> tuple[np.ndarray, np.ndarray]:
-    """Node indices from end A to end B and the line's element indices in that order."""
-    elements = np.flatnonzero(np.asarray(ds["element_line"].values) == line)
-    pairs = np.asarray(ds["element_nodes"].values)[elements]
-    nodes = np.concatenate([[pairs[0, 0]], pairs[:, 1]])
-    points = list(ds["point"].values)
-    node_a = int(ds["point_node"].values[points.index(system.lines[line].end_a)])
-    if int(nodes[0]) != node_a:
-        nodes, elements = nodes[::-1], elements[::-1]
-    return nodes, elements
+def line_indices(ds: Any, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """Node indices of the ``k``-th line from end A to end B (``line_nodes``) and its
+    element indices in that order (the mesh numbers a line's elements from end A)."""
+    nodes = np.asarray(ds["line_nodes"].values)[k]
+    line = str(ds["line"].values[k])
+    return nodes[nodes >= 0], np.flatnonzero(np.asarray(ds["element_line"].values) == line)
 
 
-def channel_series(channel: Channel, ds: Any, system: System) -> np.ndarray:
-    """The channel's time series from a dynamics group ``ds`` of ``system``'s run."""
+def channel_series(channel: Channel, ds: Any) -> np.ndarray:
+    """The channel's time series from a dynamics group ``ds``.
+
+    The group alone numbers the objects as MoorDyn does: the n-th ``point`` and ``line`` of
+    the group are those of the case, in order; ``line_nodes`` runs from end A (its first
+    node is the node of the point at end A) to end B.
+
+    Raises
+    ------
+    IndexError
+        No such line or point, or a node beyond the line's ``NumSegs``.
+    """
     xyz = "XYZ"
+    count = ds.sizes["point" if channel.what == "point" else "line"]
+    if not 1 <= channel.number <= count:
+        raise IndexError(f"{channel.name}: there are {count} {channel.what}s")
+    end_force = np.asarray(ds["end_force"].values)
     if channel.what == "point":
-        name = list(system.points)[channel.number - 1]
+        node = int(ds["point_node"].values[channel.number - 1])
         if channel.quantity[0] in "PV":
-            node = int(ds["point_node"].values[list(ds["point"].values).index(name)])
             var = "position" if channel.quantity[0] == "P" else "velocity"
             return np.asarray(ds[var].values)[:, node, xyz.index(channel.quantity[1])]
         total = np.zeros((ds.sizes["time"], 3))
-        end_force = np.asarray(ds["end_force"].values)
-        for k, ln in enumerate(ds["line"].values):
-            for j, end in enumerate((system.lines[str(ln)].end_a, system.lines[str(ln)].end_b)):
-                if end == name:
+        for k in range(ds.sizes["line"]):
+            nodes, _ = line_indices(ds, k)
+            for j, end_node in enumerate((nodes[0], nodes[-1])):
+                if int(end_node) == node:
                     total = total + end_force[:, k, j]
         if channel.quantity == "T":
             return np.linalg.norm(total, axis=-1)
         return total[:, xyz.index(channel.quantity[1])]
-    line = list(system.lines)[channel.number - 1]
-    nodes, elements = _line_nodes(ds, system, line)
+    k = channel.number - 1
+    nodes, elements = line_indices(ds, k)
     n_seg = len(elements)
     node = {"A": 0, "B": n_seg}.get(channel.node, channel.node)  # type: ignore[arg-type]
     if not 0 <= int(node) <= n_seg:
-        raise IndexError(f"line {channel.number} has nodes 0..{n_seg}")
+        raise IndexError(f"{channel.name}: line {channel.number} has nodes 0..{n_seg}")
     tension = np.asarray(ds["tension"].values)[:, elements]
-    k = list(ds["line"].values).index(line)
     if channel.quantity == "SEGTEN":
         return tension[:, 0 if node == 0 else -1]
     end = 0 if node == 0 else 1 if node == n_seg else None
     if channel.quantity == "T":
         if end is not None:
-            return np.linalg.norm(np.asarray(ds["end_force"].values)[:, k, end], axis=-1)
+            return np.linalg.norm(end_force[:, k, end], axis=-1)
         return 0.5 * (tension[:, node - 1] + tension[:, node])
     if channel.quantity[0] == "F":
         if end is None:
             return np.full(ds.sizes["time"], np.nan)
-        return np.asarray(ds["end_force"].values)[:, k, end, xyz.index(channel.quantity[1])]
+        return end_force[:, k, end, xyz.index(channel.quantity[1])]
     var = "position" if channel.quantity[0] == "P" else "velocity"
     return np.asarray(ds[var].values)[:, int(nodes[node]), xyz.index(channel.quantity[1])]
+
+
+def channel_unit(channel: Channel, ds: Any) -> str:
+    """The unit of a channel in the group's unit system (``N``, ``m``, ``m/s``; ``lbf``,
+    ``ft``, ``ft/s`` for US cases): that of ``end_force``, ``position`` or ``velocity``."""
+    kind = channel.quantity[0]
+    var = "position" if kind == "P" else "velocity" if kind == "V" else "end_force"
+    return str(ds[var].attrs.get("units", ""))
+
+
+def channel_columns(names: tuple[str, ...] | list[str], ds: Any
+                    ) -> dict[str, tuple[np.ndarray, str]]:
+    """``{name: (series, unit)}`` of the channels moorline can write from a dynamics group,
+    in order; the others (not supported, or no such line, point or node) are left out with
+    a warning, as MoorDyn leaves out the names it cannot read."""
+    import logging
+
+    log = logging.getLogger(__name__)
+    columns: dict[str, tuple[np.ndarray, str]] = {}
+    for name in names:
+        channel = parse_channel(name)
+        try:
+            if channel is None:
+                raise IndexError(f"{name}: not supported")
+            columns[name] = (channel_series(channel, ds), channel_unit(channel, ds))
+        except IndexError as exc:
+            log.warning("output channel %r not written (%s)", name, exc)
+    return columns
 
 
 def write_channels(ds: Any, system: System, path: Path) -> Path | None:
     """Write ``system.output.channels`` from a dynamics group as a CSV file (``Time`` then
     one column per channel, MoorDyn's names; unsupported or out-of-range channels skipped
-    with a warning). None when the case lists no channels."""
-    import logging
-
-    log = logging.getLogger(__name__)
-    names = system.output.channels
-    if not names:
+    with a warning, :func:`channel_columns`). None when the case lists no channels."""
+    if not system.output.channels:
         return None
     columns = {"Time": np.asarray(ds["time"].values, dtype=float)}
-    for name in names:
-        channel = parse_channel(name)
-        count = len(system.points if channel and channel.what == "point" else system.lines)
-        try:
-            if channel is None or not 1 <= channel.number <= count:
-                raise IndexError(name)
-            columns[name] = channel_series(channel, ds, system)
-        except IndexError:
-            log.warning("output channel %r not written (not supported or no such object)",
-                        name)
+    columns.update({name: series for name, (series, _) in
+                    channel_columns(system.output.channels, ds).items()})
     with path.open("w", newline="", encoding="utf-8") as handle:
         writer = csv.writer(handle)
         writer.writerow(list(columns))
