@@ -7,7 +7,10 @@ slow path computing the same thing, and their ratio (the speed-up). The former t
 are printed for comparison ("target"), not enforced:
 
 * fused element loads (numba) vs the numpy path on 60 elements: element loads >= 10x, the
-  whole ``DynamicModel.evaluate`` >= 5x (was tests/test_fused.py);
+  whole ``DynamicModel.evaluate`` >= 5x (was tests/test_fused.py); the same with a
+  tension-strain table on every line (PCHIP law evaluated in the kernel), and a time-domain run
+  of ``cases/polyester_taut.yaml`` in still water (table statics, fibre-rope dynamic stiffness)
+  by the compiled step against the general stepper on the numpy kernel (no target);
 * hydrodynamic kernels on 1e5 elements (was tests/test_hydro.py: each < 0.1 s), against a
   Python loop over single-element calls (timed on a sample, scaled);
 * standard-linear-solid updates on 1e5 elements (was tests/test_material.py: < 10 ms),
@@ -58,11 +61,17 @@ def report(name: str, fast: float, slow: float, target: str) -> None:
           f"   {target}")
 
 
-def _four_lines(n: int) -> System:
+def _four_lines(n: int, table: bool = False) -> System:
     """Four taut-ish ropes from seabed anchors to prescribed fairleads, all hydrodynamic
-    coefficients and the internal damping nonzero (the kernels' full path)."""
+    coefficients and the internal damping nonzero (the kernels' full path); ``table``: their
+    law a stiffening tension-strain table (tangent 2e6 at the origin) instead of ``EA``."""
+    law = {}
+    if table:
+        eps = np.linspace(0.0, 0.05, 11)
+        law = {"EA_table": tuple(zip(eps.tolist(), (2.0e6 * eps * (1 + 20 * eps)).tolist(),
+                                     strict=True))}
     lt = LineType("rope", diameter=0.05, mass_per_length=8.0, EA=2.0e6, Cd=1.2, Ct=0.4,
-                  Ca=1.0, Cat=0.3, BA=2.0e4)
+                  Ca=1.0, Cat=0.3, BA=2.0e4, **law)
     pts, lines = {}, {}
     for k, ang in enumerate(np.deg2rad([0.0, 90.0, 180.0, 270.0])):
         c, s = math.cos(ang), math.sin(ang)
@@ -73,8 +82,9 @@ def _four_lines(n: int) -> System:
                   points=pts, lines=lines)
 
 
-def bench_fused(repeat: int) -> None:
-    mesh = discretize(_four_lines(15))
+def bench_fused(repeat: int, table: bool = False) -> None:
+    mesh = discretize(_four_lines(15, table))
+    assert table == (mesh.strain_laws is not None)
     fluid = CurrentProfile.uniform(0.5, 30.0)
     ref = DynamicModel(mesh, fluid, kernel="numpy")
     new = DynamicModel(mesh, fluid, kernel="numba")
@@ -101,13 +111,49 @@ def bench_fused(repeat: int) -> None:
         hydro.sum_to_nodes(out.pop("f_am"), el, mesh.n_nodes)
         hydro.sum_to_nodes(forces, el, mesh.n_nodes)
 
-    print(f"fused element kernel, {mesh.n_elements} elements, tangent on:")
+    law = "tension-strain table" if table else "constant EA"
+    print(f"fused element kernel, {mesh.n_elements} elements ({law}), tangent on:")
+    targets = ("(no target)",) * 2 if table else ("target >= 10x", "target >= 5x")
     report("element loads (numba vs numpy)",
            best_of(lambda: new._fused(x, v, a, uf, af, True), 1000, repeat),
-           best_of(numpy_element_loads, 100, repeat), "target >= 10x")
+           best_of(numpy_element_loads, 100, repeat), targets[0])
     report("DynamicModel.evaluate",
            best_of(lambda: new.evaluate(*args), 1000, repeat),
-           best_of(lambda: ref.evaluate(*args), 100, repeat), "target >= 5x")
+           best_of(lambda: ref.evaluate(*args), 100, repeat), targets[1])
+
+
+def bench_polyester_run(quick: bool) -> None:
+    """cases/polyester_taut.yaml without its waves (the compiled step takes still water), a
+    few seconds of its dynamics: the compiled step against the general stepper on the numpy
+    kernel (the reference path of tables and strain offsets before the kernel took them)."""
+    from dataclasses import replace
+    from pathlib import Path
+
+    from moorline.io.case import load_case
+    from moorline.model import DynamicsSettings, Waves
+    from moorline.solvers import dynamics
+    from moorline.solvers.statics import solve_statics
+
+    path = Path(__file__).parents[1] / "cases" / "polyester_taut.yaml"
+    system = load_case(path)
+    system = replace(system, environment=replace(system.environment, waves=Waves()))
+    settings = next(a for a in system.analyses if isinstance(a, DynamicsSettings))
+    settings = replace(settings, duration=2.0 if quick else 10.0)
+    start = solve_statics(system)
+    compiled = replace(settings, fast_path=True)
+    fast = best_of(lambda: dynamics.simulate(system, compiled, initial=start), 1, 2)
+
+    def numpy_run() -> None:
+        model = dynamics.DynamicModel
+        dynamics.DynamicModel = lambda *a, **k: model(*a, **k, kernel="numpy")
+        try:
+            dynamics.simulate(system, replace(settings, fast_path=False), initial=start)
+        finally:
+            dynamics.DynamicModel = model
+
+    n_steps = round(settings.duration / settings.dt)
+    print(f"polyester_taut in still water, {n_steps} steps of dt = {settings.dt:g} s:")
+    report("compiled step vs numpy stepper", fast, best_of(numpy_run, 1, 2), "(no target)")
 
 
 def _loop_time(single: Callable[[int], object], n_total: int, sample: int,
@@ -226,6 +272,8 @@ def main() -> None:
     sample = 200 if args.quick else 1000
     print(f"{'':38s}{'fast':>10s}{'slow':>15s}{'speed-up':>10s}")
     bench_fused(repeat)
+    bench_fused(repeat, table=True)
+    bench_polyester_run(args.quick)
     bench_hydro(n, sample, repeat)
     bench_material(n, sample, repeat)
     bench_waves(n, sample, repeat)

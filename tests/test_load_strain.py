@@ -131,14 +131,16 @@ def test_bad_tables_are_refused(points, why):
         StrainTable(points)
 
 
-def test_dynamic_model_stiffness_of_a_table_line_matches_differences_of_its_forces():
-    """The dynamic residual's K = -dF/dx with the table law (the numpy path; tables are not
-    in the compiled kernel) against central differences of its forces, about a state
-    stretched beyond the static one (inside the curve's stiffening part)."""
+@pytest.mark.parametrize("kernel", ["numpy", "numba"])
+def test_dynamic_model_stiffness_of_a_table_line_matches_differences_of_its_forces(kernel):
+    """The dynamic residual's K = -dF/dx with the table law (the numpy path and the compiled
+    kernel) against central differences of its forces, about a state stretched beyond the
+    static one (inside the curve's stiffening part)."""
     system = load_case_text(_case(_quadratic_table(), 12))
     statics = solve_statics(system)
-    model = DynamicModel(statics.mesh, fluid_field_from_environment(system.environment))
-    assert model.kernel == "numpy"
+    model = DynamicModel(statics.mesh, fluid_field_from_environment(system.environment),
+                         kernel=kernel)
+    assert model.kernel == kernel
     rng = np.random.default_rng(5)
     x = statics.positions + rng.normal(0.0, 0.5, statics.positions.shape)
     zero = np.zeros_like(x)
@@ -242,14 +244,15 @@ def test_linear_table_reproduces_constant_ea_in_every_analysis():
 
 # ---- fibre-rope dynamic stiffness about the mean tension ----
 
-def test_dynamic_stiffness_about_the_static_state():
+@pytest.mark.parametrize("kernel", ["numpy", "numba"])
+def test_dynamic_stiffness_about_the_static_state(kernel):
     EAd, Lm = 11.6 * MBL, 40.0  # MoorPy's polyester: EA_d = 11.6 MBL + 40 T_mean
     system = load_case_text(_case(_quadratic_table(), 20, extra=f", EAd: {EAd}, EAd_Lm: {Lm}"))
     statics = solve_statics(system)
     mesh = dynamic_mesh(statics.mesh, statics.positions)
     model = DynamicModel(mesh, fluid_field_from_environment(system.environment),
-                         kernel="numba")
-    assert model.kernel == "numpy"
+                         kernel=kernel)
+    assert model.kernel == kernel
     x = statics.positions
     zero = np.zeros_like(x)
     ev = model.evaluate(x, zero, zero, 0.0, model.initial_material(x), 0.1, False)

@@ -11,8 +11,10 @@ chord length may differ in its last bit (numpy's ``einsum`` may use fused multip
 ill-conditioned quantities inherit that: the strain ``l / L0 - 1`` to ~eps absolute, and in the
 slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
 
-* axial: chord, length, unit vector ``n``; strain ``l / L0 - 1``; the tension with the smooth
-  slack band and its slope (:func:`moorline.physics.element.axial_tension`); the Kelvin-Voigt
+* axial: chord, length, unit vector ``n``; strain ``l / L0 - 1`` (less the element's strain
+  offset in its law); the tension with the smooth slack band and its slope
+  (:func:`moorline.physics.element.axial_tension`), linear ``EA`` or a tabulated
+  tension-strain law (:class:`TableLaws`); the Kelvin-Voigt
   damping ``BA * share(strain) * strain_rate`` (blended in over the slack band); the nodal
   forces
   (:func:`moorline.physics.element.nodal_forces`); with ``tangent`` the blocks ``K``
@@ -28,6 +30,15 @@ slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
 
 Sign conventions are the dynamic model's: the blocks are ``K = -dF/dx``, ``C = -dF/dv`` and
 ``M_a = -dF/da`` of the forces ``F`` on the element's nodes, ordered ``(x1, x2)``.
+
+Tabulated laws (:mod:`moorline.physics.load_strain`) are evaluated from the coefficients of
+scipy's :class:`~scipy.interpolate.PchipInterpolator` of each table (and of its derivative),
+taken once by :class:`TableLaws`: a binary search for the interval (scipy's rule, the last one
+closed on the right), the polynomial summed as scipy's ``PPoly`` sums it, the same
+compression-free and linear-extrapolation rules as :meth:`~.load_strain.StrainTable.__call__`,
+so the tension and its exact tangent equal the numpy path's to round-off. The fibre-rope
+dynamic stiffness of :func:`moorline.mesh.dynamic_mesh` is the linear law (``EA = EA_d``)
+about a per-element strain offset, which the kernel takes as it is.
 
 Every element given to the kernel is treated as **elastic**. Viscoelastic (standard linear
 solid) elements stay on the numpy path: a caller with a mixed system either keeps the numpy
@@ -49,6 +60,8 @@ import numba
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .load_strain import StrainLaws
+
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 BoolArray = NDArray[np.bool_]
@@ -56,8 +69,8 @@ BoolArray = NDArray[np.bool_]
 _TINY = float(np.finfo(float).tiny)
 
 # rows of the packed per-element property array
-_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO = range(11)
-_N_PROPS = 11
+_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET = range(12)
+_N_PROPS = 12
 
 
 class ElementLoads(NamedTuple):
@@ -75,9 +88,9 @@ class ElementLoads(NamedTuple):
     tension
         Axial force including the damping term, (n_el,).
     strain
-        ``l / L0 - 1``, (n_el,).
+        ``l / L0 - 1`` (without the strain offset), (n_el,).
     taut
-        ``strain > -smoothing``: where the dashpot acts, (n_el,).
+        ``strain - offset > -smoothing``: where the dashpot acts, (n_el,).
     K, C, Ma
         ``-dF/dx``, ``-dF/dv``, ``-dF/da`` element blocks (n_el, 6, 6); ``None`` unless
         ``tangent`` (and, for ``Ma``, ``with_added_mass``).
@@ -109,11 +122,45 @@ def _projector(alpha, t, p, r, c):
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
-def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mass,
+def _table_law(k, g, EA, start, breaks, coef, end_slope):
+    """``f(g)`` and ``f'(g)`` of table ``k`` (:meth:`StrainLaws.evaluate
+    <moorline.physics.load_strain.StrainLaws.evaluate>` for one element): ``EA g``, ``EA`` for
+    ``g < 0`` (or NaN); the PCHIP polynomials inside, linear beyond the last point."""
+    if not g >= 0.0:
+        return EA * g, EA
+    lo = start[k]
+    hi = start[k + 1] - 1          # index of the last breakpoint
+    end = breaks[hi]
+    inside = min(g, end)
+    beyond = max(g - end, 0.0)
+    # interval: breaks[i] <= inside < breaks[i + 1], the last one closed on the right
+    # (scipy's find_interval)
+    if inside == end:
+        i = hi - 1
+    else:
+        i = lo
+        top = hi - 1
+        while i < top:
+            mid = (i + top + 1) // 2
+            if inside < breaks[mid]:
+                top = mid - 1
+            else:
+                i = mid
+    s = inside - breaks[i]
+    s2 = s * s
+    # the sums of scipy's evaluate_poly1: c[3] + c[2] s + c[1] s^2 + c[0] s^3, left to right
+    f = ((coef[3, i] + coef[2, i] * s) + coef[1, i] * s2) + coef[0, i] * (s2 * s)
+    df = (coef[6, i] + coef[5, i] * s) + coef[4, i] * s2
+    return f + end_slope[k] * beyond, df
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
+def _kernel(x, v, a, uf, af, elements, props, laws, tangent, with_drag, with_added_mass,
             el_forces, total, f_am, tension, strain_out, taut_out, K, C, Ma, nodal, nodal_am):
     """The fused loop; see :func:`element_loads`. Every operation is written in the order the
     numpy path evaluates it, so that both agree to round-off. Small vectors are tuples so that
     the unrolled 3x3 loops keep them in registers."""
+    law, start, breaks, coef, end_slope = laws
     nodal[:, :] = 0.0
     nodal_am[:, :] = 0.0
     zero3 = (0.0, 0.0, 0.0)
@@ -134,19 +181,33 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
         t = (d0 / lc, d1 / lc, d2 / lc)
 
         # ---- axial tension with the smooth slack band (element.axial_tension) ----
-        strain = length / L0 - 1.0
+        strain_total = length / L0 - 1.0
+        strain = strain_total - props[_OFFSET, e]
         safe_s = s_band if s_band > 0 else 1.0
         shifted = strain + s_band
-        if strain >= s_band:
-            T = EA * strain
-            slope = EA
-        elif strain > -s_band:
-            T = EA * (shifted * shifted) / (4 * safe_s)
-            slope = EA * shifted / (2 * safe_s)
-        else:
-            sr = props[_SLACK, e]
-            T = sr * EA * shifted
-            slope = sr * EA
+        if law[e] < 0:
+            if strain >= s_band:
+                T = EA * strain
+                slope = EA
+            elif strain > -s_band:
+                T = EA * (shifted * shifted) / (4 * safe_s)
+                slope = EA * shifted / (2 * safe_s)
+            else:
+                sr = props[_SLACK, e]
+                T = sr * EA * shifted
+                slope = sr * EA
+        else:  # the table at the regularized strain g: T = f(g), dT/deps = f'(g) g'
+            if strain >= s_band:
+                g = strain
+                dg = 1.0
+            elif strain > -s_band:
+                g = (shifted * shifted) / (4 * safe_s)
+                dg = shifted / (2 * safe_s)
+            else:
+                dg = props[_SLACK, e]
+                g = dg * shifted
+            T, df = _table_law(law[e], g, EA, start, breaks, coef, end_slope)
+            slope = df * dg
         # the model converts dT/dl to dT/deps and back (DynamicModel._axial_tension)
         dT_dl = ((slope / L0) * L0) / L0
         # Kelvin-Voigt dashpot, blended in over the slack band (element.dashpot_share)
@@ -164,7 +225,7 @@ def _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mas
         T = T + BA * share * (ndv / L0)
         dT_dl = dT_dl + BA * dshare * (ndv / L0) / L0
         tension[e] = T
-        strain_out[e] = strain
+        strain_out[e] = strain_total
         taut_out[e] = taut
         f = (T * t[0], T * t[1], T * t[2])
         for c in range(3):
@@ -351,15 +412,65 @@ def _per_element(value: ArrayLike, n_el: int) -> FloatArray:
 def pack_properties(
     n_el: int, length0: ArrayLike, EA: ArrayLike, slack_ratio: ArrayLike,
     smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike, Cd: ArrayLike, Ct: ArrayLike,
-    Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike,
+    Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike, offset: ArrayLike | None = None,
 ) -> FloatArray:
-    """Per-element properties (scalars broadcast) packed into one (11, n_el) array, in the
-    row order the kernel reads them."""
+    """Per-element properties (scalars broadcast) packed into one (12, n_el) array, in the
+    row order the kernel reads them (the last row: the strain offset, ``None``: 0)."""
     props = np.empty((_N_PROPS, n_el))
     for row, value in enumerate((length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct,
-                                 Ca, Cat, rho)):
+                                 Ca, Cat, rho, 0.0 if offset is None else offset)):
         props[row] = _per_element(value, n_el)
     return props
+
+
+class TableLaws(NamedTuple):
+    """The tabulated laws of :class:`~moorline.physics.load_strain.StrainLaws` in flat arrays
+    (the form the kernel reads; :meth:`of` builds it).
+
+    Attributes
+    ----------
+    law
+        Table of each element, ``-1``: the linear law ``EA eps`` (n_el,), int64.
+    start
+        Index of each table's first breakpoint in ``breaks``; ``start[-1]`` = their number
+        (n_tables + 1,).
+    breaks
+        The tables' breakpoints (strains), one table after the other.
+    coef
+        Polynomial coefficients of the interval starting at each breakpoint (7, len(breaks)):
+        rows 0-3 scipy's ``PchipInterpolator.c`` of the law (highest power first), rows 4-6
+        those of its derivative (``.derivative().c``); the column of a table's last point
+        is unused.
+    end_slope
+        Slope of each table at its last point (its linear extrapolation) (n_tables,).
+    """
+
+    law: IntArray
+    start: IntArray
+    breaks: FloatArray
+    coef: FloatArray
+    end_slope: FloatArray
+
+    @classmethod
+    def of(cls, laws: StrainLaws | None, n_el: int) -> TableLaws:
+        """Flat arrays of a :class:`~moorline.physics.load_strain.StrainLaws` (``None``: every
+        element linear)."""
+        if laws is None:
+            return cls(np.full(n_el, -1, dtype=np.int64), np.zeros(1, dtype=np.int64),
+                       np.zeros(0), np.zeros((7, 0)), np.zeros(0))
+        law = np.ascontiguousarray(np.broadcast_to(laws.ids, (n_el,)), dtype=np.int64)
+        breaks, coef, start = [], [], [0]
+        for table in laws.tables:
+            f, df = table._f, table._df
+            breaks.append(np.asarray(f.x, dtype=float))
+            block = np.zeros((7, len(f.x)))
+            block[:4, :-1] = f.c
+            block[4:, :-1] = df.c
+            coef.append(block)
+            start.append(start[-1] + len(f.x))
+        return cls(law, np.asarray(start, dtype=np.int64), np.concatenate(breaks),
+                   np.ascontiguousarray(np.concatenate(coef, axis=1)),
+                   np.array([t.end_slope for t in laws.tables], dtype=float))
 
 
 class FusedLoads:
@@ -376,6 +487,10 @@ class FusedLoads:
         Number of nodes of the positions passed to :meth:`__call__`.
     length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct, Ca, Cat, rho
         Element properties, scalars or (n_el,) arrays (see :func:`element_loads`).
+    laws, offset
+        Tabulated tension-strain laws (:class:`~moorline.physics.load_strain.StrainLaws`)
+        and strain offsets (n_el,) of the elements' axial laws, as
+        :func:`moorline.physics.element.axial_tension` takes them (``None``: linear, 0).
     with_drag, with_added_mass
         Whether to compute the Morison drag and the added-mass / fluid-inertia terms.
         Default: where any drag (added-mass) coefficient and ``rho`` are nonzero.
@@ -389,6 +504,7 @@ class FusedLoads:
         self, elements: IntArray, n_nodes: int, length0: ArrayLike, EA: ArrayLike,
         slack_ratio: ArrayLike, smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike,
         Cd: ArrayLike, Ct: ArrayLike, Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike,
+        laws: StrainLaws | None = None, offset: ArrayLike | None = None,
         with_drag: bool | None = None, with_added_mass: bool | None = None,
         reuse_buffers: bool = False,
     ) -> None:
@@ -397,7 +513,8 @@ class FusedLoads:
         self.n_el = n_el
         self.n_nodes = int(n_nodes)
         self.props = pack_properties(n_el, length0, EA, slack_ratio, smoothing, BA, diameter,
-                                     Cd, Ct, Ca, Cat, rho)
+                                     Cd, Ct, Ca, Cat, rho, offset)
+        self.laws = TableLaws.of(laws, n_el)
         wet = bool(np.any(self.props[_RHO] > 0))
         if with_drag is None:
             with_drag = wet and bool(np.any(self.props[_CD] > 0) or np.any(self.props[_CT] > 0))
@@ -453,7 +570,8 @@ class FusedLoads:
                 np.ascontiguousarray(v, dtype=np.float64),
                 np.ascontiguousarray(a, dtype=np.float64),
                 self._fluid(fluid_velocity_mid), self._fluid(fluid_acceleration_mid),
-                self.elements, self.props, tangent, self.with_drag, self.with_added_mass, *out)
+                self.elements, self.props, self.laws, tangent, self.with_drag,
+                self.with_added_mass, *out)
         if not tangent:
             return ElementLoads(*out[:6], None, None, None, *out[9:])
         if not self.with_added_mass:
@@ -467,6 +585,8 @@ def element_loads(
     slack_ratio: ArrayLike, smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike,
     Cd: ArrayLike, Ct: ArrayLike, Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike,
     tangent: bool, with_added_mass: bool, with_drag: bool = True,
+    laws: StrainLaws | None = None,
+    offset: ArrayLike | None = None,
 ) -> ElementLoads:
     """All loads of elastic elements and their derivatives in one compiled pass.
 
@@ -492,6 +612,8 @@ def element_loads(
         Compute added mass and fluid inertia (set when ``Ca`` or ``Cat`` is nonzero).
     with_drag
         Compute the Morison drag.
+    laws, offset
+        Tabulated tension-strain laws and strain offsets (see :class:`FusedLoads`).
 
     Returns
     -------
@@ -501,6 +623,6 @@ def element_loads(
     """
     x = np.asarray(x, dtype=np.float64)
     loads = FusedLoads(elements, x.shape[0], length0, EA, slack_ratio, smoothing, BA,
-                       diameter, Cd, Ct, Ca, Cat, rho, with_drag=with_drag,
+                       diameter, Cd, Ct, Ca, Cat, rho, laws, offset, with_drag=with_drag,
                        with_added_mass=with_added_mass)
     return loads(x, v, a, fluid_velocity_mid, fluid_acceleration_mid, tangent)

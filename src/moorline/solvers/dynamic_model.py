@@ -74,10 +74,10 @@ class DynamicModel:
     kernel
         ``numba``: the element loads of a system without viscoelastic elements are computed by
         the compiled kernel :class:`moorline.physics.fused.FusedLoads` (same results to
-        round-off, much faster); systems with viscoelastic elements or non-linear
-        tension-strain laws (tables, fibre-rope dynamic stiffness), and ``numpy``, use the
-        numpy path (the reference). ``self.kernel`` is the one in use. Bending stiffness is
-        added by numpy on either path.
+        round-off, much faster; tension-strain tables and the strain offsets of the fibre-rope
+        dynamic stiffness included); systems with viscoelastic elements, and ``numpy``, use
+        the numpy path (the reference). ``self.kernel`` is the one in use. Bending stiffness
+        is added by numpy on either path.
     """
 
     def __init__(self, mesh: Mesh, fluid, viscoelastic_update: str = "exponential",
@@ -103,13 +103,14 @@ class DynamicModel:
         if kernel not in ("numpy", "numba"):
             raise ValueError(f"kernel must be 'numpy' or 'numba', got {kernel!r}")
         self._fused = None
-        if kernel == "numba" and not self.any_viscoelastic and m.linear_axial:
+        if kernel == "numba" and not self.any_viscoelastic:
             from ..physics import fused  # imports numba only when used
 
+            laws = m.strain_laws if m.strain_laws is not None and m.strain_laws.active else None
             self._fused = fused.FusedLoads(
                 m.elements, m.n_nodes, m.length0, m.EA, m.slack_ratio, m.slack_smoothing, m.BA,
-                m.diameter, m.Cd, m.Ct, m.Ca, m.Cat, self.rho, with_drag=self.has_drag,
-                with_added_mass=self.has_added_mass)
+                m.diameter, m.Cd, m.Ct, m.Ca, m.Cat, self.rho, laws, m.strain_offset,
+                with_drag=self.has_drag, with_added_mass=self.has_added_mass)
             self._midpoints = fused.midpoints
         self.kernel = "numba" if self._fused is not None else "numpy"
 

@@ -1,6 +1,7 @@
-"""Compiled implicit step for the common case: elastic lines in still water or a uniform
-current, on a seabed with contact, damping and (isotropic) friction, Newmark beta = 1/4,
-gamma = 1/2 with equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
+"""Compiled implicit step for the common case: elastic lines (constant ``EA``, tension-strain
+tables, the fibre-rope dynamic stiffness) in still water or a uniform current, on a seabed
+with contact, damping and (isotropic) friction, Newmark beta = 1/4, gamma = 1/2 with
+equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
 
 It is the same algorithm as :class:`moorline.solvers.newmark.Stepper` (same residual, same
 exact tangent, same modified-Newton refresh rule, backtracking on the residual norm), moved
@@ -140,13 +141,14 @@ def _seabed(x, v, seabed_z, k, c, ramp, mu, v_slip, force, kzz, czz, fric_c, fri
 
 
 @numba.njit(**_JIT)
-def _evaluate(x, v, a, uf, af, elements, props, with_drag, with_added_mass, node_mass, external,
-              point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, tangent, buf):
+def _evaluate(x, v, a, uf, af, elements, props, laws, with_drag, with_added_mass, node_mass,
+              external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, tangent,
+              buf):
     """All nodal forces minus structural inertia at (x, v, a); fills ``buf``'s arrays."""
     (el_forces, total, f_am, tension, strain, taut, K, C, Ma, nodal, nodal_am, resid,
      kzz, czz, fric_c, fric_kz, fric_cz) = buf
-    _kernel(x, v, a, uf, af, elements, props, tangent, with_drag, with_added_mass, el_forces,
-            total, f_am, tension, strain, taut, K, C, Ma, nodal, nodal_am)
+    _kernel(x, v, a, uf, af, elements, props, laws, tangent, with_drag, with_added_mass,
+            el_forces, total, f_am, tension, strain, taut, K, C, Ma, nodal, nodal_am)
     for n in range(x.shape[0]):
         for c in range(3):
             resid[n, c] = nodal[n, c] + external[n, c] + point_force[n, c] \
@@ -218,7 +220,7 @@ def _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1):
 
 
 @numba.njit(**_JIT)
-def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_drag,
+def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
                  with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
                  seabed_z, k_sb, c_sb, ramp, mu, v_slip, h, beta, gamma, tol, max_iter,
                  refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
@@ -239,9 +241,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_d
             for c in range(3):
                 x1[n, c] = x0[n, c] + h * v0[n, c] + 0.5 * h * h * a0[n, c]
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
-    _evaluate(x1, v1, a1, uf, af, elements, props, with_drag, with_added_mass, node_mass,
-              external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip,
-              refresh, buf)
+    _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag, with_added_mass,
+              node_mass, external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu,
+              v_slip, refresh, buf)
     counters[1] += 1
     norm = _norm_inf_free(buf[11], band, rvec)
     have_tangent = refresh
@@ -252,9 +254,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_d
             return True, norm, refactored
         if refresh:
             if not have_tangent:
-                _evaluate(x1, v1, a1, uf, af, elements, props, with_drag, with_added_mass,
-                          node_mass, external, point_force, seabed_on, seabed_z, k_sb, c_sb,
-                          ramp, mu, v_slip, True, buf)
+                _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag,
+                          with_added_mass, node_mass, external, point_force, seabed_on,
+                          seabed_z, k_sb, c_sb, ramp, mu, v_slip, True, buf)
                 counters[1] += 1
                 norm = _norm_inf_free(buf[11], band, rvec)
             _assemble(lu, bw, band, elements, buf[6], buf[7], buf[8], with_added_mass,
@@ -279,9 +281,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, with_d
                     k = band[n, c]
                     trial[n, c] = x1[n, c] + (alpha * dx[k] if k >= 0 else 0.0)
             _kinematics(x0, v0, a0, trial, h, beta, gamma, free, v1, a1)
-            _evaluate(trial, v1, a1, uf, af, elements, props, with_drag, with_added_mass,
-                      node_mass, external, point_force, seabed_on, seabed_z, k_sb, c_sb,
-                      ramp, mu, v_slip, True, buf)
+            _evaluate(trial, v1, a1, uf, af, elements, props, laws, with_drag,
+                      with_added_mass, node_mass, external, point_force, seabed_on, seabed_z,
+                      k_sb, c_sb, ramp, mu, v_slip, True, buf)
             counters[1] += 1
             n_new = _norm_inf_free(buf[11], band, rvec)
             merit = 0.0
@@ -422,7 +424,8 @@ class FastStepper:
         m = self.model
         ok, norm, refactored = newmark_step(
             s0.x, s0.v, s0.a, x1, v1, a1, self.free, self.band, self.bw, mesh.elements,
-            f.props, f.with_drag, f.with_added_mass, m.node_mass, m.external, forces, uf, af,
+            f.props, f.laws, f.with_drag, f.with_added_mass, m.node_mass, m.external, forces,
+            uf, af,
             self.seabed_on, float(mesh.seabed_z), m.k_seabed, m.c_seabed, m.seabed_ramp,
             self.mu, self.v_slip, h, self.c.beta, self.c.gamma, pol.tolerance,
             pol.max_iterations, refresh, self.lu, self.buf, self.rvec, self.trial, self.counts,
