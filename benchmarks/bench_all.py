@@ -26,8 +26,9 @@ they are: nothing here is tuned to a target, and no test asserts on them.
 * P5: time per Newton iteration at 1000 elements (from P4) against one banded LU factor and
   solve of the same size and bandwidth (``scipy.linalg.solve_banded``, LAPACK ``gbsv``).
   Target: <= 3x.
-* P6: ``moorline sweep`` of a 16-case study (OC3 three lines, drag x added-mass grid, 60 s
-  each): throughput with 2 Dask workers against 1 and against the serial sweep. Target: >= 1.8x.
+* P6: ``moorline sweep`` of a 16-case study (the P1 system at 80 segments and dt 0.05 s, a
+  drag x added-mass grid, 60 s each; --quick: 20 segments, 20 s): throughput with 2 Dask
+  workers against 1 and against the serial sweep. Target: >= 1.8x.
 * Streaming (:mod:`bench_stream`): the cost of writing every step's record. Target: <= 5 %.
 
 The machine may be shared: each time is the smallest of a few repetitions, and subprocesses are
@@ -111,7 +112,11 @@ def p1(quick: bool, search: bool, repeat: int) -> list[Line]:
             found = entry["found"]
             refs[code] = bench_p1.Run(**entry["reference"])
             note = _search_note(entry)
-        if found is None:
+        if found is None and code in refs and refs[code].ok:
+            n, dt = refs[code].segments, refs[code].dt
+            print(f"  {code}: no coarser setting within 1 % ({note}); timed at its reference, "
+                  f"{n} segments, dt {dt:.4g} s")
+        elif found is None:
             n, dt = (20, 0.05) if code != "MoorDyn" else (20, math.nan)
             print(f"  {code}: no setting within 1 % found ({note}); timed at {n} segments")
         else:
@@ -137,6 +142,14 @@ def p1(quick: bool, search: bool, repeat: int) -> list[Line]:
           "the six extremes from the code's own reference" + (" (n/a: --quick runs 60 s)"
                                                               if quick else ""))
     _print_references(refs)
+    ml = runs.get("moorline")
+    if ml is not None and ml.ok:
+        helped = best_process(moorline_command("--help"), repeat, env=python_env())
+        rest = ml.cpu - helped.cpu - ml.stepping
+        print(f"\n  moorline's whole process, {ml.cpu:.2f} s CPU: start-up (moorline --help) "
+              f"{helped.cpu:.2f} s, stepping {ml.stepping:.2f} s, the rest {rest:.2f} s "
+              "(imports of the solvers, numpy/scipy/numba and netCDF4, loading the compiled "
+              "kernels, reading the case, statics, writing results.nc, summary and report)")
     out = []
     for code, run in runs.items():
         err = bench_p1.error(run, refs[code]) if code in refs and not quick else None
@@ -146,7 +159,6 @@ def p1(quick: bool, search: bool, repeat: int) -> list[Line]:
         target, mark = ("<= 1.1 s", verdict(run.cpu, 1.1)) if code == "moorline" else ("", "")
         out.append(Line("P1", f"{code} whole process [s CPU]", run.cpu if run.ok else None,
                         target, mark, f"{run.label}; {acc}; wall {run.wall:.2f} s"))
-    ml = runs.get("moorline")
     if ml is not None:
         for peer in ("CableDyn", "MoorDyn"):
             other = runs.get(peer)
@@ -410,12 +422,12 @@ def p3(quick: bool) -> list[Line]:
     scaled = f" (run over {td_duration:g} s of the 3-hour sea, its time scaled to 3 h)"
     print(f"  frequency domain {t_fd:.2f} s ({fd.iterations} linearization iterations, "
           f"{len(fd.omega)} frequencies); time domain {t_td:.1f} s at dt 0.05 s{scaled}")
-    print(f"  tension std, fairlead element of line 1: frequency domain {std_fd / 1e3:.2f} kN, "
-          f"time domain {std_td / 1e3:.2f} kN (t = 20 to {td_duration:g} s: a short sample)")
+    print(f"  tension std, fairlead element of line 1: frequency domain {std_fd:.4g} N, "
+          f"time domain {std_td:.4g} N (t = 20 to {td_duration:g} s: a short sample)")
     ratio = t_td / t_fd
     return [Line("P3", "time domain / frequency domain", ratio, ">= 100",
                  verdict(ratio, 100.0, at_most=False),
-                 f"std {std_fd / 1e3:.1f} vs {std_td / 1e3:.1f} kN"),
+                 f"tension std {std_fd:.4g} N (FD) vs {std_td:.4g} N (TD)"),
             Line("P3", "frequency domain, 3-hour sea [s]", t_fd, "< 1 s", verdict(t_fd, 1.0))]
 
 
@@ -503,12 +515,12 @@ def p4_p5(quick: bool, repeat: int) -> list[Line]:
 # P6
 
 
-def write_study(folder: Path, duration: float) -> Path:
-    """A 16-case study: the P1 system (20 segments, dt 0.05 s) over a grid of drag and
-    added-mass coefficients."""
+def write_study(folder: Path, segments: int, duration: float) -> Path:
+    """A 16-case study: the P1 system (``segments`` per line, dt 0.05 s) over a grid of drag
+    and added-mass coefficients."""
     import yaml
 
-    bench_p1.write_moorline(folder, 20, 0.05, duration)
+    bench_p1.write_moorline(folder, segments, 0.05, duration)
     study = {"name": "p6", "description": "OC3 three lines, Cd x Ca grid",
              "base": {"case": "p1.yaml"},
              "variations": {"line_types.chain.Cd": [1.2, 1.4, 1.6, 1.8],
@@ -529,11 +541,12 @@ def p6(quick: bool) -> list[Line]:
     except ImportError:
         print("  dask.distributed is not installed (pip install -e .[dask])")
         return []
-    duration = 20.0 if quick else 60.0
+    # full: cases of P1's moorline setting (80 segments, dt 0.05 s), 60 s each
+    segments, duration = (20, 20.0) if quick else (80, 60.0)
     times = {}
     with tempfile.TemporaryDirectory(prefix="p6-") as tmp:
         folder = Path(tmp)
-        study = write_study(folder, duration)
+        study = write_study(folder, segments, duration)
         for label, extra in (("serial", []), ("1 worker", ["--workers", "1"]),
                              ("2 workers", ["--workers", "2"])):
             run = best_process(moorline_command("sweep", str(study), "--out",
@@ -546,7 +559,8 @@ def p6(quick: bool) -> list[Line]:
     ok = all(r.returncode == 0 for r in times.values())
     s2 = times["serial"].wall / times["2 workers"].wall if ok else None
     w2 = times["1 worker"].wall / times["2 workers"].wall if ok else None
-    print(f"  16 cases of {duration:g} s each; throughput ratios on the wall clock "
+    print(f"  16 cases ({segments} segments, {duration:g} s each); throughput ratios on the "
+          "wall clock "
           f"(load averages now {', '.join(f'{x:.1f}' for x in os.getloadavg())}, "
           f"{os.cpu_count()} cores)")
     return [Line("P6", "2 workers / serial sweep", s2, ">= 1.8",
