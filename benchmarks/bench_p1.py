@@ -20,16 +20,21 @@ Whole process (a subprocess, from start-up to its output on disk):
   initial condition ``Init``, ``Step`` every 0.05 s with MoorDyn sub-stepping at ``dtM``, a text
   output).
 
-The input files are written before the clock starts. The stepping alone: moorline's
-``simulate`` in this process (compiled kernels loaded, statics apart); MoorDyn's loop of
-``Step`` calls, timed by the driver script; CableDyn prints no timing of its own, so its
-stepping alone is its whole process less the same deck with ``TMax`` = one step (start-up,
-reading, statics; printed as such).
+The input files are written before the clock starts. The stepping alone, in CPU seconds:
+moorline's ``simulate`` in this process (compiled kernels loaded, statics apart); MoorDyn's
+loop of ``Step`` calls, timed by the driver script; CableDyn prints no timing of its own, so
+its stepping alone is its whole process less the same deck run for two steps (start-up,
+reading, statics).
 
 Settings: each code's cheapest setting within 1 % of its own reference, found by the
-documented search :func:`search` (candidates in increasing order of nominal cost, segments per
-line / step; the first within 1 % is taken) and cached in ``benchmarks/.cache/p1_settings.json``
-keyed by the code's version; ``--search`` runs it again.
+documented search :func:`search`: the reference (:data:`REFERENCE`: moorline 160 segments at
+dt 0.005 s, CableDyn 160 at 0.0125 s, MoorDyn 80 at its stable step, its 160-segment run being
+over 10 CPU minutes), its change when the segments are halved and when the step is doubled
+(printed: how converged the reference is), then the :data:`CANDIDATES` in increasing order of
+nominal cost (segments / step) until one is within 1 %. The result is cached in
+``benchmarks/.cache/p1_settings.json`` keyed by the code's version (``bench_all.py --search``
+or ``python benchmarks/bench_p1.py [codes]`` searches again: about 15 CPU minutes in all). When
+no candidate is within 1 %, the code is timed at its reference.
 """
 
 from __future__ import annotations
