@@ -40,15 +40,16 @@ verify: $(EXTRAS)
 	$(BIN)/python -m pytest -q -rs -m "slow or not slow"
 	$(BIN)/moorline verify
 
-# bench_dynamics.py caches MoorDyn's largest stable steps in benchmarks/.cache/ (delete it or
-# pass --refresh to search again); BENCH_ARGS=--quick gives a shorter run.
+# bench_all.py: P1-P6 and the streaming cost side by side against MoorDyn, CableDyn and MoorPy
+# (it runs bench_statics.py and bench_stream.py's measurements); it caches the P1 settings in
+# benchmarks/.cache/ (pass BENCH_ARGS=--search to search again); BENCH_ARGS=--quick gives a
+# smoke run. bench_dynamics.py (MoorDyn's stable steps for the moordyn-dynamics verification
+# case) is run on its own.
 bench: $(COMPARE)
-	$(BIN)/python benchmarks/bench_statics.py
+	$(BIN)/python benchmarks/bench_all.py $(BENCH_ARGS)
 	$(BIN)/python benchmarks/bench_statics_robustness.py
 	$(BIN)/python benchmarks/bench_frequency.py
-	$(BIN)/python benchmarks/bench_dynamics.py $(BENCH_ARGS)
-	$(BIN)/python benchmarks/bench_kernels.py $(BENCH_ARGS)
-	$(BIN)/python benchmarks/bench_stream.py
+	$(BIN)/python benchmarks/bench_kernels.py $(filter --quick,$(BENCH_ARGS))
 	$(BIN)/python benchmarks/bench_coupling.py
 
 lint: $(STAMP)
