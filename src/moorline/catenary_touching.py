@@ -26,19 +26,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
+from .catenary import _suspended
+
 __all__ = ["TouchingSolution", "solve_touching", "touching_3d", "touching_profile_3d"]
 
 FloatArray = NDArray[np.float64]
 
 
 def _rise(H: float, w: float, EA: float, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
-    """Height and horizontal span of ``s`` of hanging line from its touchdown."""
-    s = np.asarray(s, dtype=float)
-    if H <= 0.0:
-        return s + w * s * s / (2.0 * EA), np.zeros_like(s)
-    r = w * s / H
-    return (H / w * (np.sqrt(1.0 + r * r) - 1.0) + w * s * s / (2.0 * EA),
-            H / w * np.arcsinh(r) + H * s / EA)
+    """Height and horizontal span of ``s`` of hanging line from its touchdown (``V = 0``
+    there: :mod:`moorline.catenary`'s suspended part)."""
+    h, z = _suspended(max(H, 0.0), 0.0, w, 1.0 / EA, np.asarray(s, dtype=float))
+    return z, h
 
 
 def _hanging_length(h: float, H: float, w: float, EA: float) -> float:

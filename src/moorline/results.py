@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -173,7 +174,11 @@ class StaticResult:
 
     def seabed_share(self) -> FloatArray:
         """Share of each node's own weight the seabed carries, (n_nodes,): 1 where the line
-        lies, 0 where it hangs."""
+        lies, 0 where it hangs (computed once per result)."""
+        return self._seabed_share.copy()
+
+    @cached_property
+    def _seabed_share(self) -> FloatArray:
         from .solvers.equilibrium import StaticModel
 
         return StaticModel(self.mesh).seabed_share(self.positions)
