@@ -202,6 +202,17 @@ def test_bem_command_on_a_matrix_hydrostatics_body_matches_the_tuah_ex5_constant
         case_value, bem_value = rows[name]
         assert bem_value == pytest.approx(case_value, rel=0.01), name
     assert coarse.coefficients.attrs["origin_z"] == pytest.approx(disc.position[2])
+    # the printed exciting-force phases are those of a case's ``excitation:`` table
+    # (WaveExcitation: F(t) = |X| cos(w t - k x_0 + phase), body origin at x_0 = 0): the same
+    # force history as capytaine's complex X with its time factor exp(-i w t)
+    at = coarse.coefficients
+    t = np.linspace(0.0, 3.0, 7)
+    for k, dof in ((0, "x"), (2, "z"), (4, "ry")):
+        X = float(at["excitation_amplitude"].values[0, k]) * np.exp(
+            1j * math.radians(float(at["excitation_phase"].values[0, k])))
+        printed = math.radians(rows[f"phase X_{dof}"][1])
+        ours = abs(X) * np.cos(2.0944 * t + printed)
+        assert ours == pytest.approx((X * np.exp(-1j * 2.0944 * t)).real, abs=1e-9 * abs(X))
 
 
 def test_bem_command_rejects_an_unknown_body(tmp_path):

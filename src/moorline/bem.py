@@ -672,7 +672,10 @@ def comparison_rows(system: Any, body_name: str, coefficients: xr.Dataset,
              ("C55", f"{force} {length}", c55, float(C[4, 4])),
              ("volume", f"{length}^3", volume, float(at["displaced_volume"]))]
     amp = np.array(at["excitation_amplitude"].values, dtype=float)
-    phase: list[float | None] = [float(v) for v in at["excitation_phase"].values]
+    # the phase of a case's ``excitation:`` table (:class:`moorline.model.WaveExcitation`,
+    # ``a |X| cos(w t - k x_0 + phase)``) is ``-arg X``: printed in that convention so that
+    # the table can be copied into a case
+    phase: list[float | None] = [-float(v) for v in at["excitation_phase"].values]
     for block in (slice(0, 3), slice(3, 6)):  # numerically zero forces have no phase
         noise = amp[block] <= 1.0e-6 * max(float(np.max(amp[block])), 1e-300)
         amp[block][noise] = 0.0
@@ -850,11 +853,13 @@ def write_body_table(
         f"{'quantity':<12} {'unit':<14} {'case':>14} {'BEM':>14}",
         *(f"{q:<12} {u:<14} {_fmt(c):>14} {_fmt(b):>14}" for q, u, c, b in rows),
         "",
-        "exciting force per unit wave amplitude, heading 0 deg: F_i(t) = a |X_i| cos(theta_0 "
-        "+ phase_i),",
-        "theta_0 = k x cos(b) + k y sin(b) - w t + phi at the body origin (moorline wave "
-        "phase); the case",
-        "column of |X_z| and its phase is moorline's long-wave heave excitation rho g A_wp.",
+        "exciting force per unit wave amplitude, heading 0 deg: F_i(t) = a |X_i| cos(w t - "
+        "k x_0 + phase_i)",
+        "for the wave eta = a cos(k x - w t) (the convention of a case's excitation: table, "
+        "moorline.model.WaveExcitation;",
+        "phase_i = -arg X_i of capytaine's complex force, time factor exp(-i w t)); the case "
+        "column of |X_z| and its phase",
+        "is moorline's long-wave heave excitation rho g A_wp.",
     ]
     comment = "\n".join(f"# {line}".rstrip() for line in header) + "\n"
     if whole_case:

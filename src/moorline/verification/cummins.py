@@ -328,9 +328,11 @@ def spar_system(ds, omega: float) -> System:
     # buoyancy and the weight at the centre of gravity give rho g V z_b - m g z_g
     S = np.diag([0.0, 0.0, RHO * G * area, RHO * G * i_wp, RHO * G * i_wp, 0.0])
     table = RadiationTable(tuple(map(float, ds["omega"].values)), nested(A), nested(B))
+    # moorline bem's layout stores arg X (capytaine, time factor exp(-i w t)); the
+    # WaveExcitation phase (a |X| cos(w t - k x_0 + phase)) is -arg X
     excitation = WaveExcitation(tuple(map(float, ds["omega"].values)),
                                 tuple(map(tuple, ds["excitation_amplitude"].values)),
-                                tuple(map(tuple, ds["excitation_phase"].values)))
+                                tuple(map(tuple, -ds["excitation_phase"].values)))
     body = Body("spar", mass=_spar_mass(), center_of_gravity=(0.0, 0.0, SPAR_ZG),
                 inertia=tuple(tuple(v if i == j else 0.0 for j in range(3))
                               for i, v in enumerate(SPAR_INERTIA)),
