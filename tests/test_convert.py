@@ -318,3 +318,24 @@ def test_vessel_body_reports_the_published_oc3_mooring_stiffness(tmp_path):
     assert group.exit_code == 0, group.output
     np.testing.assert_allclose(json.loads(group.stdout)["stiffness"], K, rtol=1e-6,
                                atol=1e-6 * np.abs(K).max())
+
+
+def test_write_case_keeps_a_bodys_exciting_force_table_and_wave_loads(tmp_path):
+    """A body's exciting-force table and its long-wave loads survive write_case and reload
+    (cases/harmonic_body.yaml: Tuah Ex5's disc with an excitation table); a body holding a
+    radiation table from a database is refused with a message, not written without it."""
+    import dataclasses
+
+    from moorline.model import RadiationTable
+
+    system = load_case(ROOT / "cases" / "harmonic_body.yaml")
+    name, body = next(iter(system.bodies.items()))
+    assert body.excitation is not None
+    again = load_case(write_case(system, tmp_path / "c.yaml"))
+    assert again.bodies[name].excitation == body.excitation
+    assert again.bodies[name].wave_loads == body.wave_loads
+    eye = tuple(tuple(float(i == j) for j in range(6)) for i in range(6))
+    table = RadiationTable((0.5, 1.0), (eye, eye), (eye, eye))
+    held = dataclasses.replace(body, added_mass=None, damping=None, radiation=table)
+    with pytest.raises(ValueError, match="radiation table"):
+        write_case(dataclasses.replace(system, bodies={name: held}), tmp_path / "r.yaml")

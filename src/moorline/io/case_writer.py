@@ -66,6 +66,8 @@ def write_case(system: System, path: str | Path, header: str = "") -> Path:
     ------
     CaseError
         The case would not load (names ``path``, the key and the reason).
+    ValueError
+        A body holds a radiation table (a case file refers to its database instead).
     """
     from .case import load_case_text
 
@@ -148,6 +150,17 @@ def _body(b: Body) -> dict[str, Any]:
             data[key] = [list(r) for r in getattr(b, key)]
     if b.force_history is not None:
         data["force_history"] = _motion(b.force_history)
+    if b.wave_loads:
+        data["wave_loads"] = True
+    if b.excitation is not None:
+        data["excitation"] = {"omegas": list(b.excitation.omegas),
+                              "amplitude": [list(r) for r in b.excitation.amplitude],
+                              "phase": [list(r) for r in b.excitation.phase_deg]}
+    if b.radiation is not None:  # a case file gives a table only through a database file
+        raise ValueError(f"body {b.name!r} has a frequency-dependent radiation table (from a "
+                         "hydrodynamic database): a case file refers to the database "
+                         "(bodies.<name>.hydrodynamics.database) and cannot hold the table "
+                         "inline")
     return data
 
 
