@@ -164,3 +164,25 @@ def test_a_stochastic_linearization_that_does_not_converge_is_returned_failed(
     with xr.open_dataset(results, group="stochastic") as ds:  # what was computed is kept
         assert ds.attrs["success"] == 0 and ds.attrs["status"] == "failed"
         assert ds.attrs["iterations"] == 1
+
+
+def test_seabed_length_of_a_taut_line_is_zero_and_of_a_lying_line_the_closed_forms() -> None:
+    """An anchor held at the seabed surface is carried by the anchor: a taut line leaving it
+    upwards has no length on the seabed (the closed form: 0; it counted half an element),
+    while the OC3 line's seabed length stays the closed form's within one element."""
+    from moorline.catenary import catenary_3d
+    from moorline.solvers.statics import solve_statics
+
+    root = Path(__file__).resolve().parents[1]
+    taut = load_case(root / "cases" / "polyester_taut.yaml")
+    result = solve_statics(taut)
+    assert result.success
+    for name in taut.lines:
+        assert result.seabed_length(name) == 0.0, name
+    oc3 = load_case(root / "cases" / "oc3_line.yaml")
+    line, lt, env = oc3.lines["line1"], oc3.line_types["chain"], oc3.environment
+    w = (lt.mass_per_length - env.water_density * np.pi * lt.diameter**2 / 4) * env.gravity
+    exact = catenary_3d(oc3.points["anchor"].position, oc3.points["fairlead"].position,
+                        line.length, lt.EA, w)[2].seabed_length
+    got = solve_statics(oc3).seabed_length("line1")
+    assert abs(got - exact) < line.length / line.segments

@@ -161,7 +161,9 @@ class StaticResult:
     def seabed_length(self, line: str) -> float:
         """Unstretched length of the line resting on the seabed: the tributary lengths of its
         nodes, each times the share of its weight the seabed carries (:meth:`seabed_share`:
-        the touchdown node counts in part)."""
+        the touchdown node counts in part). An end node held by a point (an anchor at the
+        seabed surface) is carried by the point: it counts as much as its neighbour on the
+        line, so a line leaving its anchor upwards has none on the seabed."""
         m = self.mesh
         k = m.line_index(line)
         nodes, elements = m.line_nodes[k], m.line_elements[k]
@@ -170,7 +172,12 @@ class StaticResult:
         tributary = np.zeros(len(nodes))
         tributary[:-1] += 0.5 * m.length0[elements]
         tributary[1:] += 0.5 * m.length0[elements]
-        return float(np.dot(tributary, self.seabed_share()[nodes]))
+        share = self.seabed_share()[nodes]
+        if len(nodes) > 2:
+            for end, neighbour in ((0, 1), (-1, -2)):
+                if m.dof_of_node[nodes[end], 0] < 0:
+                    share[end] = share[neighbour]
+        return float(np.dot(tributary, share))
 
     def seabed_share(self) -> FloatArray:
         """Share of each node's own weight the seabed carries, (n_nodes,): 1 where the line
