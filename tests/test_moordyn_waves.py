@@ -448,8 +448,8 @@ def test_harmonic_balance_needs_components_that_repeat() -> None:
     from moorline.solvers.harmonic import _check_wave_period
 
     w = 2 * math.pi / 20
-    system = _case("{kind: components, components: {omegas: [%r, %r], amplitudes: [1, 0.5], "
-                   "phases: [0, 0]}}" % (w, 3 * w))
+    system = _case(f"{{kind: components, components: {{omegas: [{w!r}, {3 * w!r}], "
+                   "amplitudes: [1, 0.5], phases: [0, 0]}}")
     _check_wave_period(system, 20.0)
     _check_wave_period(system, 40.0)
     with pytest.raises(MoorlineError, match="every wave component must repeat"):
@@ -475,3 +475,29 @@ def test_random_sea_and_its_components_are_the_same_sea() -> None:
         a, b = (f.kinematics(points, t) for f in fields)
         for x, y in zip(a, b, strict=True):
             np.testing.assert_allclose(x, y, rtol=1e-12, atol=1e-12)
+
+
+def test_body_wave_loads_take_components_like_the_regular_wave() -> None:
+    """cases/harmonic_body.yaml (a floating disc with an exciting-force table on one cable)
+    with its 1 ft, 3 s airy wave written as one component (amplitude 0.5 ft, omega 2 pi / 3,
+    phase 0: the same sea): 3 s of dynamics give the same body motion and tensions."""
+    from moorline.io import load_case_text
+    from moorline.model import DynamicsSettings
+    from moorline.solvers.dynamics import simulate
+    from moorline.solvers.statics import solve_statics
+
+    text = (Path(__file__).resolve().parents[1] / "cases" / "harmonic_body.yaml").read_text()
+    airy = "waves: {kind: airy, height: 1, period: 3}"
+    assert airy in text
+    component = (f"waves: {{kind: components, components: {{omegas: [{2 * math.pi / 3!r}], "
+                 "amplitudes: [0.5], phases: [0]}}")
+    runs = []
+    for case in (text, text.replace(airy, component)):
+        system = load_case_text(case, file="h.yaml")
+        runs.append(simulate(system, DynamicsSettings(duration=3.0, dt=0.05),
+                             initial=solve_statics(system)))
+    a, b = runs
+    assert a.success and b.success
+    assert np.ptp(a.body_pose[:, 0, 2]) > 0.1  # the wave heaves the disc
+    np.testing.assert_allclose(b.body_pose, a.body_pose, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(b.tension, a.tension, rtol=1e-9)
