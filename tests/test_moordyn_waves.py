@@ -501,3 +501,12 @@ def test_body_wave_loads_take_components_like_the_regular_wave() -> None:
     assert np.ptp(a.body_pose[:, 0, 2]) > 0.1  # the wave heaves the disc
     np.testing.assert_allclose(b.body_pose, a.body_pose, rtol=0, atol=1e-9)
     np.testing.assert_allclose(b.tension, a.tension, rtol=1e-9)
+
+
+def test_steady_node_current_is_read_with_moordyns_gap_named(tmp_path: Path) -> None:
+    """Currents 3 reads current_profile.txt like Currents 1; MoorDyn-C 2.7 does not implement
+    it (docs/waterkinematics.rst, no branch in Waves::setup): a warning says so."""
+    profile = "header\nheader\nz ux uy uz\n-320 0.2 0 0\n0 0.6 0 0\n"
+    deck = read_moordyn_deck(_deck(tmp_path, "3  Currents", {"current_profile.txt": profile}))
+    assert deck.system.environment.current.speeds == (0.2, 0.6)
+    assert any("builds no current for Currents 3" in n for n in deck.notes)

@@ -7,7 +7,8 @@ water, 1 wave kinematics set through the coupling API, 2 a wave spectrum
 MoorDyn-C 2.7: it builds no kinematics for them), 6 grid files (not implemented), 7 the
 spectrum's components summed at the nodes; ``Currents`` 0 is no current (or set through the
 API), 1 and 3 a steady profile read from ``current_profile.txt`` in the deck's folder (grid
-and node approach: the same profile), 2 and 4 a time-varying profile
+and node approach: the same profile; MoorDyn-C 2.7 builds nothing for 3, a warning says so),
+2 and 4 a time-varying profile
 (``current_profile_dynamic.txt``), 5 a 4-D grid. The steady profile file
 (``constructSteadyCurrentGrid`` in ``source/Waves/WaveGrid.cpp``) has three header lines,
 then rows ``z ux [uy [uz]]`` [m, m/s].
@@ -87,7 +88,9 @@ def water_kinematics(options: dict[str, str], deck: Path,
                 warn(f"option {key} = {value}: the steady current profile {path} is read as "
                      "the case's current (statics with current drag; MoorDyn-C 2.7 finds its "
                      "initial condition without the current and applies it in the time "
-                     "stepping only)")
+                     "stepping only)" + ("; MoorDyn-C 2.7 builds no current for Currents 3 "
+                                         "(not implemented): its runs of this deck have none"
+                                         if mode == 3 else ""))
             else:
                 warn(f"option {key} = {value}: no {CURRENT_FILE} next to the deck, the current "
                      "is dropped")
