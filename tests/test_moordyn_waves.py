@@ -510,3 +510,18 @@ def test_steady_node_current_is_read_with_moordyns_gap_named(tmp_path: Path) -> 
     deck = read_moordyn_deck(_deck(tmp_path, "3  Currents", {"current_profile.txt": profile}))
     assert deck.system.environment.current.speeds == (0.2, 0.6)
     assert any("builds no current for Currents 3" in n for n in deck.notes)
+
+
+def test_exciting_force_tables_need_one_heading() -> None:
+    """A body's exciting-force table is for the sea's heading: components going elsewhere
+    are refused (and accepted when they all go that way)."""
+    from moorline.io import load_case_text
+
+    text = (Path(__file__).resolve().parents[1] / "cases" / "harmonic_body.yaml").read_text()
+    airy = "waves: {kind: airy, height: 1, period: 3}"
+    sea = ("waves: {{kind: components, heading: 10, components: {{omegas: [2, 2.5], "
+           "amplitudes: [0.5, 0.2], phases: [0, 0], headings: [10, {}]}}}}")
+    load_case_text(text.replace(airy, sea.format(10)), file="h.yaml")
+    with pytest.raises(CaseError, match="body disc's exciting forces are for one heading") as e:
+        load_case_text(text.replace(airy, sea.format(40)), file="h.yaml")
+    assert e.value.field == "environment.waves.components.headings"

@@ -306,6 +306,13 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             if getattr(env.waves, key) <= 0.0:
                 fail(f"{what} needs {key} > 0", f"environment.waves.{key}")
     _check_components(env.waves, fail)
+    headings = env.waves.components.headings if env.waves.components is not None else None
+    tables = [n for n, b in (spec.bodies or {}).items()
+              if b.excitation is not None or b.hydrodynamics is not None]
+    if tables and headings and any(h != env.waves.heading for h in headings):
+        fail(f"body {tables[0]}'s exciting forces are for one heading (waves.heading = "
+             f"{env.waves.heading:g} deg): components of other headings would get them too; "
+             "give every component that heading", "environment.waves.components.headings")
     for name, lt in spec.line_types.items():
         if lt.material == "viscoelastic" and lt.tau <= 0.0:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
