@@ -165,7 +165,8 @@ def deck_waves(options: dict[str, str], deck: Path, warn: Callable[[str], None])
                 raise CaseError(str(exc), file=str(path)) from None
             how = (f"interpolated to MoorDyn's even step of {step:g} rad/s, the last "
                    "frequency halved as its inverse FFT does")
-    notes = [f"{option}: {path} is read as {len(sea.omegas)} wave components ({how}); "
+    count = len(sea.omegas)
+    notes = [f"{option}: {path} is read as {count} wave component{'s' * (count != 1)} ({how}); "
              "statics use still water"]
     if mode != 7:
         notes.append("moorline evaluates them exactly at the nodes, MoorDyn interpolates them "
