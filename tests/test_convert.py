@@ -182,7 +182,8 @@ PUBLIC_DECKS = [
     "MoorDyn/local_euler/duplicated.txt", "MoorDyn/polyester/simple.txt",
     "MoorDyn/lowe_and_langley_2006/line.txt", "MoorDyn/wavekin_4/hanging_lines.txt",
     "MoorDyn/wave_surface/wave_surface.txt", "MoorDyn/viv/viv.txt",
-    "MoorDyn/wavekin_2/wavekin_2.txt", "MoorDyn/BeamSimplySupported.txt",
+    "MoorDyn/wavekin_2/wavekin_2.txt", "MoorDyn/wavekin_2/wavekin_3.txt",
+    "MoorDyn/wavekin_7/wavekin_7.txt", "MoorDyn/BeamSimplySupported.txt",
     "MoorPy/tests/case6.dat",  # a W-shaped line with a buoy, lines touching the seabed
     "MoorDyn/tripod.txt",  # 11 lines, 9 free points and floats
 ]
@@ -267,7 +268,8 @@ def test_coupled_body_stiffness_against_moorpy(tmp_path):
 @pytest.mark.parametrize("deck", PUBLIC_DECKS)
 def test_public_decks_convert_and_reach_equilibrium(deck, tmp_path):
     """`moorline convert` then `moorline statics` with the defaults: exit 0 both; the
-    decks with `Currents 1` (viv, wavekin_2) carry MoorDyn's steady profile."""
+    decks with `Currents 1` (viv, wavekin_2) carry MoorDyn's steady profile, those with
+    `WaveKin` 2, 3 and 7 (wavekin_2, wavekin_7) their wave components."""
     import json
 
     path = PUBLIC / deck
@@ -278,6 +280,9 @@ def test_public_decks_convert_and_reach_equilibrium(deck, tmp_path):
     system = load_case(out)
     if deck.startswith(("MoorDyn/viv", "MoorDyn/wavekin_2")):
         assert len(system.environment.current.z_levels) > 2
+    if deck.startswith(("MoorDyn/wavekin_2", "MoorDyn/wavekin_7")):
+        assert system.environment.waves.kind == "components"
+        assert system.environment.waves.active
     statics = runner.invoke(cli, ["statics", str(out), "--out", str(tmp_path / "o"),
                                   "--json", "--quiet"])
     assert statics.exit_code == 0, statics.output

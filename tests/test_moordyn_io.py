@@ -307,7 +307,9 @@ def test_unknown_point_type_lists_the_aliases(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize(("option", "fragment"), [
-    ("3  WaveKin", "WaveKin = 3 (waves from a wave-elevation time series (grid)) is not read"),
+    ("3  WaveKin", "WaveKin = 3 (waves from a wave-elevation time series, grid): no "
+                   "wave_elevation.txt next to the deck, waves are dropped"),
+    ("6  WaveKin", "WaveKin = 6 (wave kinematics grid files) is not read: waves are dropped"),
     ("1  WaveKin", "WaveKin = 1 (wave kinematics set through the coupling API) is not read"),
     ("2  Currents", "Currents = 2 (a time-varying current profile"),
     ("1  Currents", "Currents = 1: no current_profile.txt next to the deck, the current is "

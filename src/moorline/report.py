@@ -210,7 +210,8 @@ _ENV_UNITS = {"depth": "length", "water_density": "mass/length^3", "gravity": "a
               "seabed.slip_velocity": "velocity", "current.speed": "velocity",
               "current.z_levels": "length", "current.speeds": "velocity",
               "waves.height": "length", "waves.period": "time",
-              "waves.record_length": "time", "waves.omega_max": "1/time"}
+              "waves.record_length": "time", "waves.omega_max": "1/time",
+              "waves.components.omegas": "1/time", "waves.components.amplitudes": "length"}
 """Dimensions of the environment's fields (headings and phases are in degrees)."""
 
 _RANDOM_ONLY = ("spectrum", "gamma", "amplitudes", "seed", "record_length", "n_frequencies",
@@ -227,7 +228,8 @@ def _environment_rows(environment: Any, units: str) -> list[list[str]]:
         part, _, key = name.rpartition(".")
         if value is None or value == () or (part == "waves" and (
                 (waves == "none" and key != "kind") or (waves != "random"
-                                                       and key in _RANDOM_ONLY))):
+                                                       and key in _RANDOM_ONLY)
+                or (waves == "components" and key in ("height", "period", "phase_deg")))):
             continue
         unit = (_unit(_ENV_UNITS[name], units) if name in _ENV_UNITS
                 else "deg" if key.endswith("_deg") else "")

@@ -32,6 +32,7 @@ from moorline.model import (
     OutputSettings,
     Point,
     Seabed,
+    SeaComponents,
     System,
     WaveExcitation,
     Waves,
@@ -295,13 +296,23 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
                 fail(str(exc), f"analyses[{k}].{exc.key}")
         if isinstance(analysis, StochasticSpec):
             if env.waves.kind != "random":
+                why = (" (explicit components have no spectrum: use a dynamics analysis)"
+                       if env.waves.kind == "components" else "")
                 fail("a stochastic analysis needs a random sea (environment.waves kind: "
-                     f"random), not {env.waves.kind!r}", f"analyses[{k}].kind")
+                     f"random), not {env.waves.kind!r}{why}", f"analyses[{k}].kind")
     if env.waves.kind in ("airy", "random"):
         what = "an airy wave" if env.waves.kind == "airy" else "a random sea (Hs, Tp)"
         for key in ("height", "period"):
             if getattr(env.waves, key) <= 0.0:
                 fail(f"{what} needs {key} > 0", f"environment.waves.{key}")
+    _check_components(env.waves, fail)
+    headings = env.waves.components.headings if env.waves.components is not None else None
+    tables = [n for n, b in (spec.bodies or {}).items()
+              if b.excitation is not None or b.hydrodynamics is not None]
+    if tables and headings and any(h != env.waves.heading for h in headings):
+        fail(f"body {tables[0]}'s exciting forces are for one heading (waves.heading = "
+             f"{env.waves.heading:g} deg): components of other headings would get them too; "
+             "give every component that heading", "environment.waves.components.headings")
     for name, lt in spec.line_types.items():
         if lt.material == "viscoelastic" and lt.tau <= 0.0:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
@@ -354,6 +365,28 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
     _check_sizes(spec, fail)
 
 
+def _check_components(waves: Any, fail: Callable[[str, str], None]) -> None:
+    """``kind: components`` needs ``components`` (lists of one length), no other kind
+    takes them."""
+    given = waves.components
+    if waves.kind != "components":
+        if given is not None:
+            fail(f"components are read only with kind: components, not {waves.kind!r}",
+                 "environment.waves.components")
+        return
+    if given is None:
+        fail("kind: components needs components: {omegas, amplitudes, phases}",
+             "environment.waves.components")
+    n = len(given.omegas)
+    if n < 1:
+        fail("needs at least one component", "environment.waves.components.omegas")
+    for key in ("amplitudes", "phases", "headings"):
+        values = getattr(given, key)
+        if values is not None and len(values) != n:
+            fail(f"{len(values)} {key} for {n} omegas (one per component)",
+                 f"environment.waves.components.{key}")
+
+
 def _check_sizes(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
     """Segments, random-sea components and each analysis' memory within
     :mod:`moorline.io.limits`."""
@@ -366,10 +399,11 @@ def _check_sizes(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
                  f"{MAX_SEGMENTS} for the whole case", f"lines.{name}.segments")
     waves = spec.environment.waves
     components = 0
-    if waves.kind == "random":
+    if waves.kind in ("random", "components"):
         components = wave_components(_waves(waves))
         if components > MAX_WAVE_COMPONENTS:
-            key = "n_frequencies" if waves.n_frequencies is not None else "record_length"
+            key = ("components.omegas" if waves.kind == "components" else "n_frequencies"
+                   if waves.n_frequencies is not None else "record_length")
             fail(f"the random sea would have {components:.3g} components, more than "
                  f"MAX_WAVE_COMPONENTS = {MAX_WAVE_COMPONENTS} (components: n_frequencies, or "
                  f"omega_max * record_length / 2 pi)", f"environment.waves.{key}")
@@ -634,8 +668,12 @@ def _body(name: str, spec: Any, source: str | None, environment: Environment,
 
 
 def _waves(spec: Any) -> Waves:
-    return Waves(heading_deg=spec.heading, phase_deg=spec.phase,
-                 **spec.model_dump(exclude={"heading", "phase"}))
+    given = spec.components
+    components = None if given is None else SeaComponents(
+        omegas=tuple(given.omegas), amplitudes=tuple(given.amplitudes),
+        phases_deg=tuple(given.phases), headings_deg=tuple(given.headings or ()))
+    return Waves(heading_deg=spec.heading, phase_deg=spec.phase, components=components,
+                 **spec.model_dump(exclude={"heading", "phase", "components"}))
 
 
 def _excitation(spec: Any) -> WaveExcitation | None:

@@ -32,6 +32,14 @@ def system_to_dict(system: System) -> dict[str, Any]:
                             {"kind": waves.kind, "height": waves.height,
                              "period": waves.period, "heading": waves.heading_deg,
                              "phase": waves.phase_deg, "stretching": waves.stretching})
+    if waves.kind == "components" and waves.components is not None:
+        c = waves.components
+        environment["waves"] = {"kind": "components", "heading": waves.heading_deg,
+                                "stretching": waves.stretching, "components": {
+                                    "omegas": list(c.omegas), "amplitudes": list(c.amplitudes),
+                                    "phases": list(c.phases_deg)}}
+        if c.headings_deg:
+            environment["waves"]["components"]["headings"] = list(c.headings_deg)
     if waves.kind == "random":
         environment["waves"].update(
             {"spectrum": waves.spectrum, "gamma": waves.gamma, "amplitudes": waves.amplitudes,

@@ -36,7 +36,10 @@ _RECORD_OVERHEAD = 4096  # bytes per dynamics record beyond its numbers (the OC3
 
 def wave_components(waves: Waves) -> int:
     """Number of components of a ``kind: random`` sea, as
-    :meth:`moorline.waves.RandomSea.n_components` counts them (no arrays made)."""
+    :meth:`moorline.waves.RandomSea.n_components` counts them (no arrays made), or of a
+    ``kind: components`` one."""
+    if waves.kind == "components":
+        return len(waves.components.omegas) if waves.components is not None else 0
     from ..waves.field import random_sea
 
     return random_sea(waves).n_components()

@@ -45,9 +45,10 @@ moorline bodies and points (:mod:`moorline.io.moordyn_rigid`: free, fixed and co
 body points ``Body<k>``, rods fixed to bodies, free, fixed and coupled rods, lines on rod ends
 ``R<k>A``/``R<k>B``); what cannot be represented (pinned rods, pinned coupled bodies) is one
 ``CaseError`` naming every such item, what is approximated a warning each. Seabed files are
-not supported. ``WaveKin`` and ``Currents`` are
-warnings naming what is dropped; ``Currents`` 1 or 3 with a ``current_profile.txt`` next to
-the deck becomes the case's current (:mod:`moorline.io.moordyn_kinematics`). ``TMax``,
+not supported. ``WaveKin`` 2-5 and 7 with their wave file next to the deck become a sea of
+explicit components, ``Currents`` 1 or 3 with a ``current_profile.txt`` the case's current
+(:mod:`moorline.io.moordyn_kinematics`); other kinematics options are warnings naming what is
+dropped. ``TMax``,
 ``dtOut`` and the ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and
 ``output.channels`` (:mod:`moorline.io.moordyn_outputs`).
 """
@@ -67,7 +68,7 @@ from ..model import Environment, Line, LineType, Point, Seabed, System
 from ..physics.load_strain import StrainTable
 from .files import MAX_CASE_BYTES, file_problem
 from .moordyn_bodies import body_attachment, body_problems, body_section
-from .moordyn_kinematics import water_kinematics
+from .moordyn_kinematics import deck_waves, water_kinematics
 from .moordyn_outputs import deck_channels, output_channels, time_options, time_settings
 from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
 from .schema import check_number
@@ -264,6 +265,9 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
         reader.warn(message)
     bodies = parts.bodies()
     environment = _environment(env_values, points, reader)
+    waves = deck_waves(raw, path, reader.warn)
+    if waves is not None:
+        environment = replace(environment, waves=waves)
     current = water_kinematics(raw, path, reader.warn)
     if current is not None:
         environment = replace(environment, current=current)
@@ -656,7 +660,7 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
     env = system.environment
     if env.current.speed:
         omissions.append("current")
-    if env.waves.kind != "none" and env.waves.height:
+    if env.waves.active:
         omissions.append("waves")
     for lt in system.line_types.values():
         if lt.material != "elastic":

@@ -245,13 +245,25 @@ class CurrentSpec(_Spec):
     headings: list[quantity("angle")] | None = None
 
 
+class WaveComponentsSpec(_Spec):
+    """``environment.waves.components``: an explicit linear sea, one entry per component:
+    ``eta = sum a cos(k (x cos b + y sin b) - omega t + phi)`` with ``omegas`` [rad/s],
+    ``amplitudes`` a [length], ``phases`` phi [angle] and optional ``headings`` b [angle]
+    (default: ``waves.heading``)."""
+
+    omegas: list[quantity("1/time", gt=0.0)]
+    amplitudes: list[quantity("length", ge=0.0)]
+    phases: list[quantity("angle")]
+    headings: list[quantity("angle")] | None = None
+
+
 class WavesSpec(_Spec):
     """``environment.waves``: ``kind: none``, a regular ``airy`` wave (``height``,
-    ``period``), or a ``random`` sea (``height`` = Hs, ``period`` = Tp, ``spectrum``,
+    ``period``), a ``random`` sea (``height`` = Hs, ``period`` = Tp, ``spectrum``,
     ``gamma``, ``amplitudes``, ``seed``, ``record_length``, ``n_frequencies`` or
-    ``omega_max``)."""
+    ``omega_max``), or explicit ``components`` (:class:`WaveComponentsSpec`)."""
 
-    kind: Literal["none", "airy", "random"] = "none"
+    kind: Literal["none", "airy", "random", "components"] = "none"
     height: quantity("length", ge=0.0) = 0.0
     period: quantity("time", ge=0.0) = 0.0
     heading: quantity("angle") = 0.0
@@ -264,6 +276,7 @@ class WavesSpec(_Spec):
     record_length: quantity("time", gt=0.0) = 1800.0
     n_frequencies: PositiveInt | None = None
     omega_max: quantity("1/time", gt=0.0) | None = None
+    components: WaveComponentsSpec | None = None
 
 
 class EnvironmentSpec(_Spec):

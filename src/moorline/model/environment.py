@@ -47,16 +47,42 @@ class Current:
 
 
 @dataclass(frozen=True)
+class SeaComponents:
+    """An explicit linear sea: components ``eta = sum a_j cos(k_j (x cos b_j + y sin b_j) -
+    omega_j t + phi_j)`` (:class:`moorline.waves.WaveComponents`, ``k_j`` from the
+    dispersion relation).
+
+    Attributes
+    ----------
+    omegas
+        Angular frequencies ``omega_j`` [rad/time], ``> 0``.
+    amplitudes
+        Amplitudes ``a_j`` [length] (half the component's height), ``>= 0``.
+    phases_deg
+        Phases ``phi_j`` [deg].
+    headings_deg
+        Directions of propagation ``b_j`` [deg] (0 = +x); empty: the ``Waves.heading_deg``
+        of every component.
+    """
+
+    omegas: tuple[float, ...]
+    amplitudes: tuple[float, ...]
+    phases_deg: tuple[float, ...]
+    headings_deg: tuple[float, ...] = ()
+
+
+@dataclass(frozen=True)
 class Waves:
     """Waves: ``kind='none'`` for still water, ``airy`` for a regular wave of ``height`` and
     ``period``, ``random`` for a random sea (:class:`moorline.waves.RandomSea`) of significant
     height ``height`` (``Hs``) and peak period ``period`` (``Tp``) with the ``spectrum``
     (``pierson-moskowitz`` or ``jonswap`` with ``gamma``), ``amplitudes`` ``dsa`` or ``nsa``,
     ``seed``, ``record_length`` (the realization's period) and ``n_frequencies`` (or all up
-    to ``omega_max``, default six times the peak frequency). ``stretching='wheeler'``
-    evaluates the kinematics at Wheeler-stretched heights."""
+    to ``omega_max``, default six times the peak frequency), ``components`` for the explicit
+    sea ``components`` (:class:`SeaComponents`, e.g. read from a MoorDyn deck's wave file).
+    ``stretching='wheeler'`` evaluates the kinematics at Wheeler-stretched heights."""
 
-    kind: Literal["none", "airy", "random"] = "none"
+    kind: Literal["none", "airy", "random", "components"] = "none"
     height: float = 0.0
     period: float = 0.0
     heading_deg: float = 0.0
@@ -69,6 +95,15 @@ class Waves:
     record_length: float = 1800.0
     n_frequencies: int | None = None
     omega_max: float | None = None
+    components: SeaComponents | None = None
+
+    @property
+    def active(self) -> bool:
+        """True when the water surface moves: a positive ``height`` (``airy``, ``random``)
+        or a non-zero component amplitude (``components``)."""
+        if self.kind == "components":
+            return self.components is not None and any(a > 0 for a in self.components.amplitudes)
+        return self.kind != "none" and self.height > 0
 
 
 @dataclass(frozen=True)

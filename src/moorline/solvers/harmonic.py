@@ -348,11 +348,19 @@ class HarmonicBalance:
                               case=self.system_name, units=self.units, **body)
 
 def _check_wave_period(system: System, period: float) -> None:
-    """A regular wave must repeat over the analysis period (and a random sea never does)."""
+    """A regular wave or explicit components must repeat over the analysis period (and a
+    random sea never does)."""
     waves = system.environment.waves
     if waves.kind == "random":
         raise MoorlineError(f"harmonic balance of {system.name}: a random sea is not periodic "
                             "(use a stochastic or dynamics analysis)")
+    if waves.kind == "components" and waves.active:
+        cycles = [w * period / (2.0 * math.pi) for w in waves.components.omegas]
+        if any(abs(c - round(c)) > 1e-9 * max(c, 1.0) or round(c) < 1 for c in cycles):
+            raise MoorlineError(f"harmonic balance of {system.name}: every wave component "
+                                f"must repeat over the analysis period ({period:g}): "
+                                "omega * period / 2 pi must be whole numbers")
+        return
     if waves.kind != "airy" or not waves.height:
         return
     ratio = period / waves.period

@@ -13,6 +13,7 @@ from .field import (
     StillWater,
     fluid_field_from_environment,
     random_sea,
+    sea_components,
 )
 from .random import RandomSea
 from .spectra import WaveSpectrum, jonswap, pierson_moskowitz
@@ -32,6 +33,7 @@ __all__ = [
     "pierson_moskowitz",
     "random_sea",
     "ramp_factor",
+    "sea_components",
     "superpose",
     "wave_number",
 ]

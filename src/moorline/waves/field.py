@@ -82,12 +82,46 @@ def random_sea(waves: Waves) -> RandomSea:
                      heading_deg=waves.heading_deg)
 
 
+def sea_components(waves: Waves, depth: float, gravity: float, ramp_time: float = 0.0
+                   ) -> WaveComponents | None:
+    """The linear components of a ``random`` or ``components`` sea (one code path: a random
+    sea's realization is itself a set of components), ``None`` for a still one.
+
+    Parameters
+    ----------
+    waves
+        ``kind: random`` (its realization, :meth:`RandomSea.components`) or ``kind:
+        components`` (:class:`moorline.model.SeaComponents`; a component without heading
+        takes ``waves.heading_deg``).
+    depth, gravity
+        Water depth (``inf``: deep) [length] and gravitational acceleration.
+    ramp_time
+        Start-up ramp [time].
+    """
+    if not waves.active:
+        return None
+    if waves.kind == "random":
+        return random_sea(waves).components(depth, gravity, ramp_time=ramp_time,
+                                            stretching=waves.stretching)
+    if waves.kind != "components" or waves.components is None:
+        raise ValueError(f"waves of kind {waves.kind!r} are not a set of components")
+    c = waves.components
+    headings = c.headings_deg if c.headings_deg else waves.heading_deg
+    return WaveComponents(amplitudes=np.asarray(c.amplitudes, float),
+                          omegas=np.asarray(c.omegas, float),
+                          phases=np.radians(np.asarray(c.phases_deg, float)),
+                          headings_deg=np.asarray(headings, float), depth=depth,
+                          gravity=gravity, ramp_time=ramp_time, stretching=waves.stretching)
+
+
 def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0,
                                  ramp_current: bool = True) -> FluidField:
     """Fluid field described by a :class:`moorline.model.Environment`.
 
     ``waves.kind == 'airy'`` with a positive height gives an :class:`~moorline.waves.AiryWave`
-    (heading, depth and gravity from the environment, phase 0, no stretching); a non-zero
+    (heading, depth and gravity from the environment, phase 0, no stretching), ``random``
+    and ``components`` their :class:`~moorline.waves.WaveComponents` (:func:`sea_components`);
+    a non-zero
     ``current.speed`` gives a uniform :class:`~moorline.waves.CurrentProfile`. Both are ramped
     over ``ramp_time`` (``DynamicsSettings.ramp_time`` ramps "waves and current": the
     dynamics starts from a static state computed without current drag). Both give a
@@ -121,10 +155,8 @@ def fluid_field_from_environment(env: Environment, ramp_time: float = 0.0,
                 ramp_time=ramp_time,
                 stretching=waves.stretching,
             )
-    elif waves.kind == "random":
-        if waves.height > 0.0:
-            wave = random_sea(waves).components(env.depth, env.gravity, ramp_time=ramp_time,
-                                                stretching=waves.stretching)
+    elif waves.kind in ("random", "components"):
+        wave = sea_components(waves, env.depth, env.gravity, ramp_time)
     elif waves.kind != "none":
         raise ValueError(f"unknown wave kind {waves.kind!r}")
     current = None
