@@ -27,7 +27,9 @@ Supported (v2 names first, v1 names in parentheses):
 - ``LINES`` (``LINE PROPERTIES``, ``LINE LIST``): v2 rows ``ID LineType AttachA AttachB
   UnstrLen NumSegs [Outputs]``; v1 rows ``ID LineType UnstrLen NumSegs NodeAnch NodeFair
   [Flags]`` (recognized by a column header ``UnstrLen``/``Length`` in third place, or by a v1
-  points table).
+  points table). Either may end with MoorDyn-F's ``CtrlChan`` (the controller channel that
+  changes the line's length in OpenFAST, e.g. OpenFAST r-test ``modules/moordyn/Node_Check_
+  (N=40)/test1.dat``); a nonzero channel is a warning, the length stays ``UnstrLen``.
 - ``OPTIONS`` (``SOLVER OPTIONS``): ``WtrDpth`` (alias ``depth``), ``rho`` (``WtrDnsty``,
   ``rhoW``), ``g`` (``gravity``), ``kBot`` (``kb``), ``cBot`` (``cb``), ``FrictionCoefficient``.
   MoorDyn's numerical settings (``dtM``, ``tScheme``, ``TmaxIC``, ``threshIC``, ...) do not
@@ -539,14 +541,19 @@ def _parse_lines(sec: _Section, types: Mapping[str, LineType], ids: Mapping[int,
                  points_version: Version, reader: _Reader, parts: RigidParts | None = None
                  ) -> tuple[dict[str, Line], dict[str, int], Version]:
     version = _lines_layout(sec, points_version)
-    layout = ("v2: ID LineType AttachA AttachB UnstrLen NumSegs [Outputs]" if version == "v2"
-              else "v1: ID LineType UnstrLen NumSegs NodeAnch NodeFair [Flags]")
+    layout = ("v2: ID LineType AttachA AttachB UnstrLen NumSegs [Outputs [CtrlChan]]"
+              if version == "v2"
+              else "v1: ID LineType UnstrLen NumSegs NodeAnch NodeFair [Flags [CtrlChan]]")
     lines: dict[str, Line] = {}
     line_ids: dict[str, int] = {}
     for number, row in enumerate(sec.rows, start=1):
-        _columns(row, (6, 7), layout, sec.title, reader)
+        _columns(row, (6, 7, 8), layout, sec.title, reader)
         _check_id(row, number, sec.title, reader)
         tok = row.tokens
+        if len(tok) == 8 and _integer(tok[7], "CtrlChan", row, sec.title, reader) != 0:
+            reader.warn(f"line {number} (line {row.lineno}): CtrlChan {tok[7]} (length "
+                        "control by a turbine controller channel) is not modelled; the "
+                        "line keeps its UnstrLen")
         type_name = tok[1]
         if type_name not in types:
             raise reader.fail(f"unknown line type {type_name!r}; defined: "
