@@ -260,8 +260,17 @@ RTEST_DECKS = [RTEST + deck for deck in (
 ]
 
 
+#: MoorDyn-F v1 decks of OpenFAST's in-tree regression tests (before r-test): count rows
+#: (``1 NTypes``) before the table headers, no WtrDpth.
+OPENFAST_V1 = "OpenFAST/reg_tests/5MW_Baseline/NRELOffshrBsline5MW_"
+OPENFAST_V1_DECKS = [OPENFAST_V1 + name + "_MoorDyn.dat" for name in (
+    "ITIBarge4", "MIT_NREL_TLP", "OC3Hywind", "OC4DeepCwindSemi")]
+
+
 def _deck_id(deck: str) -> str:
     """A short test id: an r-test deck by its case folder (long ids become ``deckN``)."""
+    if deck.startswith(OPENFAST_V1):
+        return "openfast-v1:" + deck[len(OPENFAST_V1):-len("_MoorDyn.dat")]
     for prefix in (RTEST + "glue-codes/openfast/", RTEST + "modules/moordyn/", RTEST):
         if deck.startswith(prefix):
             folder, _, name = deck[len(prefix):].rpartition("/")
@@ -269,11 +278,12 @@ def _deck_id(deck: str) -> str:
     return deck
 
 
-@pytest.mark.parametrize("deck", PUBLIC_BODY_DECKS + RTEST_DECKS, ids=_deck_id)
+@pytest.mark.parametrize("deck", PUBLIC_BODY_DECKS + RTEST_DECKS + OPENFAST_V1_DECKS,
+                         ids=_deck_id)
 def test_public_body_decks_convert_solve_and_run(deck, tmp_path):
     """`moorline convert` then `moorline statics` (converged) and a short dynamics run from
     the equilibrium (2 s) of the converted case: the body decks of MoorPy and MoorDyn and
-    every OpenFAST r-test deck."""
+    the OpenFAST regression-test decks."""
     import json
 
     from moorline.model import DynamicsSettings
@@ -334,6 +344,20 @@ def test_rtest_decks_with_unsupported_input_are_refused(deck, named, tmp_path):
     error = result.stderr.strip().splitlines()[-1]  # after warnings of what is dropped
     assert error.startswith(f"error: {path}: ") and named in error
     assert not out.exists()
+
+
+def test_v1_count_row_must_match_the_rows(tmp_path):
+    """MoorDyn-F v1's ``NTypes`` row declares how many rows follow (MoorDyn-F reads that many):
+    a deck listing another number is refused naming the key, the section and its line."""
+    text = (PUBLIC / OPENFAST_V1_DECKS[3]).read_text().replace("1        NTypes",
+                                                               "2        NTypes")
+    deck = tmp_path / "count.dat"
+    deck.write_text(text)
+    result = CliRunner().invoke(cli, ["convert", str(deck), "--out", str(tmp_path / "c.yaml"),
+                                      "--quiet"])
+    assert result.exit_code == 2
+    assert f"error: {deck}: line 6, LINE TYPES: NTypes = 2 but the section lists 1 entries" \
+        in result.stderr
 
 
 @pytest.mark.compare
