@@ -27,7 +27,12 @@ Supported (v2 names first, v1 names in parentheses):
 - ``LINES`` (``LINE PROPERTIES``, ``LINE LIST``): v2 rows ``ID LineType AttachA AttachB
   UnstrLen NumSegs [Outputs]``; v1 rows ``ID LineType UnstrLen NumSegs NodeAnch NodeFair
   [Flags]`` (recognized by a column header ``UnstrLen``/``Length`` in third place, or by a v1
-  points table).
+  points table). Either may end with MoorDyn-F's ``CtrlChan`` (the controller channel that
+  changes the line's length in OpenFAST, e.g. OpenFAST r-test ``modules/moordyn/Node_Check_
+  (N=40)/test1.dat``); a nonzero channel is a warning, the length stays ``UnstrLen``.
+- MoorDyn-F v1 (FAST v8, OpenFAST before 2.x) puts a count row before a table's header rows
+  (``1  NTypes - number of LineTypes``, ``NConnects``, ``NLines``); it is checked against the
+  rows listed and skipped.
 - ``OPTIONS`` (``SOLVER OPTIONS``): ``WtrDpth`` (alias ``depth``), ``rho`` (``WtrDnsty``,
   ``rhoW``), ``g`` (``gravity``), ``kBot`` (``kb``), ``cBot`` (``cb``), ``FrictionCoefficient``.
   MoorDyn's numerical settings (``dtM``, ``tScheme``, ``TmaxIC``, ``threshIC``, ...) do not
@@ -81,6 +86,8 @@ Version = Literal["v1", "v2"]
 MOORDYN_CURVE_POINTS = 30
 """Most points MoorDyn-C v2.7 reads from a curve file (its ``nCoef``)."""
 _COMMENT = re.compile(r"[!#%]")
+#: MoorDyn-F v1's count row before a table's two header rows (``1  NTypes  - number of ...``).
+_COUNT_ROW = re.compile(r"^(\d+)\s+(N[A-Za-z]+)\b")
 _NAME = re.compile(r"^[A-Za-z_][\w.\-]*$")
 _INF_DEPTH_TAG = "moorline: no seabed"
 
@@ -164,6 +171,7 @@ class _Section:
     lineno: int
     header: list[str] = field(default_factory=list)
     rows: list[_Row] = field(default_factory=list)
+    count: tuple[int, str, int] | None = None  # a v1 count row: (number, key, line number)
 
 
 @dataclass
@@ -365,6 +373,10 @@ def _split_sections(lines: list[str], reader: _Reader) -> dict[str, _Section]:
         if current is None or not stripped or current.kind in ("other", "ignored"):
             continue
         table = current.kind not in ("options", "outputs")
+        count = _COUNT_ROW.match(stripped) if table and not current.header else None
+        if count is not None and current.count is None:
+            current.count = (int(count.group(1)), count.group(2), lineno)
+            continue
         if table and len(current.header) < 2:
             current.header.append(stripped)
             continue
@@ -373,6 +385,11 @@ def _split_sections(lines: list[str], reader: _Reader) -> dict[str, _Section]:
             else (stripped, "")
         if body.strip():
             current.rows.append(_Row(lineno, body.split(), comment))
+    for sec in sections.values():
+        if sec.count is not None and sec.count[0] != len(sec.rows):
+            number, key, lineno = sec.count
+            raise reader.fail(f"{key} = {number} but the section lists {len(sec.rows)} "
+                              "entries", lineno=lineno, section=sec.title)
     return sections
 
 
@@ -543,14 +560,19 @@ def _parse_lines(sec: _Section, types: Mapping[str, LineType], ids: Mapping[int,
                  points_version: Version, reader: _Reader, parts: RigidParts | None = None
                  ) -> tuple[dict[str, Line], dict[str, int], Version]:
     version = _lines_layout(sec, points_version)
-    layout = ("v2: ID LineType AttachA AttachB UnstrLen NumSegs [Outputs]" if version == "v2"
-              else "v1: ID LineType UnstrLen NumSegs NodeAnch NodeFair [Flags]")
+    layout = ("v2: ID LineType AttachA AttachB UnstrLen NumSegs [Outputs [CtrlChan]]"
+              if version == "v2"
+              else "v1: ID LineType UnstrLen NumSegs NodeAnch NodeFair [Flags [CtrlChan]]")
     lines: dict[str, Line] = {}
     line_ids: dict[str, int] = {}
     for number, row in enumerate(sec.rows, start=1):
-        _columns(row, (6, 7), layout, sec.title, reader)
+        _columns(row, (6, 7, 8), layout, sec.title, reader)
         _check_id(row, number, sec.title, reader)
         tok = row.tokens
+        if len(tok) == 8 and _integer(tok[7], "CtrlChan", row, sec.title, reader) != 0:
+            reader.warn(f"line {number} (line {row.lineno}): CtrlChan {tok[7]} (length "
+                        "control by a turbine controller channel) is not modelled; the "
+                        "line keeps its UnstrLen")
         type_name = tok[1]
         if type_name not in types:
             raise reader.fail(f"unknown line type {type_name!r}; defined: "
