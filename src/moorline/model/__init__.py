@@ -20,7 +20,7 @@ from .analysis import (
 from .body import Body, Hydrostatics, RadiationTable, WaveExcitation
 from .components import Line, LineType, Motion, Point, PointKind
 from .design import DesignSettings
-from .environment import Current, Environment, Seabed, Waves
+from .environment import Bathymetry, Current, Environment, Seabed, Waves
 from .system import System, UnitSystem
 
 __all__ = [
@@ -44,6 +44,7 @@ __all__ = [
     "Point",
     "PointKind",
     "Seabed",
+    "Bathymetry",
     "StaticMethod",
     "StaticsSettings",
     "HarmonicSettings",

@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 
 from ..mesh import Mesh
 from ..model import System
+from .point_start import local_seabed
 
 FloatArray = NDArray[np.float64]
 logger = logging.getLogger(__name__)
@@ -29,6 +30,12 @@ def initial_positions(system: System, mesh: Mesh,
     penetration at which the penalty seabed carries them
     (:meth:`~moorline.solvers.equilibrium.StaticModel.resting_penetration`), so that a lying
     line starts in vertical balance, not on the contact's kink.
+
+    On a sloped or gridded seabed each line's catenary assumes a flat seabed at the height
+    under its end nearer to the seabed (:func:`~moorline.solvers.point_start.local_seabed`,
+    its anchor), and the free nodes it lays on that plane, or that end up below the real
+    surface, are moved vertically onto the surface (the same resting penetration); Newton
+    takes it from there.
     """
     x = mesh.node_prescribed_start.copy()
     if start == "catenary":
@@ -38,6 +45,7 @@ def initial_positions(system: System, mesh: Mesh,
         if solved is not None:
             x = solved
     sink = np.zeros(mesh.n_nodes)
+    reference = np.full(mesh.n_nodes, mesh.seabed_z)  # the flat seabed each line assumes
     if np.isfinite(mesh.seabed_z):
         from .equilibrium import StaticModel
 
@@ -50,14 +58,19 @@ def initial_positions(system: System, mesh: Mesh,
             continue
         s = np.linspace(0.0, line.length, line.segments + 1)
         depth = float(sink[nodes[1:-1]].max(initial=0.0))
-        shape = (_catenary_shape(system, line.line_type, line.length, a, b, s, mesh.seabed_z,
-                                 depth) if start == "catenary" else None)
+        if mesh.bathymetry is not None:
+            reference[nodes] = local_seabed(x, mesh.seabed_height(x), nodes[0], nodes[-1])
+        shape = (_catenary_shape(system, line.line_type, line.length, a, b, s,
+                                 float(reference[nodes[0]]), depth)
+                 if start == "catenary" else None)
         if shape is not None:
             x[nodes[1:-1]] = shape[1:-1]
         else:
             x[nodes[1:-1]] = a + (s[1:-1, None] / line.length) * (b - a)
-    lying = mesh.free_nodes & (x[:, 2] <= mesh.seabed_z + 1e-9 * max(1.0, abs(mesh.seabed_z)))
-    x[lying, 2] = mesh.seabed_z - sink[lying]
+    bottom = mesh.seabed_height(x) if mesh.bathymetry is not None else reference
+    lying = mesh.free_nodes & ((x[:, 2] <= reference + 1e-9 * max(1.0, abs(mesh.seabed_z)))
+                               | (x[:, 2] < bottom))
+    x[lying, 2] = bottom[lying] - sink[lying]
     return x
 
 
