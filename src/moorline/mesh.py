@@ -351,10 +351,10 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         gravity=env.gravity, water_density=env.water_density, **props,
         bend_nodes=bend[0], bend_elements=bend[1], bend_stiffness=bend[2],
         **_clamps(system, line_elements, L0, EI),
-        **_body_arrays(system, points), bathymetry=_sloped_seabed(env))
+        **_body_arrays(system, points), bathymetry=sloped_seabed(env))
 
 
-def _sloped_seabed(env) -> SeabedSurface | None:
+def sloped_seabed(env) -> SeabedSurface | None:
     """The sloped or gridded seabed of an :class:`~moorline.model.Environment` (``None``:
     flat or no seabed)."""
     sb = env.seabed
