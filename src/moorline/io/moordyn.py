@@ -46,8 +46,8 @@ body points ``Body<k>``, rods fixed to bodies, free, fixed and coupled rods, lin
 ``R<k>A``/``R<k>B``); what cannot be represented (pinned rods, pinned coupled bodies) is one
 ``CaseError`` naming every such item, what is approximated a warning each. ``SeafloorFile``
 (MoorDyn-C's 3-D seafloor) becomes the seabed's bathymetry grid (:mod:`moorline.io.seafloor`;
-the path as MoorDyn opens it, relative to the working directory, is looked up from the deck's
-folder and its parents; a note says that moorline's seabed pushes along its normal where
+MoorDyn opens the path relative to its working directory; here the path, then its shorter
+tails, are looked up in the deck's folder and its parents; a note says that moorline's seabed pushes along its normal where
 MoorDyn's pushes vertically). ``WaveKin`` and ``Currents`` are
 warnings naming what is dropped; ``Currents`` 1 or 3 with a ``current_profile.txt`` next to
 the deck becomes the case's current (:mod:`moorline.io.moordyn_kinematics`). ``TMax``,
@@ -649,7 +649,10 @@ def _seafloor(raw: Mapping[str, str], path: Path, environment: Environment,
     if value is None or (_is_number(value) and float(value) == 0):
         return environment
     folder = path.resolve().parent
-    candidates = [folder / value, *(parent / value for parent in folder.parents)]
+    parts = Path(value).parts
+    tails = [Path(*parts[k:]) for k in range(len(parts))]  # the path, then shorter tails
+    candidates = [Path(value)] if Path(value).is_absolute() else \
+        [base / tail for tail in tails for base in (folder, *folder.parents)]
     found = next((c for c in candidates if c.is_file()), None)
     if found is None:
         raise reader.fail(f"option SeafloorFile = {value}: no such file in the deck's folder "
