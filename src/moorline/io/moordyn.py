@@ -47,12 +47,13 @@ body points ``Body<k>``, rods fixed to bodies, free, fixed and coupled rods, lin
 ``CaseError`` naming every such item, what is approximated a warning each. ``SeafloorFile``
 (MoorDyn-C's 3-D seafloor) becomes the seabed's bathymetry grid (:mod:`moorline.io.seafloor`;
 MoorDyn opens the path relative to its working directory; here the path, then its shorter
-tails, are looked up in the deck's folder and its parents; a note says that moorline's seabed pushes along its normal where
-MoorDyn's pushes vertically). ``WaveKin`` and ``Currents`` are
-warnings naming what is dropped; ``Currents`` 1 or 3 with a ``current_profile.txt`` next to
-the deck becomes the case's current (:mod:`moorline.io.moordyn_kinematics`). ``TMax``,
-``dtOut`` and the ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and
-``output.channels`` (:mod:`moorline.io.moordyn_outputs`).
+tails, are looked up in the deck's folder and its parents; a note says that moorline's
+seabed pushes along its normal where MoorDyn's pushes vertically). ``WaveKin`` and
+``Currents`` are warnings naming what is dropped; ``Currents`` 1 or 3 with a
+``current_profile.txt`` next to the deck becomes the case's current
+(:mod:`moorline.io.moordyn_kinematics`). ``TMax``, ``dtOut`` and the ``OUTPUTS`` channels
+become a dynamics analysis, ``output.every`` and ``output.channels``
+(:mod:`moorline.io.moordyn_outputs`).
 """
 
 from __future__ import annotations
