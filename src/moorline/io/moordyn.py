@@ -691,8 +691,8 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
     if env.waves.kind != "none" and env.waves.height:
         omissions.append("waves")
     if not env.seabed.is_flat:
-        omissions.append("seabed contact along the normal of the sloped or gridded seabed "
-                         "(MoorDyn-C pushes vertically)")
+        omissions.append("the push of the sloped or gridded seabed along its normal "
+                         "(MoorDyn-C's seafloor pushes vertically)")
     for lt in system.line_types.values():
         if lt.material != "elastic":
             errors.append(f"line type {lt.name}: {lt.material} material")
