@@ -21,12 +21,13 @@ W = (MASS - RHO * math.pi * D**2 / 4) * G  # submerged weight per unstretched le
 DEPTH = 200.0
 
 
-def _case(a, b, length, segments, seabed: str, extra_points: str = "") -> str:
+def _case(a, b, length, segments, seabed: str, extra_points: str = "",
+          stiffness: float = 3.0e6) -> str:
     return f"""
 name: slope
 units: SI
 environment: {{depth: {DEPTH}, water_density: {RHO}, gravity: {G},
-              seabed: {{stiffness: 3.0e6, damping: 0, {seabed}}}}}
+              seabed: {{stiffness: {stiffness}, damping: 0, {seabed}}}}}
 line_types:
   chain: {{diameter: {D}, mass_per_length: {MASS}, EA: {EA}, Cd: 1.2, Ca: 1.0}}
 points:
@@ -46,15 +47,23 @@ def _on_plane(slope_deg: float, heading_deg: float, x: float, y: float) -> float
     return -DEPTH - t * (x * math.cos(h) + y * math.sin(h))
 
 
-@pytest.mark.parametrize("heading", [0.0, 120.0])
-def test_a_line_lying_up_a_frictionless_slope_has_the_closed_form_tension(heading) -> None:
+@pytest.mark.parametrize("heading, mu", [(0.0, 0.0), (120.0, 0.0), (120.0, 0.4)])
+def test_a_line_lying_up_a_slope_has_the_closed_form_tension(heading, mu) -> None:
     """Both ends on a 10 deg plane along its fall line, the line 0.2 % shorter than the chord:
     the seabed carries ``w cos(a)`` per length, the tension rises up the slope by ``w sin(a)``
-    per unstretched length, ``T(s) = T_A + w sin(a) s`` with
-    ``D = L + (T_A L + w sin(a) L^2 / 2) / EA`` (D the chord, L the unstretched length). The
-    interior nodes rest 3.4 mm off the plane (within the contact's blend-in band, d / 4 wide,
-    :mod:`moorline.physics.seabed`), which lengthens the two end elements by 1.2e-6 m and
-    raises the tension by EA / L * 1.2e-6 = 1.9 N = 1.9e-6 T_B: tolerance 5e-6 T_B."""
+    per unstretched length, plus ``mu w cos(a)`` with the static friction fully mobilized
+    towards the anchor (the closed-form convention, :func:`moorline.physics.seabed.
+    static_friction`; the lower end ``a`` is the anchor): ``T(s) = T_A + k s``,
+    ``k = w (sin(a) + mu cos(a))``, with ``D = L + (T_A L + k L^2 / 2) / EA`` (D the chord,
+    L the unstretched length). The interior nodes rest 3.4 mm off the plane (within the
+    contact's blend-in band, d / 4 wide, :mod:`moorline.physics.seabed`): with the ends on
+    the plane that lengthens the two end elements by 1.2e-6 m and raises the tension by
+    EA / L * 1.2e-6 = 1.9 N = 1.9e-6 T_B (tolerance 5e-6 T_B). With friction the kink would
+    also press the nodes next to the ends by T * 3.4e-4 (~340 N, friction 136 N): there the
+    seabed stiffness is chosen so that the nodes rest on the surface itself (the documented
+    law ``k q^2 / (2 ramp)`` in the band with ``ramp = d / 4``: zero height at
+    ``q / k = ramp / 8``, i.e. 1.6e6 Pa/m here), which makes the closed form's straight line
+    the discrete one."""
     slope, L, n = 10.0, 300.0, 30
     down = np.array([math.cos(math.radians(heading)), math.sin(math.radians(heading))])
     chord = L * 1.002
@@ -63,16 +72,23 @@ def test_a_line_lying_up_a_frictionless_slope_has_the_closed_form_tension(headin
     a = (*pa_xy, _on_plane(slope, heading, *pa_xy))
     b = (*pb_xy, _on_plane(slope, heading, *pb_xy))
     assert math.dist(a, b) == pytest.approx(chord)
-    system = load_case_text(_case(a, b, L, n, f"slope: {slope}, slope_heading: {heading}"))
+    stiffness = 3.0e6
+    if mu:  # per area: k d L_e q / (k d L_e) = d / 32 with q = w cos(a) L_e
+        stiffness = 32.0 * W * math.cos(math.radians(slope)) / D**2
+        assert W / (stiffness * D) < D / 4  # the band is the d / 4 minimum
+    system = load_case_text(_case(a, b, L, n, f"slope: {slope}, slope_heading: {heading}, "
+                                              f"friction: {mu}", stiffness=stiffness))
     result = solve_statics(system)
     assert result.success, result.message
-    s_sin = W * math.sin(math.radians(slope))
+    s_sin = W * (math.sin(math.radians(slope)) + mu * math.cos(math.radians(slope)))
     T_A = (chord - L) * EA / L - s_sin * L / 2.0
     T_B = T_A + s_sin * L
     mid = (np.arange(n) + 0.5) * L / n
     assert np.allclose(result.line_tension("l1"), T_A + s_sin * mid, rtol=0, atol=5e-6 * T_B)
     assert np.linalg.norm(result.end_force("l1", "a")) == pytest.approx(T_A, abs=5e-6 * T_B)
-    assert np.linalg.norm(result.end_force("l1", "b")) == pytest.approx(T_B, abs=5e-6 * T_B)
+    if not mu:  # with friction end_force treats every end on the seabed as an anchor, whose
+        # friction takes up pull: not b, where the friction of the lying line adds to it
+        assert np.linalg.norm(result.end_force("l1", "b")) == pytest.approx(T_B, abs=5e-6 * T_B)
     assert result.seabed_length("l1") == pytest.approx(L, rel=1e-9)
 
 
