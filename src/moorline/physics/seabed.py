@@ -113,6 +113,10 @@ def normal_distance(x: FloatArray, surface: SeabedSurface
     ``d_uu = -H/s + (G s_u^T + s_u G^T)/s^2 - g s_uu/s^2 + 2 g s_u s_u^T/s^3`` with ``g = z - h``,
     ``G = grad h``, ``s_u = H G / s`` and ``s_uu = (H H - s_u s_u^T) / s``.
     """
+    if surface.is_flat:
+        grad = np.zeros((len(x), 3))
+        grad[:, 2] = 1.0
+        return x[:, 2] - surface.z0, grad, np.zeros((len(x), 3, 3))
     h, G, H = surface.evaluate(x)
     g = x[:, 2] - h
     s = np.sqrt(1.0 + np.einsum("ij,ij->i", G, G))
@@ -134,6 +138,10 @@ def normal_distance(x: FloatArray, surface: SeabedSurface
 def surface_normal(x: FloatArray, surface: SeabedSurface) -> tuple[FloatArray, FloatArray]:
     """Upward unit normal ``n = (-G, 1) / s`` of the surface under points ``x`` (n, 3) and its
     derivative with respect to the position (n, 3, 3): ``dn/du_j = (-H_j, 0)/s - n s_j/s``."""
+    if surface.is_flat:
+        n = np.zeros((len(x), 3))
+        n[:, 2] = 1.0
+        return n, np.zeros((len(x), 3, 3))
     _, G, H = surface.evaluate(x)
     s = np.sqrt(1.0 + np.einsum("ij,ij->i", G, G))
     n = np.empty((len(x), 3))
@@ -152,6 +160,8 @@ def surface_contact(x: FloatArray, v: FloatArray, surface: SeabedSurface, k: Flo
     of :func:`contact_force` on the normal distance ``d`` and its rate ``v_n = grad d . v``,
     pushing along ``grad d`` (module docstring). ``k``, ``c``, ``ramp`` as in
     :func:`contact_force`."""
+    if surface.is_flat:  # the same numbers, without the products with 0 and 1
+        return _flat_contact(x, v, surface.z0, k, c, ramp)
     d, grad, hess = normal_distance(x, surface)
     vn = np.einsum("ij,ij->i", grad, v)
     F, F_d, F_v = contact_force(d, vn, k, c, ramp)
@@ -163,6 +173,19 @@ def surface_contact(x: FloatArray, v: FloatArray, surface: SeabedSurface, k: Flo
         force=F[:, None] * grad, normal=F, dnormal_dx=dN_dx, dnormal_dv=dN_dv,
         stiffness=grad[:, :, None] * dN_dx[:, None, :] + F[:, None, None] * hess,
         damping=grad[:, :, None] * dN_dv[:, None, :], unit_normal=unit, dunit_dx=dunit)
+
+
+def _flat_contact(x: FloatArray, v: FloatArray, z0: float, k: FloatArray, c: FloatArray,
+                  ramp: FloatArray) -> Contact:
+    n = len(x)
+    F, F_d, F_v = contact_force(x[:, 2] - z0, v[:, 2], k, c, ramp)
+    force, dN_dx, dN_dv, unit = (np.zeros((n, 3)) for _ in range(4))
+    stiffness, damping = np.zeros((n, 3, 3)), np.zeros((n, 3, 3))
+    force[:, 2], dN_dx[:, 2], dN_dv[:, 2], unit[:, 2] = F, F_d, F_v, 1.0
+    stiffness[:, 2, 2], damping[:, 2, 2] = F_d, F_v
+    return Contact(force=force, normal=F, dnormal_dx=dN_dx, dnormal_dv=dN_dv,
+                   stiffness=stiffness, damping=damping, unit_normal=unit,
+                   dunit_dx=np.zeros((n, 3, 3)))
 
 
 def surface_energy(x: FloatArray, surface: SeabedSurface, k: FloatArray,
@@ -242,15 +265,18 @@ def friction_force(
         normal force (n, 3) and to the position through the seabed normal (n, 3, 3).
     """
     n = len(normal)
-    if unit_normal is None:
+    if unit_normal is None:  # flat: the horizontal plane
         unit_normal = np.tile([0.0, 0.0, 1.0], (n, 1))
-        dunit_dx = np.zeros((n, 3, 3))
-    along = np.einsum("ij,ij->i", unit_normal, velocity)
-    tangential = velocity - unit_normal * along[:, None]
-    projector = np.eye(3) - unit_normal[:, :, None] * unit_normal[:, None, :]
-    # d(tangential)/dx through the normal: -(dn (n . v) + n (v . dn))
-    dvt_dx = -(dunit_dx * along[:, None, None]
-               + unit_normal[:, :, None] * np.einsum("nb,nbj->nj", velocity, dunit_dx)[:, None])
+        tangential = velocity.copy()
+        tangential[:, 2] = 0.0
+        projector, dvt_dx = np.diag([1.0, 1.0, 0.0]), None
+    else:
+        along = np.einsum("ij,ij->i", unit_normal, velocity)
+        tangential = velocity - unit_normal * along[:, None]
+        projector = np.eye(3) - unit_normal[:, :, None] * unit_normal[:, None, :]
+        # d(tangential)/dx through the normal: -(dn (n . v) + n (v . dn))
+        dvt_dx = -(dunit_dx * along[:, None, None] + unit_normal[:, :, None]
+                   * np.einsum("nb,nbj->nj", velocity, dunit_dx)[:, None])
     if mu_axial == mu_transverse:
         return _isotropic_friction(tangential, normal, mu_axial, slip_velocity, projector,
                                    dvt_dx)
@@ -272,7 +298,8 @@ def friction_force(
 
 
 def _isotropic_friction(tangential: FloatArray, normal: FloatArray, mu: float,
-                        slip_velocity: float, projector: FloatArray, dvt_dx: FloatArray
+                        slip_velocity: float, projector: FloatArray,
+                        dvt_dx: FloatArray | None
                         ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     speed = np.linalg.norm(tangential, axis=1)
     th = np.tanh(speed / slip_velocity)
@@ -281,12 +308,15 @@ def _isotropic_friction(tangential: FloatArray, normal: FloatArray, mu: float,
         unit = np.where(speed[:, None] > 0, tangential / speed[:, None], 0.0)
     force = (-mu * normal * ratio)[:, None] * tangential
     uu = unit[:, :, None] * unit[:, None, :]
+    d_dn = (-mu * ratio)[:, None] * tangential
+    slope = ((1 - th**2) / slip_velocity)[:, None, None] * uu
+    if dvt_dx is None:  # flat: J P = -mu N (ratio (P - u u) + slope u u), u in the plane
+        d_dv = (-mu * normal)[:, None, None] * (ratio[:, None, None] * (projector - uu) + slope)
+        return force, d_dv, d_dn, np.zeros_like(d_dv)
     # d force / d tangential, then through the projection onto the tangent plane
-    J = (-mu * normal)[:, None, None] * (ratio[:, None, None] * (np.eye(3) - uu)
-                                         + ((1 - th**2) / slip_velocity)[:, None, None] * uu)
+    J = (-mu * normal)[:, None, None] * (ratio[:, None, None] * (np.eye(3) - uu) + slope)
     d_dv = np.einsum("nij,njk->nik", J, projector)
     d_dx = np.einsum("nij,njk->nik", J, dvt_dx)
-    d_dn = (-mu * ratio)[:, None] * tangential
     return force, d_dv, d_dn, d_dx
 
 

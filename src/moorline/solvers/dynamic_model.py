@@ -281,8 +281,10 @@ class DynamicModel:
             fallback = np.cross(n, np.cross(np.array([1.0, 0.0, 0.0]), n))
             axis = np.where(norm[:, None] > 0, axis / np.maximum(norm, 1e-300)[:, None],
                             fallback)
-        f, df_dv, df_dn, df_dx = seabed.friction_force(v, contact.normal, axis, mu_a, mu_t,
-                                                       v_s, n, contact.dunit_dx)
+        flat = self.surface.is_flat
+        f, df_dv, df_dn, df_dx = seabed.friction_force(
+            v, contact.normal, axis, mu_a, mu_t, v_s, None if flat else n,
+            None if flat else contact.dunit_dx)
         nodal += f
         if tangent:
             node_C -= df_dv + df_dn[:, :, None] * contact.dnormal_dv[:, None, :]
