@@ -139,6 +139,8 @@ def test_static_friction_derivative_on_a_twisted_cell() -> None:
     far = x + np.array([[8.0, 1.0, 0.5], [-6.0, 3.0, 1.0], [5.0, -5.0, 2.0], [0.5, 9.0, 0.1]])
     k, ramp, zero = np.full(4, 2e5), np.full(4, 0.002), np.zeros(4)
     EA, L0, mu = 1e6, np.linalg.norm(far - x, axis=1) * 0.999, 0.5
+    load = np.array([[0.0, 0.0, -300.0], [50.0, 0.0, -400.0], [0.0, 0.0, -5000.0],
+                     [0.0, -20.0, -100.0]])
 
     def evaluate(y, z):
         con = seabed.surface_contact(y, np.zeros_like(y), TWISTED, k, zero, ramp)
@@ -147,7 +149,7 @@ def test_static_friction_derivative_on_a_twisted_cell() -> None:
         tension = EA * (length / L0 - 1.0)
         return seabed.static_friction(con.normal, con.dnormal_dx, tension, EA / L0,
                                       chord / length[:, None], length, mu, con.unit_normal,
-                                      con.dunit_dx)
+                                      con.dunit_dx, load)
 
     f, df = evaluate(x, far)
     assert np.any(mu * seabed.surface_contact(x, np.zeros_like(x), TWISTED, k, zero,

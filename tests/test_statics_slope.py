@@ -92,6 +92,31 @@ def test_a_line_lying_up_a_slope_has_the_closed_form_tension(heading, mu) -> Non
     assert result.seabed_length("l1") == pytest.approx(L, rel=1e-9)
 
 
+def test_friction_holds_a_line_lying_down_a_slope_from_its_anchor() -> None:
+    """The anchor up the 10 deg slope, the other end down it, mu = 0.5 > tan(10 deg): the
+    friction holds the line's weight down the slope and takes up the pull, so the tension
+    falls towards the anchor by ``k = w (mu cos(a) - sin(a))`` per length and reaches 0 there
+    when the chord is ``D = L + k L^2 / (2 EA)``: ``T(s) = k s`` from the anchor. (Friction
+    capped at the tension alone, the flat seabed's rule, cannot hold the slack end of such a
+    line on a slope.) Seabed stiffness as in the test above, so that the nodes rest on the
+    plane; tolerance 5e-6 of the largest tension."""
+    slope, heading, L, n, mu = 10.0, 60.0, 300.0, 30, 0.5
+    down = np.array([math.cos(math.radians(heading)), math.sin(math.radians(heading))])
+    k = W * (mu * math.cos(math.radians(slope)) - math.sin(math.radians(slope)))
+    chord = L + k * L**2 / (2.0 * EA)
+    run = chord * math.cos(math.radians(slope))
+    pa_xy, pb_xy = -100.0 * down, -100.0 * down + run * down  # a up, b down the slope
+    a = (*pa_xy, _on_plane(slope, heading, *pa_xy))
+    b = (*pb_xy, _on_plane(slope, heading, *pb_xy))
+    stiffness = 32.0 * W * math.cos(math.radians(slope)) / D**2
+    system = load_case_text(_case(a, b, L, n, f"slope: {slope}, slope_heading: {heading}, "
+                                              f"friction: {mu}", stiffness=stiffness))
+    result = solve_statics(system)
+    assert result.success, result.message
+    mid = (np.arange(n) + 0.5) * L / n
+    assert np.allclose(result.line_tension("l1"), k * mid, rtol=0, atol=5e-6 * k * L)
+
+
 def _reference_catenary(anchor: np.ndarray, fairlead: np.ndarray, L: float, slope: float,
                         up_slope: float) -> dict:
     """The elastic catenary from an anchor on a frictionless inclined seabed (2-D, x-z plane),

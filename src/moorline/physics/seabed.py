@@ -324,6 +324,7 @@ def static_friction(
     normal: FloatArray, dnormal_dx: FloatArray, tension: FloatArray, dtension_dl: FloatArray,
     direction: FloatArray, length: FloatArray, mu: float,
     unit_normal: FloatArray | None = None, dunit_dx: FloatArray | None = None,
+    load: FloatArray | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """Coulomb friction of a lying line in statics, fully mobilized towards its anchor.
 
@@ -331,9 +332,12 @@ def static_friction(
     falls towards the anchor by ``mu w`` per unit length and stays at zero once it is taken
     up. On a node resting on the seabed with the normal force ``N`` and the element on its
     fairlead side (tension ``T``, unit vector ``direction`` from the node towards the
-    fairlead, chord ``length``) the friction is ``-min(mu N, T) P direction`` with ``P`` the
-    projection on the seabed's tangent plane (``diag(1, 1, 0)`` on a flat seabed): it takes
-    up ``mu N`` of the tension, or all of it.
+    fairlead, chord ``length``) the friction is ``-phi P direction`` with ``P`` the
+    projection on the seabed's tangent plane (``diag(1, 1, 0)`` on a flat seabed) and
+    ``phi = clip(T + g, -mu N, mu N)``, ``g = load . P direction`` the node's own load down a
+    slope towards the fairlead (0 on a flat seabed, where ``phi = min(mu N, T)``): it takes
+    up ``mu N`` of the pull, or all of it, so that a slack stretch on a slope is held where
+    ``mu > tan(slope)``.
 
     Parameters
     ----------
@@ -352,6 +356,9 @@ def static_friction(
     unit_normal, dunit_dx
         Seabed unit normal under each node (n, 3) and its position derivative (n, 3, 3)
         (:func:`surface_normal`); ``None``: flat.
+    load
+        The constant load on each node (n, 3) (its weight); ``None``: left out (on a flat
+        seabed it has no part along the seabed).
 
     Returns
     -------
@@ -366,22 +373,29 @@ def static_friction(
     projector = np.eye(3) - unit_normal[:, :, None] * unit_normal[:, None, :]
     along = np.einsum("ij,ij->i", unit_normal, direction)
     flat = direction - unit_normal * along[:, None]
-    capped = mu * normal < tension  # friction mu N; else it takes up all of T
-    phi = np.where(capped, mu * normal, np.maximum(tension, 0.0))
-    force = -phi[:, None] * flat
-    dphi = np.zeros((n, 6))
-    dphi[:, :3] = np.where(capped[:, None], mu * dnormal_dx, 0.0)
-    dT = np.where(capped, 0.0, dtension_dl)[:, None] * direction  # dT/d(far node)
-    dphi[:, 3:] += dT
-    dphi[:, :3] -= dT
     dunit = (np.eye(3) - direction[:, :, None] * direction[:, None, :]) \
         / np.maximum(length, np.finfo(float).tiny)[:, None, None]  # d direction / d(far)
-    dforce = -flat[:, :, None] * dphi[:, None, :]
     dflat = np.einsum("nij,njk->nik", projector, dunit)
-    dforce[:, :, 3:] -= phi[:, None, None] * dflat
-    dforce[:, :, :3] += phi[:, None, None] * dflat
     # the tangent plane turns with the node's position (a bilinear grid's twist)
     dflat_dn = -(dunit_dx * along[:, None, None] + unit_normal[:, :, None]
                  * np.einsum("nb,nbj->nj", direction, dunit_dx)[:, None])
+    pull = np.maximum(tension, 0.0)
+    dpull = np.zeros((n, 6))
+    dT = dtension_dl[:, None] * direction  # dT/d(far node)
+    dpull[:, 3:], dpull[:, :3] = dT, -dT
+    if load is not None:  # the node's own load down the slope, towards the fairlead
+        pull = pull + np.einsum("ij,ij->i", load, flat)
+        dg = np.einsum("ni,nij->nj", load, dflat)
+        dpull[:, 3:] += dg
+        dpull[:, :3] += np.einsum("ni,nij->nj", load, dflat_dn) - dg
+    high, low = mu * normal < pull, pull < -mu * normal  # friction +-mu N; else all the pull
+    phi = np.where(high, mu * normal, np.where(low, -mu * normal, pull))
+    force = -phi[:, None] * flat
+    dN = np.zeros((n, 6))
+    dN[:, :3] = mu * dnormal_dx
+    dphi = np.where(high[:, None], dN, np.where(low[:, None], -dN, dpull))
+    dforce = -flat[:, :, None] * dphi[:, None, :]
+    dforce[:, :, 3:] -= phi[:, None, None] * dflat
+    dforce[:, :, :3] += phi[:, None, None] * dflat
     dforce[:, :, :3] -= phi[:, None, None] * dflat_dn
     return force, dforce

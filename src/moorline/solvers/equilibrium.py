@@ -110,7 +110,7 @@ class StaticModel:
         f, df = seabed.static_friction(contact.normal[nodes], contact.dnormal_dx[nodes],
                                        tension, dT, sign * unit[elems], length[elems],
                                        self.friction, contact.unit_normal[nodes],
-                                       contact.dunit_dx[nodes])
+                                       contact.dunit_dx[nodes], self.external[nodes])
         nodal = np.zeros((m.n_nodes, 3))
         nodal[nodes] = f
         blocks = np.zeros((m.n_elements, 6, 6))
