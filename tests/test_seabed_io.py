@@ -50,6 +50,7 @@ GOOD = "2 2\n0 10\n-5 5\n0 -5 -100\n0 5 -101\n10 -5 -102\n10 5 -103\n"
     (GOOD.replace("-5 5\n", "-5 5 7\n"), "line 3: y grid lines: expected 2 values, got 3"),
     (GOOD.replace("-101", "nan"), "line 5: a grid node 'x y z': must be a number"),
     ("2 2\n0 10\n", "needs the grid sizes"),
+    (GOOD.replace("-101", "101"), "below the free surface z = 0, got z = 101 at (0, 5)"),
 ])
 def test_bad_seafloor_files_are_refused_naming_the_file_and_line(tmp_path, text, says) -> None:
     path = tmp_path / "floor.txt"

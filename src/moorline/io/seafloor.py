@@ -103,7 +103,8 @@ def _tick(ticks: list[float], value: float) -> int | None:
 
 def grid_problem(x: list[float], y: list[float], z) -> str | None:
     """What is wrong with a bathymetry grid (``None`` when nothing): at least two grid lines
-    each way, strictly increasing, and a finite height at every node (``z`` is (nx, ny))."""
+    each way, strictly increasing, and a height below the free surface at every node (``z``
+    is (nx, ny))."""
     for name, ticks in (("x", x), ("y", y)):
         if len(ticks) < 2:
             return f"needs at least 2 {name} grid lines, got {len(ticks)}"
@@ -119,6 +120,11 @@ def grid_problem(x: list[float], y: list[float], z) -> str | None:
         i, j = missing[0]
         return (f"no height at the grid node ({x[i]:g}, {y[j]:g}) ({len(missing)} of "
                 f"{z.size} nodes missing)")
+    dry = np.argwhere(z >= 0.0)
+    if len(dry):
+        i, j = dry[0]
+        return (f"the seabed must be below the free surface z = 0, got z = {z[i, j]:g} at "
+                f"({x[i]:g}, {y[j]:g}) (heights z, up; a depth d is z = -d)")
     return None
 
 
