@@ -71,6 +71,8 @@ def initial_positions(system: System, mesh: Mesh,
             x[nodes[1:-1]] = shape[1:-1]
         else:
             x[nodes[1:-1]] = a + (s[1:-1, None] / line.length) * (b - a)
+    if not np.isfinite(mesh.seabed_z):
+        return x
     tol = 1e-9 * max(1.0, abs(mesh.seabed_z))
     bottom = mesh.seabed_height(x) if mesh.bathymetry is not None else reference
     lying = mesh.free_nodes & ((x[:, 2] <= reference + tol) | (x[:, 2] < bottom + tol))
