@@ -326,10 +326,14 @@ def test_kinematics_options_are_warnings_not_refusals(option: str, fragment: str
     assert deck.system.environment.waves.kind == "none"
 
 
-def test_seafloor_file_is_still_refused(tmp_path: Path) -> None:
+def test_a_missing_seafloor_file_is_an_error_naming_it(tmp_path: Path) -> None:
     path = _edited(tmp_path, "0.001         threshIC", "floor.txt  SeafloorFile\n0.001 threshIC")
-    with pytest.raises(CaseError, match="SeafloorFile = floor.txt: seabed"):
+    with pytest.raises(CaseError, match="SeafloorFile = floor.txt: no such file"):
         read_moordyn(path)
+    (tmp_path / "floor.txt").write_text("2 2\n-1e4 1e4\n-1e4 1e4\n" + "".join(
+        f"{x} {y} -320\n" for x in (-1e4, 1e4) for y in (-1e4, 1e4)))
+    grid = read_moordyn(path).environment.seabed.bathymetry
+    assert grid is not None and grid.z == ((-320.0, -320.0), (-320.0, -320.0))
 
 
 PROFILE = """--------------------- MoorDyn steady currents File ------------------------

@@ -14,6 +14,7 @@ from numpy.typing import NDArray
 
 from .model import System
 from .physics import bending, element
+from .physics.bathymetry import SeabedSurface, grid, plane
 from .physics.load_strain import StrainLaws, StrainTable, dynamic_strain_law, strain_laws
 from .physics.rigid_body import rotation_matrix
 
@@ -63,7 +64,8 @@ class Mesh:
     dof_of_node
         Global dof number of each node's x, y, z, or -1 for fixed/prescribed nodes.
     seabed_z
-        Seabed height (``-depth``; ``-inf`` without seabed).
+        Seabed height (``-depth``; ``-inf`` without seabed); with ``bathymetry`` the reference
+        height of the sloped or gridded seabed (its height at the origin for a plane).
     seabed_stiffness_per_area, seabed_damping_per_area
         Contact stiffness [force/length^3] and damping [force*time/length^3] per area.
     node_contact_area
@@ -77,6 +79,9 @@ class Mesh:
         frame (the master-slave transformation of Tuah 1982 eq. 3.3.6-3.3.7).
     bodies
         The rigid bodies (:class:`~moorline.model.Body`), in ``body_names`` order.
+    bathymetry
+        A sloped or gridded seabed (:class:`~moorline.physics.bathymetry.SeabedSurface`);
+        ``None``: flat at ``seabed_z`` (see :attr:`seabed_surface`).
     point_motion, point_force_history
         Per point: its prescribed motion and its force history (``None`` when it has none).
     strain_laws
@@ -138,6 +143,7 @@ class Mesh:
     slave_body: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     slave_arm: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
     bodies: tuple = ()
+    bathymetry: SeabedSurface | None = None
     point_motion: tuple = ()
     point_force_history: tuple = ()
     strain_laws: StrainLaws | None = None
@@ -150,6 +156,18 @@ class Mesh:
     clamp_elements: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     clamp_direction: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
     clamp_stiffness: FloatArray = field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def seabed_surface(self) -> SeabedSurface | None:
+        """The seabed ``z = h(x, y)`` the contact acts on (``None`` without a seabed)."""
+        if self.bathymetry is not None:
+            return self.bathymetry
+        return SeabedSurface(z0=float(self.seabed_z)) if np.isfinite(self.seabed_z) else None
+
+    def seabed_height(self, x: FloatArray) -> FloatArray:
+        """Seabed height under points ``x`` (n, 3) (n,) (``-inf`` without a seabed)."""
+        surface = self.seabed_surface
+        return surface.height(x) if surface is not None else np.full(len(x), -np.inf)
 
     @property
     def has_bending(self) -> bool:
@@ -333,7 +351,18 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         gravity=env.gravity, water_density=env.water_density, **props,
         bend_nodes=bend[0], bend_elements=bend[1], bend_stiffness=bend[2],
         **_clamps(system, line_elements, L0, EI),
-        **_body_arrays(system, points))
+        **_body_arrays(system, points), bathymetry=sloped_seabed(env))
+
+
+def sloped_seabed(env) -> SeabedSurface | None:
+    """The sloped or gridded seabed of an :class:`~moorline.model.Environment` (``None``:
+    flat or no seabed)."""
+    sb = env.seabed
+    if not env.has_seabed or sb.is_flat:
+        return None
+    if sb.bathymetry is not None:
+        return grid(sb.bathymetry.x, sb.bathymetry.y, sb.bathymetry.z)
+    return plane(env.depth, sb.slope_deg, sb.slope_heading_deg)
 
 
 def _clamps(system: System, line_elements: tuple[IntArray, ...], length0: FloatArray,

@@ -13,6 +13,7 @@ from numpy.typing import NDArray
 from .datasets import BODY_DOFS, build_dataset, dynamics_dataset, group_attrs
 from .envelope import line_coords, line_profile
 from .mesh import Mesh
+from .physics import seabed as seabed_physics
 from .status import Status
 
 FloatArray = NDArray[np.float64]
@@ -129,7 +130,8 @@ class StaticResult:
         the end node (half the end element's submerged weight): the nodal reaction of the
         finite element model, which converges as O(h^2) to the continuous line's end force.
         An end resting on the seabed (at or below its surface) where the line lies (pulls it
-        down, not up) has the vertical part of that force carried by the seabed, as the
+        down, not up) has the part of that force normal to the seabed (vertical on a flat
+        seabed) carried by the seabed, as the
         closed-form catenary's end on the seabed
         (:class:`moorline.catenary.CatenarySolution`: ``V_a = 0`` where the line lies): the
         half element's weight and the pull of the neighbouring lying nodes, which rest a
@@ -145,13 +147,19 @@ class StaticResult:
         e, side = (elements[0], 0) if end == "a" else (elements[-1], 1)
         force = self.element_forces[e, side].copy()
         force[2] -= 0.5 * m.weight_per_length[e] * m.length0[e]
-        if (np.isfinite(m.seabed_z) and self.positions[m.elements[e, side], 2] <= m.seabed_z
-                and force[2] <= 0.0):  # resting on the seabed, the line lying at it
-            normal, force[2] = -force[2], 0.0
-            pull = float(np.hypot(force[0], force[1]))
+        surface = m.seabed_surface
+        node = self.positions[m.elements[e, side]][None]
+        if surface is None or node[0, 2] > surface.height(node)[0]:
+            return force
+        unit = seabed_physics.surface_normal(node, surface)[0][0]
+        along = float(force @ unit)
+        if along <= 0.0:  # resting on the seabed, the line lying at it
+            normal = -along
+            force -= along * unit  # in the seabed's tangent plane
+            pull = float(np.linalg.norm(force))
             friction = float(self.extras.get("seabed_friction", 0.0)) * normal
             if pull > 0.0 and friction > 0.0:
-                force[:2] *= max(pull - friction, 0.0) / pull
+                force *= max(pull - friction, 0.0) / pull
         return force
 
     def point_position(self, point: str) -> FloatArray:

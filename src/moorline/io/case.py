@@ -15,12 +15,14 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 from pydantic import ValidationError
 
 from moorline.analyses import KINDS
 from moorline.errors import CaseError
 from moorline.model import (
+    Bathymetry,
     Body,
     Current,
     DesignSettings,
@@ -61,6 +63,7 @@ from .schema import (
     describe_errors,
     dotted,
 )
+from .seafloor import grid_problem, read_seafloor
 from .topology import geometry_problem
 from .units import default_value
 
@@ -168,8 +171,9 @@ def _load(text: str, file: str, source: str | None) -> System:
         field, reason = describe_errors(exc)
         raise CaseError(reason, file=file, field=field) from None
     line_types = resolve_line_types(spec.line_types, units, file, source)
-    _cross_check(spec, file)
-    system = _build(spec, source, line_types)
+    seabed = _seabed(spec, file, source)
+    _cross_check(spec, file, seabed)
+    system = _build(spec, source, line_types, seabed)
     logger.debug("loaded case %r from %s", system.name, file)
     return system
 
@@ -271,7 +275,7 @@ def _size(value: Any, memo: dict[int, int]) -> int:
 # cross-checks
 
 
-def _cross_check(spec: CaseSpec, file: str) -> None:
+def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
     """References, geometry and combinations that single fields cannot check."""
 
     def fail(reason: str, field: str) -> None:
@@ -318,8 +322,11 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
     depth = env.depth if env.depth is not None else math.inf
     bodies = spec.bodies or {}
+    surface = _surface(depth, seabed)
     for name, point in spec.points.items():
-        _check_point(name, point, depth, fail)
+        local = depth if surface is None else -float(surface.height(
+            np.asarray([point.position[:2]], dtype=float))[0])
+        _check_point(name, point, local, fail)
         if point.kind == "body" and point.body not in bodies:
             fail(f"unknown body {point.body!r}; known bodies: {_known(list(bodies))}",
                  f"points.{name}.body")
@@ -463,7 +470,7 @@ def _check_point(
         xyz = getattr(point, key)
         if xyz is not None and xyz[2] < -depth * (1 + SEABED_TOLERANCE):
             fail(
-                f"{point.kind} point is below the seabed: z = {xyz[2]:g} < -depth = {-depth:g}",
+                f"{point.kind} point is below the seabed: z = {xyz[2]:g} < {-depth:g}",
                 f"points.{name}.{key}[2]",
             )
 
@@ -573,7 +580,8 @@ def _xyz(v: Sequence[float]) -> str:
 # spec -> model
 
 
-def _build(spec: CaseSpec, source: str | None, line_types: dict[str, LineType]) -> System:
+def _build(spec: CaseSpec, source: str | None, line_types: dict[str, LineType],
+           seabed: Seabed) -> System:
     units = spec.units
 
     def default(value: float | None, key: str) -> float:
@@ -584,14 +592,7 @@ def _build(spec: CaseSpec, source: str | None, line_types: dict[str, LineType]) 
         depth=env.depth if env.depth is not None else math.inf,
         water_density=default(env.water_density, "water_density"),
         gravity=default(env.gravity, "gravity"),
-        seabed=Seabed(
-            stiffness=default(env.seabed.stiffness, "seabed_stiffness"),
-            damping=default(env.seabed.damping, "seabed_damping"),
-            friction=env.seabed.friction,
-            friction_axial=env.seabed.friction_axial,
-            friction_transverse=env.seabed.friction_transverse,
-            slip_velocity=default(env.seabed.slip_velocity, "slip_velocity"),
-        ),
+        seabed=seabed,
         current=_current(env.current),
         waves=_waves(env.waves),
     )
@@ -665,6 +666,56 @@ def _body(name: str, spec: Any, source: str | None, environment: Environment,
         force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"),
         drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads,
         excitation=excitation, radiation=radiation)
+
+
+def _seabed(spec: CaseSpec, file: str, source: str | None) -> Seabed:
+    """``environment.seabed`` as a :class:`Seabed`: defaults of the unit system, and a slope
+    or a bathymetry grid (inline or a MoorDyn seafloor file relative to the case file)."""
+    sb, units, field = spec.environment.seabed, spec.units, "environment.seabed"
+
+    def default(value: float | None, key: str) -> float:
+        return value if value is not None else default_value(key, units)
+
+    def fail(reason: str, key: str) -> CaseError:
+        return CaseError(reason, file=file, field=f"{field}.{key}")
+
+    if not sb.slope < 90.0:
+        raise fail(f"must be below 90 degrees, got {sb.slope:g}", "slope")
+    bathymetry = None
+    if sb.bathymetry is not None:
+        if sb.slope:
+            raise fail("give either a slope or a bathymetry grid, not both", "bathymetry")
+        depth = spec.environment.depth
+        if depth is None or not math.isfinite(depth):
+            raise fail("a bathymetry grid needs a finite environment.depth (the water depth "
+                       "of the waves and the reference of the plots)", "bathymetry")
+        if isinstance(sb.bathymetry, str):
+            base = Path(source).parent if source else Path.cwd()
+            try:
+                bathymetry = read_seafloor(base / sb.bathymetry, field=f"{field}.bathymetry")
+            except CaseError as exc:
+                raise CaseError(exc.reason, file=file, field=exc.field) from None
+        else:
+            grid = sb.bathymetry
+            problem = grid_problem(grid.x, grid.y, grid.z)
+            if problem is not None:
+                raise fail(problem, "bathymetry")
+            bathymetry = Bathymetry(x=tuple(grid.x), y=tuple(grid.y),
+                                    z=tuple(tuple(r) for r in grid.z))
+    return Seabed(
+        stiffness=default(sb.stiffness, "seabed_stiffness"),
+        damping=default(sb.damping, "seabed_damping"),
+        friction=sb.friction, friction_axial=sb.friction_axial,
+        friction_transverse=sb.friction_transverse,
+        slip_velocity=default(sb.slip_velocity, "slip_velocity"),
+        slope_deg=sb.slope, slope_heading_deg=sb.slope_heading, bathymetry=bathymetry)
+
+
+def _surface(depth: float, seabed: Seabed):
+    """The sloped or gridded seabed surface (``None``: flat or no seabed)."""
+    from ..mesh import sloped_seabed
+
+    return sloped_seabed(Environment(depth=depth, seabed=seabed))
 
 
 def _waves(spec: Any) -> Waves:

@@ -21,7 +21,15 @@ def system_to_dict(system: System) -> dict[str, Any]:
                                    "gravity": env.gravity}
     if math.isfinite(env.depth):
         environment["depth"] = env.depth
-    environment["seabed"] = {k: v for k, v in asdict(env.seabed).items() if v is not None}
+    seabed = {k: v for k, v in asdict(env.seabed).items()
+              if v is not None and k not in ("slope_deg", "slope_heading_deg", "bathymetry")}
+    if env.seabed.slope_deg:
+        seabed.update(slope=env.seabed.slope_deg, slope_heading=env.seabed.slope_heading_deg)
+    if env.seabed.bathymetry is not None:
+        grid = env.seabed.bathymetry
+        seabed["bathymetry"] = {"x": list(grid.x), "y": list(grid.y),
+                                "z": [list(row) for row in grid.z]}
+    environment["seabed"] = seabed
     current = env.current
     environment["current"] = ({"z_levels": list(current.z_levels),
                                "speeds": list(current.speeds),

@@ -49,13 +49,16 @@ it; the reader does the same (with a warning). ``BODIES``, ``ROD TYPES`` and ``R
 moorline bodies and points (:mod:`moorline.io.moordyn_rigid`: free, fixed and coupled bodies,
 body points ``Body<k>``, rods fixed to bodies, free, fixed and coupled rods, lines on rod ends
 ``R<k>A``/``R<k>B``); what cannot be represented (pinned rods, pinned coupled bodies) is one
-``CaseError`` naming every such item, what is approximated a warning each. Seabed files are
-not supported. ``WaveKin`` 2-5 and 7 with their wave file next to the deck become a sea of
-explicit components, ``Currents`` 1 or 3 with a ``current_profile.txt`` the case's current
-(:mod:`moorline.io.moordyn_kinematics`); other kinematics options are warnings naming what is
-dropped. ``TMax``,
-``dtOut`` and the ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and
-``output.channels`` (:mod:`moorline.io.moordyn_outputs`).
+``CaseError`` naming every such item, what is approximated a warning each. ``SeafloorFile``
+(MoorDyn-C's 3-D seafloor) becomes the seabed's bathymetry grid (:mod:`moorline.io.seafloor`;
+MoorDyn opens the path relative to its working directory; here the path, then its shorter
+tails, are looked up in the deck's folder and its parents; a note says that moorline's
+seabed pushes along its normal where MoorDyn's pushes vertically). ``WaveKin`` 2-5 and 7 with
+their wave file next to the deck become a sea of explicit components, ``Currents`` 1 or 3 with
+a ``current_profile.txt`` the case's current (:mod:`moorline.io.moordyn_kinematics`); other
+kinematics options are warnings naming what is dropped. ``TMax``, ``dtOut`` and the
+``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and ``output.channels``
+(:mod:`moorline.io.moordyn_outputs`).
 """
 
 from __future__ import annotations
@@ -77,6 +80,7 @@ from .moordyn_kinematics import deck_waves, water_kinematics
 from .moordyn_outputs import deck_channels, output_channels, time_options, time_settings
 from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
 from .schema import check_number
+from .seafloor import read_seafloor
 from .strain_table import read_strain_table
 from .topology import geometry_problem
 
@@ -106,9 +110,9 @@ _NUMERICAL_OPTIONS = {
     "threshic", "icgendynamic",
     "writelog", "dtout", "writeunits", "disableoutput", "disableouttime", "fileic", "fricdamp",
     "statdynfricscale", "echo", "icdfac", "icthresh", "ictmax", "dtwave", "wavekin_rampt",
-    "unifycurrentgrid",
+    "unifycurrentgrid", "seafloorfile",
 }
-_UNSUPPORTED_OPTIONS = {"seafloorfile": "seabed (bathymetry) files"}
+_UNSUPPORTED_OPTIONS: dict[str, str] = {}
 _DROPPED_OPTIONS = {"waterkin": "MoorDyn v1 water kinematics files (waves and current)"}
 #: Point attachment words, as MoorDyn-C v2.7 reads them (``source/MoorDyn2.cpp``, the point
 #: list): the leading letters of the word, upper-cased (``str::decomposeString``), one of these.
@@ -276,6 +280,7 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     waves = deck_waves(raw, path, reader.warn)
     if waves is not None:
         environment = replace(environment, waves=waves)
+    environment = _seafloor(raw, path, environment, reader)
     current = water_kinematics(raw, path, reader.warn)
     if current is not None:
         environment = replace(environment, current=current)
@@ -663,6 +668,32 @@ def _environment(values: Mapping[str, float], points: Mapping[str, Point],
                                      friction=get["FrictionCoefficient"]))
 
 
+def _seafloor(raw: Mapping[str, str], path: Path, environment: Environment,
+              reader: _Reader) -> Environment:
+    """The deck's ``SeafloorFile`` as the seabed's bathymetry (unchanged without one)."""
+    value = next((v for k, v in raw.items() if k.lower() == "seafloorfile"), None)
+    if value is None or (_is_number(value) and float(value) == 0):
+        return environment
+    folder = path.resolve().parent
+    parts = Path(value).parts
+    tails = [Path(*parts[k:]) for k in range(len(parts))]  # the path, then shorter tails
+    candidates = [Path(value)] if Path(value).is_absolute() else \
+        [base / tail for tail in tails for base in (folder, *folder.parents)]
+    found = next((c for c in candidates if c.is_file()), None)
+    if found is None:
+        raise reader.fail(f"option SeafloorFile = {value}: no such file in the deck's folder "
+                          f"{str(folder)!r} or its parents (MoorDyn opens it relative to its "
+                          "working directory)", section="OPTIONS")
+    try:
+        grid = read_seafloor(found, field="SeafloorFile")
+    except CaseError as exc:
+        raise CaseError(exc.reason, file=str(path), field="OPTIONS.SeafloorFile") from None
+    reader.warn(f"SeafloorFile {value}: the seabed is the bilinear grid of {found}; moorline's "
+                "seabed pushes along its normal (a lying line slides down a slope), MoorDyn-C's "
+                "vertically")
+    return replace(environment, seabed=replace(environment.seabed, bathymetry=grid))
+
+
 # --------------------------------------------------------------------------- writing
 
 
@@ -684,6 +715,9 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
         omissions.append("current")
     if env.waves.active:
         omissions.append("waves")
+    if not env.seabed.is_flat:
+        omissions.append("the push of the sloped or gridded seabed along its normal "
+                         "(MoorDyn-C's seafloor pushes vertically)")
     for lt in system.line_types.values():
         if lt.material != "elastic":
             errors.append(f"line type {lt.name}: {lt.material} material")
@@ -848,6 +882,8 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
                                    "disableOutTime": 1, **time_options(system)}
     if time_scheme:
         settings["tScheme"] = time_scheme
+    if not system.environment.seabed.is_flat and math.isfinite(system.environment.depth):
+        settings["SeafloorFile"] = str(_write_seafloor_grid(system, Path(path)))
     settings.update(extra_options or {})
     head = ["Diam", "MassDen", "EA", "BA/-zeta", "EI", "Cd", "Ca", "CdAx", "CaAx"]
     units = ["(m)", "(kg/m)", "(N)", "(N-s/-)", "(N-m^2)", "(-)", "(-)", "(-)", "(-)"]
@@ -868,6 +904,29 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
     path = Path(path)
     path.write_text("\n".join(text) + "\n", encoding="utf-8")
     return path
+
+
+def _write_seafloor_grid(system: System, path: Path) -> Path:
+    """Write the system's sloped or gridded seabed next to the deck as MoorDyn's 3-D seafloor
+    file (``<deck>_seafloor.txt``; a plane as a 2 x 2 grid reaching a longest line beyond
+    every point, bilinear interpolation being exact on a plane) and return its absolute
+    path (MoorDyn opens it relative to its working directory)."""
+    from ..mesh import sloped_seabed
+    from ..model import Bathymetry
+    from .seafloor import write_seafloor
+
+    env = system.environment
+    grid = env.seabed.bathymetry
+    if grid is None:
+        xyz = [p.position for p in system.points.values()]
+        reach = max((line.length for line in system.lines.values()), default=1.0)
+        x = (min(q[0] for q in xyz) - reach, max(q[0] for q in xyz) + reach)
+        y = (min(q[1] for q in xyz) - reach, max(q[1] for q in xyz) + reach)
+        corners = [[xi, yj, 0.0] for xi in x for yj in y]
+        z = sloped_seabed(env).height(corners).reshape(2, 2)
+        grid = Bathymetry(x=x, y=y, z=tuple(tuple(row) for row in z.tolist()))
+    out = path.with_name(path.stem + "_seafloor.txt").resolve()
+    return write_seafloor(grid, out)
 
 
 def _rule(title: str) -> str:

@@ -223,8 +223,20 @@ class _Spec(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
 
+class BathymetrySpec(_Spec):
+    """``environment.seabed.bathymetry`` given inline: seabed heights ``z[i][j]`` (z up,
+    negative below the surface) at the grid nodes ``(x[i], y[j])``."""
+
+    x: list[quantity("length")]
+    y: list[quantity("length")]
+    z: list[list[quantity("length")]]
+
+
 class SeabedSpec(_Spec):
-    """``environment.seabed``; ``None`` means the unit-system default."""
+    """``environment.seabed``; ``None`` means the unit-system default. ``slope`` [deg] and
+    ``slope_heading`` [deg]: a plane through ``(0, 0, -depth)`` going down at ``slope``
+    towards ``slope_heading`` (0 = +x, 90 = +y); ``bathymetry``: a grid of heights instead,
+    inline or a MoorDyn 3-D seafloor file (relative to the case file)."""
 
     stiffness: quantity("force/length^3", ge=0.0) | None = None
     damping: quantity("force*time/length^3", ge=0.0) | None = None
@@ -232,6 +244,9 @@ class SeabedSpec(_Spec):
     friction_axial: Coefficient | None = None
     friction_transverse: Coefficient | None = None
     slip_velocity: quantity("velocity", gt=0.0) | None = None
+    slope: quantity("angle", ge=0.0) = 0.0
+    slope_heading: quantity("angle") = 0.0
+    bathymetry: str | BathymetrySpec | None = None
 
 
 class CurrentSpec(_Spec):

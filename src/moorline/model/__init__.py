@@ -20,7 +20,7 @@ from .analysis import (
 from .body import Body, Hydrostatics, RadiationTable, WaveExcitation
 from .components import Line, LineType, Motion, Point, PointKind
 from .design import DesignSettings
-from .environment import Current, Environment, Seabed, SeaComponents, Waves
+from .environment import Bathymetry, Current, Environment, Seabed, SeaComponents, Waves
 from .system import System, UnitSystem
 
 __all__ = [
@@ -45,6 +45,7 @@ __all__ = [
     "PointKind",
     "SeaComponents",
     "Seabed",
+    "Bathymetry",
     "StaticMethod",
     "StaticsSettings",
     "HarmonicSettings",

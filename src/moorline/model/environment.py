@@ -7,8 +7,19 @@ from typing import Literal
 
 
 @dataclass(frozen=True)
+class Bathymetry:
+    """Seabed heights on a grid (MoorDyn-C's 3-D seafloor file): ``z[i][j]`` [length, z up,
+    negative below the surface] at ``(x[i], y[j])``, bilinear in between and constant beyond
+    the grid's edges; ``x`` and ``y`` strictly increasing, at least two of each."""
+
+    x: tuple[float, ...]
+    y: tuple[float, ...]
+    z: tuple[tuple[float, ...], ...]
+
+
+@dataclass(frozen=True)
 class Seabed:
-    """Flat seabed at ``z = -depth``.
+    """Seabed: flat at ``z = -depth``, an inclined plane, or a bathymetry grid.
 
     Attributes
     ----------
@@ -23,6 +34,11 @@ class Seabed:
         Dynamics: friction coefficients along and across the line (``None``: ``friction``).
     slip_velocity
         Dynamics: regularization speed of the friction law [length/time].
+    slope_deg, slope_heading_deg
+        An inclined plane through ``(0, 0, -depth)`` going down at ``slope_deg`` towards the
+        horizontal direction ``slope_heading_deg`` (0 = +x, 90 = +y); 0: flat.
+    bathymetry
+        A grid of seabed heights instead of the plane (``None``: the plane).
     """
 
     stiffness: float = 3.0e6
@@ -31,6 +47,14 @@ class Seabed:
     friction_axial: float | None = None
     friction_transverse: float | None = None
     slip_velocity: float = 0.01
+    slope_deg: float = 0.0
+    slope_heading_deg: float = 0.0
+    bathymetry: Bathymetry | None = None
+
+    @property
+    def is_flat(self) -> bool:
+        """True for the horizontal seabed ``z = -depth``."""
+        return self.bathymetry is None and self.slope_deg == 0.0
 
 
 @dataclass(frozen=True)

@@ -99,6 +99,7 @@ class DynamicModel:
         self.any_viscoelastic = bool(np.any(m.viscoelastic))
         self.viscoelastic_update = viscoelastic_update
         self.seabed_ramp = static.seabed_ramp
+        self.surface = m.seabed_surface
         self.friction = _friction_coefficients(seabed_model) if seabed_model else None
         if kernel not in ("numpy", "numba"):
             raise ValueError(f"kernel must be 'numpy' or 'numba', got {kernel!r}")
@@ -261,29 +262,33 @@ class DynamicModel:
                 out["Ma"] = Ma
         return forces, out
 
-    def _friction(self, x, v, fz, dfz_dz, dfz_dv, nodal, node_K, node_C, tangent):
-        """Seabed friction on resting nodes, driven by the contact force; the line direction
-        at a node is the mean of its elements' horizontal directions (its change with the
-        positions is left out of the tangent)."""
+    def _friction(self, x, v, contact, nodal, node_K, node_C, tangent):
+        """Seabed friction on resting nodes, driven by the contact force, in the seabed's
+        tangent plane; the line direction at a node is the mean of its elements' directions
+        projected on that plane (its change with the positions is left out of the
+        tangent)."""
         m = self.mesh
         mu_a, mu_t, v_s = self.friction
-        pressing = fz > 0
-        normal = np.where(pressing, fz, 0.0)
-        chord = x[m.elements[:, 1]] - x[m.elements[:, 0]]
-        chord[:, 2] = 0.0
+        n = contact.unit_normal
         axis = np.zeros_like(x)
-        for k in range(2):
-            axis[:, k] = (np.bincount(m.elements[:, 0], chord[:, k], m.n_nodes)
-                          + np.bincount(m.elements[:, 1], chord[:, k], m.n_nodes))
-        norm = np.linalg.norm(axis, axis=1)
-        axis = np.where(norm[:, None] > 0, axis / np.maximum(norm, 1e-300)[:, None],
-                        np.array([1.0, 0.0, 0.0]))
-        f, df_dv, df_dn = seabed.friction_force(v, normal, axis, mu_a, mu_t, v_s)
+        if mu_a != mu_t:
+            chord = x[m.elements[:, 1]] - x[m.elements[:, 0]]
+            for k in range(3):
+                axis[:, k] = (np.bincount(m.elements[:, 0], chord[:, k], m.n_nodes)
+                              + np.bincount(m.elements[:, 1], chord[:, k], m.n_nodes))
+            axis -= n * np.einsum("ij,ij->i", axis, n)[:, None]
+            norm = np.linalg.norm(axis, axis=1)
+            fallback = np.cross(n, np.cross(np.array([1.0, 0.0, 0.0]), n))
+            axis = np.where(norm[:, None] > 0, axis / np.maximum(norm, 1e-300)[:, None],
+                            fallback)
+        flat = self.surface.is_flat
+        f, df_dv, df_dn, df_dx = seabed.friction_force(
+            v, contact.normal, axis, mu_a, mu_t, v_s, None if flat else n,
+            None if flat else contact.dunit_dx)
         nodal += f
         if tangent:
-            node_C -= df_dv
-            node_K[:, :, 2] -= df_dn * np.where(pressing, dfz_dz, 0.0)[:, None]
-            node_C[:, :, 2] -= df_dn * np.where(pressing, dfz_dv, 0.0)[:, None]
+            node_C -= df_dv + df_dn[:, :, None] * contact.dnormal_dv[:, None, :]
+            node_K -= df_dx + df_dn[:, :, None] * contact.dnormal_dx[:, None, :]
 
     def _nodes(self, x, v, a, t, nodal, inertial, out, tangent):
         m = self.mesh
@@ -291,16 +296,15 @@ class DynamicModel:
         node_K = np.zeros((n, 3, 3)) if tangent else None
         node_C = np.zeros((n, 3, 3)) if tangent else None
         node_M = None
-        if np.isfinite(m.seabed_z):
-            fz, dfz_dz, dfz_dv = seabed.contact_force(x[:, 2] - m.seabed_z, v[:, 2],
-                                                      self.k_seabed, self.c_seabed,
-                                                      self.seabed_ramp)
-            nodal[:, 2] += fz
+        if self.surface is not None:
+            contact = seabed.surface_contact(x, v, self.surface, self.k_seabed, self.c_seabed,
+                                             self.seabed_ramp)
+            nodal += contact.force
             if tangent:
-                node_K[:, 2, 2] = -dfz_dz
-                node_C[:, 2, 2] = -dfz_dv
+                node_K -= contact.stiffness
+                node_C -= contact.damping
             if self.friction is not None:
-                self._friction(x, v, fz, dfz_dz, dfz_dv, nodal, node_K, node_C, tangent)
+                self._friction(x, v, contact, nodal, node_K, node_C, tangent)
         if self.has_point_hydro:
             u_f, a_f, _ = self.fluid.kinematics(x, t)
             area = m.node_drag_area * m.node_Cd

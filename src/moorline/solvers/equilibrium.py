@@ -63,7 +63,8 @@ class StaticModel:
                  friction: float = 0.0) -> None:
         self.mesh = mesh
         self.exact_cable = exact_cable
-        self.friction = float(friction) if np.isfinite(mesh.seabed_z) else 0.0
+        self.surface = mesh.seabed_surface
+        self.friction = float(friction) if self.surface is not None else 0.0
         self._friction_map = _friction_map(mesh) if self.friction > 0 else None
         self.pattern = BlockPattern(mesh.pattern_pairs, mesh.dof_of_node)
         self.current = current if current is not None and mesh.water_density > 0 else None
@@ -87,8 +88,8 @@ class StaticModel:
             el_forces = el_forces + bending_loads(m, x)[0]
         nodal = lam * self.external
         nodal = nodal + hydro.sum_to_nodes(el_forces, m.elements, m.n_nodes)
-        if np.isfinite(m.seabed_z):
-            nodal[:, 2] += self._seabed(x)[0]
+        if self.surface is not None:
+            nodal = nodal + self._seabed(x).force
         if self.current is not None:
             nodal = nodal + lam * self._current_drag(x)[0]
         if self._friction_map is not None:
@@ -101,13 +102,15 @@ class StaticModel:
         as node forces (n_nodes, 3), and the element blocks of its derivative (n_el, 6, 6)."""
         m = self.mesh
         nodes, elems, first = self._friction_map
-        normal, d_normal, _ = self._seabed(x)
+        contact = self._seabed(x)
         tension, dT = element.axial_tension(length[elems], m.length0[elems], m.EA[elems],
                                             *[a[elems] for a in self._law()],
                                             **m.axial_law_of(elems))
         sign = np.where(first, 1.0, -1.0)[:, None]
-        f, df = seabed.static_friction(normal[nodes], d_normal[nodes], tension, dT,
-                                       sign * unit[elems], length[elems], self.friction)
+        f, df = seabed.static_friction(contact.normal[nodes], contact.dnormal_dx[nodes],
+                                       tension, dT, sign * unit[elems], length[elems],
+                                       self.friction, contact.unit_normal[nodes],
+                                       contact.dunit_dx[nodes], self.external[nodes])
         nodal = np.zeros((m.n_nodes, 3))
         nodal[nodes] = f
         blocks = np.zeros((m.n_elements, 6, 6))
@@ -176,9 +179,8 @@ class StaticModel:
         if m.has_bending:
             blocks = bending_loads(m, x, blocks)[1]
         node_blocks = None
-        if np.isfinite(m.seabed_z):
-            node_blocks = np.zeros((m.n_nodes, 3, 3))
-            node_blocks[:, 2, 2] = -self._seabed(x)[1]
+        if self.surface is not None:
+            node_blocks = -self._seabed(x).stiffness
         pattern = pattern or self.pattern
         diagonal = np.full(pattern.n, shift) if shift else None
         return pattern.assemble(blocks, node_blocks, diagonal)
@@ -194,19 +196,21 @@ class StaticModel:
         zero = np.zeros_like(m.EA)
         return element.axial_tension(taut, m.length0, m.EA, zero, zero, **m.axial_law)[1]
 
-    def _seabed(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def _seabed(self, x: FloatArray) -> seabed.Contact:
         zero = np.zeros(self.mesh.n_nodes)
-        return seabed.contact_force(x[:, 2] - self.mesh.seabed_z, zero,
-                                    self.node_seabed_stiffness, zero, self.seabed_ramp)
+        return seabed.surface_contact(x, np.zeros_like(x), self.surface,
+                                      self.node_seabed_stiffness, zero, self.seabed_ramp)
 
     def seabed_share(self, x: FloatArray) -> FloatArray:
-        """Share of each node's own weight the seabed carries at positions ``x`` (0 to 1:
-        1 lying, between at the touchdown node; :mod:`moorline.physics.seabed`)."""
-        if not np.isfinite(self.mesh.seabed_z):
+        """Share of each node's own load across the seabed that the seabed carries at
+        positions ``x`` (0 to 1: 1 lying, between at the touchdown node; the normal force
+        over the load's component into the seabed; :mod:`moorline.physics.seabed`)."""
+        if self.surface is None:
             return np.zeros(self.mesh.n_nodes)
-        load = -self.external[:, 2]
+        contact = self._seabed(x)
+        load = -np.einsum("ij,ij->i", self.external, contact.unit_normal)
         with np.errstate(divide="ignore", invalid="ignore"):
-            share = np.where(load > 0, self._seabed(x)[0] / load, 0.0)
+            share = np.where(load > 0, contact.normal / load, 0.0)
         return np.clip(share, 0.0, 1.0)
 
     def resting_penetration(self) -> FloatArray:
@@ -231,8 +235,8 @@ class StaticModel:
             energy += float(bending.bending_energy(x, m.bend_nodes, m.bend_stiffness).sum())
             energy += float(bending.clamp_energy(x, m.elements, m.clamp_elements,
                                                  m.clamp_direction, m.clamp_stiffness).sum())
-        if np.isfinite(m.seabed_z):
-            energy += seabed.contact_energy(x[:, 2] - m.seabed_z, self.node_seabed_stiffness,
+        if self.surface is not None:
+            energy += seabed.surface_energy(x, self.surface, self.node_seabed_stiffness,
                                             self.seabed_ramp)
         energy -= lam * float(np.sum(self.external * x))
         if frozen is not None:
@@ -294,11 +298,12 @@ def _friction_map(mesh: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64], NDA
     that element's first node. Lines with no end on the seabed get no friction (which way a
     line lying only in its middle would slide is not defined by the statics)."""
     tol = 1e-6 * max(1.0, abs(mesh.seabed_z))
+    bottom = mesh.seabed_height(mesh.node_position)
     nodes, elems, first = [], [], []
     for line_nodes, els in zip(mesh.line_nodes, mesh.line_elements, strict=True):
         interior = np.arange(1, len(line_nodes) - 1)
         for end, side, forward in ((0, interior, True), (-1, interior - 1, False)):
-            if mesh.node_position[line_nodes[end], 2] <= mesh.seabed_z + tol:
+            if mesh.node_position[line_nodes[end], 2] <= bottom[line_nodes[end]] + tol:
                 nodes.append(line_nodes[interior])
                 elems.append(els[side])
                 first.append(np.full(len(interior), forward))

@@ -339,6 +339,8 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
         return "points with their own drag or added mass"
     if model.friction is not None and model.friction[0] != model.friction[1]:
         return "anisotropic seabed friction"
+    if model.mesh.bathymetry is not None:
+        return "a sloped or gridded seabed"
     if isinstance(fluid, StillWater):
         return None
     if isinstance(fluid, CurrentProfile) and len(set(np.atleast_1d(fluid.speeds))) == 1 \

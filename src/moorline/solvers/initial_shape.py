@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 
 from ..mesh import Mesh
 from ..model import System
+from .point_start import local_seabed
 
 FloatArray = NDArray[np.float64]
 logger = logging.getLogger(__name__)
@@ -29,6 +30,12 @@ def initial_positions(system: System, mesh: Mesh,
     penetration at which the penalty seabed carries them
     (:meth:`~moorline.solvers.equilibrium.StaticModel.resting_penetration`), so that a lying
     line starts in vertical balance, not on the contact's kink.
+
+    On a sloped or gridded seabed each line's catenary assumes a flat seabed at the height
+    under its end nearer to the seabed (:func:`~moorline.solvers.point_start.local_seabed`,
+    its anchor), and the free nodes it lays on that plane, or that end up below the real
+    surface, are moved vertically onto the surface (the same resting penetration); Newton
+    takes it from there.
     """
     x = mesh.node_prescribed_start.copy()
     if start == "catenary":
@@ -38,6 +45,7 @@ def initial_positions(system: System, mesh: Mesh,
         if solved is not None:
             x = solved
     sink = np.zeros(mesh.n_nodes)
+    reference = np.full(mesh.n_nodes, mesh.seabed_z)  # the flat seabed each line assumes
     if np.isfinite(mesh.seabed_z):
         from .equilibrium import StaticModel
 
@@ -50,15 +58,49 @@ def initial_positions(system: System, mesh: Mesh,
             continue
         s = np.linspace(0.0, line.length, line.segments + 1)
         depth = float(sink[nodes[1:-1]].max(initial=0.0))
-        shape = (_catenary_shape(system, line.line_type, line.length, a, b, s, mesh.seabed_z,
-                                 depth) if start == "catenary" else None)
+        shape = None
+        if mesh.bathymetry is not None and start == "catenary":
+            reference[nodes] = local_seabed(x, mesh.seabed_height(x), nodes[0], nodes[-1])
+            shape = _sloped_shape(system, mesh, line, a, b, s)
+            if shape is not None:
+                reference[nodes] = -np.inf  # its lying nodes are on the surface itself
+        if shape is None and start == "catenary":
+            shape = _catenary_shape(system, line.line_type, line.length, a, b, s,
+                                    float(reference[nodes[0]]), depth)
         if shape is not None:
             x[nodes[1:-1]] = shape[1:-1]
         else:
             x[nodes[1:-1]] = a + (s[1:-1, None] / line.length) * (b - a)
-    lying = mesh.free_nodes & (x[:, 2] <= mesh.seabed_z + 1e-9 * max(1.0, abs(mesh.seabed_z)))
-    x[lying, 2] = mesh.seabed_z - sink[lying]
+    if not np.isfinite(mesh.seabed_z):
+        return x
+    tol = 1e-9 * max(1.0, abs(mesh.seabed_z))
+    bottom = mesh.seabed_height(x) if mesh.bathymetry is not None else reference
+    lying = mesh.free_nodes & ((x[:, 2] <= reference + tol) | (x[:, 2] < bottom + tol))
+    x[lying, 2] = bottom[lying] - sink[lying]
     return x
+
+
+def _sloped_shape(system: System, mesh: Mesh, line, a: FloatArray, b: FloatArray,
+                  s: FloatArray) -> FloatArray | None:
+    """:func:`~moorline.solvers.sloped_start.sloped_catenary_shape` from the end of the line
+    on the seabed (``None``: neither end on it, or no lying part)."""
+    from .sloped_start import sloped_catenary_shape
+
+    lt = system.line_types[line.line_type]
+    env = system.environment
+    EA = getattr(lt, "EA", None)
+    if lt.EA_table is not None or not isinstance(EA, (int, float)):
+        return None
+    w = (lt.mass_per_length - env.water_density * lt.area_displaced) * env.gravity
+    tol = 1e-6 * max(1.0, abs(mesh.seabed_z))
+    bottom = mesh.seabed_height(np.array([a, b]))
+    if a[2] <= bottom[0] + tol:
+        return sloped_catenary_shape(mesh.bathymetry, a, b, s, line.length, EA, w)
+    if b[2] <= bottom[1] + tol:
+        shape = sloped_catenary_shape(mesh.bathymetry, b, a, line.length - s[::-1],
+                                      line.length, EA, w)
+        return None if shape is None else shape[::-1]
+    return None
 
 
 def _catenary_shape(system: System, type_name: str, length: float, a: FloatArray,

@@ -69,6 +69,15 @@ def _line_end_forces(pa: FloatArray, pb: FloatArray, length: float, EA: float, w
     return (fb, fa) if flip else (fa, fb)
 
 
+def local_seabed(x: FloatArray, bottom: FloatArray, a: int, b: int) -> float:
+    """The flat seabed a line's closed-form catenary assumes, given the seabed height
+    ``bottom`` under every node: the height under the end nearer to the seabed (its anchor;
+    ``-inf`` without a seabed). On a sloped or gridded seabed the catenary is a start only,
+    which the finite elements then bring onto the real surface."""
+    end = a if x[a, 2] - bottom[a] <= x[b, 2] - bottom[b] else b
+    return float(bottom[end])
+
+
 def presolve_free_points(system: System, mesh: Mesh, x: FloatArray) -> FloatArray | None:
     """Node positions ``x`` with the free points moved to their catenary equilibrium.
 
@@ -110,6 +119,7 @@ def presolve_free_points(system: System, mesh: Mesh, x: FloatArray) -> FloatArra
     own[:, 2] = (rho * mesh.node_volume[nodes] - mesh.node_mass[nodes]) * g
     own += mesh.node_force[nodes]
     seabed_z, friction = float(mesh.seabed_z), float(env.seabed.friction)
+    sloped = mesh.bathymetry is not None
     scale = max(1.0, float(np.abs(own).max(initial=0.0)),
                 max(abs(w) * length for _, _, length, _, w in lines))
     span = max(length for _, _, length, _, _ in lines)
@@ -119,14 +129,16 @@ def presolve_free_points(system: System, mesh: Mesh, x: FloatArray) -> FloatArra
         pos = x.copy()
         pos[nodes] = q.reshape(-1, 3)
         total = own.copy()
+        bottom = mesh.seabed_height(pos) if sloped else np.full(len(pos), seabed_z)
         for a, b, length, EA, w in lines:
-            fa, fb = _line_end_forces(pos[a], pos[b], length, EA, w, seabed_z, friction)
+            fa, fb = _line_end_forces(pos[a], pos[b], length, EA, w,
+                                      local_seabed(pos, bottom, a, b), friction)
             if a in slot:
                 total[slot[a]] += fa
             if b in slot:
                 total[slot[b]] += fb
         if math.isfinite(seabed_z):
-            total[:, 2] += k_seabed * np.maximum(seabed_z - pos[nodes, 2], 0.0)
+            total[:, 2] += k_seabed * np.maximum(bottom[nodes] - pos[nodes, 2], 0.0)
         return total.ravel() / scale
 
     from scipy.optimize import least_squares

@@ -153,22 +153,20 @@ def _matrix6(value) -> FloatArray:
 
 def _seabed_damping_blocks(mesh, positions: FloatArray, model) -> FloatArray | None:
     """Node damping blocks (n_nodes, 3, 3) of the seabed contact damper linearized about the
-    static state: ``c share`` on z of the nodes the seabed pushes, the same law as the time
-    domain (:func:`moorline.physics.seabed.contact_force` at zero velocity: its ``d/dv_z``);
-    ``None`` without a seabed."""
+    static state: ``c share`` along the seabed normal of the nodes the seabed pushes, the
+    same law as the time domain (:func:`moorline.physics.seabed.surface_contact` at zero
+    velocity: its ``d/dv``); ``None`` without a seabed."""
     from ..physics import seabed
 
-    if not np.isfinite(mesh.seabed_z):
+    surface = mesh.seabed_surface
+    if surface is None:
         return None
     c = mesh.seabed_damping_per_area * mesh.node_contact_area
-    zero = np.zeros(mesh.n_nodes)
-    _, _, d_dv = seabed.contact_force(positions[:, 2] - mesh.seabed_z, zero,
-                                      model.node_seabed_stiffness, c, model.seabed_ramp)
-    if not np.any(d_dv):
+    contact = seabed.surface_contact(positions, np.zeros_like(positions), surface,
+                                     model.node_seabed_stiffness, c, model.seabed_ramp)
+    if not np.any(contact.damping):
         return None
-    blocks = np.zeros((mesh.n_nodes, 3, 3))
-    blocks[:, 2, 2] = -d_dv
-    return blocks
+    return -contact.damping
 
 
 class _LinearModel:
