@@ -430,8 +430,8 @@ def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineTyp
         name, tok = row.tokens[0], row.tokens[1:]
         if name in types:
             raise reader.fail(f"line type {name!r} is defined twice", row, sec.title)
-        visco = viscoelastic_line_type(
-            tok[2], tok[3], lambda why: reader.fail(f"line type {name!r}: {why}", row, sec.title))
+        visco = viscoelastic_line_type(tok[2], tok[3], lambda why, n=name, r=row: reader.fail(
+            f"line type {n!r}: {why}", r, sec.title))
         if visco is not None:  # EA_s|EA_d[|...] with BA_s[|BA_d]: numbers checked there
             tok = [*tok[:2], "1", "0", *tok[4:]]
         if not _is_number(tok[3]):

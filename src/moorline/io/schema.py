@@ -304,8 +304,9 @@ class LineTypeSpec(_Spec):
     ``EAd`` and ``EAd_Lm`` give the fibre-rope dynamic stiffness ``EA_d = EAd + EAd_Lm T_mean``
     used about the static state in dynamic analyses. ``material: static_dynamic`` is MoorDyn's
     viscoelastic rope (:mod:`moorline.physics.static_dynamic`): ``EA`` static, ``EAd`` +
-    ``EAd_Lm`` the dynamic branch's stiffness, ``BA`` and ``BA_dynamic`` the two dampings. ``EI`` is the bending stiffness
-    [force*length^2] (:mod:`moorline.physics.bending`; line ends pinned), 0 for a cable.
+    ``EAd_Lm`` the dynamic branch's stiffness, ``BA`` and ``BA_dynamic`` the two dampings.
+    ``EI`` is the bending stiffness [force*length^2] (:mod:`moorline.physics.bending`; line
+    ends pinned), 0 for a cable.
     """
 
     catalog: str | None = None
