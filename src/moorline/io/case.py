@@ -321,6 +321,12 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
         if lt.material == "static_dynamic":
             _check_static_dynamic(name, lt, fail)
+            for k, analysis in enumerate(spec.analyses or ()):
+                if analysis.kind in ("modal", "strumming", "stochastic", "harmonic"):
+                    fail(f"line type {name} is a static_dynamic rope (MoorDyn's mean-load "
+                         f"dependent viscoelastic model), modelled in statics and the time "
+                         f"domain only: no {analysis.kind} analysis (not linearized)",
+                         f"analyses[{k}].kind")
     depth = env.depth if env.depth is not None else math.inf
     bodies = spec.bodies or {}
     for name, point in spec.points.items():
