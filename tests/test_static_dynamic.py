@@ -197,3 +197,14 @@ def test_md_viscoelastic_against_moordyn(tmp_path, pair):
     keep = t_theirs >= 0.1
     assert theirs.min() > 1e5  # taut throughout (no slack rule involved)
     np.testing.assert_allclose(ours_mid[keep], theirs[keep], rtol=1e-5)
+
+
+def test_deck_round_trip(tmp_path):
+    """:func:`~moorline.io.moordyn.write_moordyn` writes the static-dynamic line type back as
+    MoorDyn's ``EA_s|EA_Dc|EA_D_Lm`` and ``BA_s|BA_d``: read again, the same line type."""
+    from moorline.io.moordyn import write_moordyn
+
+    system = read_moordyn(DECK)
+    path = tmp_path / "back.dat"
+    write_moordyn(system, path, 0.01)
+    assert read_moordyn(path).line_types["rope"] == system.line_types["rope"]

@@ -689,12 +689,12 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
     if env.waves.active:
         omissions.append("waves")
     for lt in system.line_types.values():
-        if lt.material != "elastic":
+        if lt.material not in ("elastic", "static_dynamic"):
             errors.append(f"line type {lt.name}: {lt.material} material")
         if lt.EA_table is not None and len(lt.EA_table) > MOORDYN_CURVE_POINTS:
             errors.append(f"line type {lt.name}: an EA table of {len(lt.EA_table)} points "
                           f"(MoorDyn-C reads at most {MOORDYN_CURVE_POINTS})")
-        if lt.EAd is not None:
+        if lt.EAd is not None and lt.material != "static_dynamic":
             omissions.append(f"line type {lt.name}: dynamic stiffness EAd (MoorDyn's EA_s|EA_Dc|"
                              "EA_D_Lm is another, viscoelastic, model)")
         if lt.displaced_area is not None and not math.isclose(
@@ -745,6 +745,9 @@ def _line_type_rows(system: System, path: Path) -> list[str]:
         cells = [_fmt(v) for v in values]
         if lt.EA_table is not None:
             cells[2] = _write_ea_table(lt, path.with_name(f"{path.stem}_{lt.name}_EA.dat"))
+        if lt.material == "static_dynamic":  # MoorDyn's EA_s|EA_Dc|EA_D_Lm and BA_s|BA_d
+            cells[2] = "|".join(_fmt(v) for v in (lt.EA, lt.EAd, lt.EAd_Lm))
+            cells[3] = "|".join(_fmt(v) for v in (lt.BA, lt.BA_dynamic))
         rows.append(f"{lt.name:<10s} " + " ".join(cells))
     return rows
 
