@@ -208,3 +208,98 @@ def test_deck_round_trip(tmp_path):
     path = tmp_path / "back.dat"
     write_moordyn(system, path, 0.01)
     assert read_moordyn(path).line_types["rope"] == system.line_types["rope"]
+
+
+CASE = """
+name: rope
+units: SI
+environment: {{depth: 100}}
+line_types:
+  rope: {{diameter: 0.14, mass_per_length: 22.4, EA: 1.424e8, material: static_dynamic,
+         {extra}}}
+points:
+  anchor: {{kind: fixed, position: [0, 0, -100]}}
+  top: {{kind: prescribed, position: [0, 0, -1]}}
+lines:
+  l1: {{type: rope, length: 98, segments: 4, end_a: anchor, end_b: top}}
+analyses:
+  - {{kind: {kind}}}
+"""
+
+
+@pytest.mark.parametrize(("extra", "kind", "field", "named"), [
+    ("BA: 4.0e9", "statics", "line_types.rope.EAd", "needs EAd"),
+    ("EAd: 1.0e8, BA: 4.0e9", "statics", "line_types.rope.EAd", "needs EAd > EA"),
+    ("EAd: 1.586e8, EAd_Lm: 0.4", "statics", "line_types.rope.BA", "damping in a branch"),
+    ("EAd: 1.586e8, BA: 4.0e9", "modal", "analyses[0].kind", "no modal analysis"),
+])
+def test_bad_static_dynamic_cases_are_refused(extra, kind, field, named):
+    """A case's static_dynamic line type without what the law needs, or with an analysis
+    that would linearize it: a CaseError naming the key."""
+    from moorline.io import load_case_text
+
+    with pytest.raises(CaseError) as info:
+        load_case_text(CASE.format(extra=extra, kind=kind), file="rope.yaml")
+    assert info.value.field == field and named in info.value.reason
+
+
+def test_good_static_dynamic_case_loads():
+    """The same case with EAd above EA and a damping: loads, the law's parameters kept."""
+    from moorline.io import load_case_text
+
+    system = load_case_text(CASE.format(extra="EAd: 1.586e8, EAd_Lm: 0.4, BA: 4.0e9, "
+                                        "BA_dynamic: 1.1e7", kind="statics"))
+    lt = system.line_types["rope"]
+    assert (lt.EAd, lt.EAd_Lm, lt.BA, lt.BA_dynamic) == (ALPHA, BETA, C1, C2)
+
+
+@pytest.mark.compare
+def test_taut_line_with_mass_against_moordyn(tmp_path):
+    """The deck's rope as a 50 m line of 5 segments with its mass (no gravity, no fluid, so
+    both codes start relaxed on the straight unstretched line), its end pulled to 10 % strain
+    with a 2 % oscillation of period 5 s: the top segment's tension (MoorDyn's ``FairTen``,
+    half a MoorDyn step, 5e-5 s, back as in :func:`test_md_viscoelastic_against_moordyn`)
+    with moorline's implicit step of 0.01 s against MoorDyn's explicit RK2 at 1e-4 s (its
+    stability limit with the dashpots is about 4e-4 s; at 5e-4 s it diverges). After 5 s
+    they differ by 1.9e-4 of the tension (7.6e-5 with moorline at 0.0025 s): the axial modes
+    (period about 0.04 s) that the start excites are resolved by MoorDyn and filtered by
+    moorline's step; tolerance 5e-4."""
+    moordyn = pytest.importorskip("moordyn")
+    from moorline.compare.moordyn_runner import silenced_fd
+    from moorline.io.moordyn import write_moordyn
+    from moorline.model import Line, Point, System
+
+    deck = read_moordyn(DECK)
+    rope = replace(deck.line_types["rope"], Cd=0.0, Ca=0.0, Ct=0.0, Cat=0.0)
+    length, n_seg, dt, duration, w = 50.0, 5, 0.01, 20.0, 2 * math.pi / 5.0
+
+    def x(t: float) -> float:
+        return length + t / (t + 2.0) * (5.0 + 1.0 * math.sin(w * t))
+
+    times = dt * np.arange(round(duration / dt) + 1)
+    motion = Motion(kind="table", times=tuple(times),
+                    values=tuple((x(t) - length, 0.0, 0.0) for t in times))
+    points = {"a": Point("a", "fixed", (0.0, 0.0, -50.0)),
+              "b": Point("b", "prescribed", (length, 0.0, -50.0), motion=motion)}
+    system = System("taut", environment=replace(deck.environment, gravity=0.0),
+                    line_types={"rope": rope}, points=points,
+                    lines={"l": Line("l", "rope", length, n_seg, "a", "b")})
+    start = np.array([[0.0, 0.0, -50.0], [length, 0.0, -50.0]]
+                     + [[length * i / n_seg, 0.0, -50.0] for i in range(1, n_seg)])
+    run = simulate(system, DynamicsSettings(duration=duration, dt=dt), initial=start,
+                   output_every=dt)
+    assert run.success, run.message
+    path = write_moordyn(system, tmp_path / "taut.dat", 1.0e-4)
+    theirs = []
+    with silenced_fd(1):
+        md = moordyn.Create(str(path))
+        moordyn.Init_NoIC(md, [x(0.0), 0.0, -50.0], [0.0, 0.0, 0.0])
+        line = moordyn.GetLine(md, 1)
+        for t in times[:-1]:
+            moordyn.Step(md, [x(t), 0.0, -50.0], [(x(t + dt) - x(t)) / dt, 0.0, 0.0], t, dt)
+            theirs.append(moordyn.GetLineFairTen(line))
+        moordyn.Close(md)
+    t_theirs = times[1:]
+    ours = np.interp(t_theirs - 0.5e-4, run.time, run.tension[:, -1])
+    keep = t_theirs >= 5.0
+    np.testing.assert_allclose(ours[keep], np.array(theirs)[keep], rtol=5e-4)
