@@ -184,7 +184,8 @@ def test_md_viscoelastic_against_moordyn(tmp_path, pair):
     schemes and of the interpolation (about 1e-6 each at 500 steps per period). The first
     0.1 s are left out (the first record pairs MoorDyn's first step with moorline's t = 0)."""
     pytest.importorskip("moordyn")
-    deck = DECK if pair is None else _deck(tmp_path, *pair)
+    # a copy: MoorDyn writes its OUTPUTS (moordyn.out) next to the deck
+    deck = _deck(tmp_path, *(pair or ("1.424e+08|1.586e+08|0.4", "4E9|11E6")))
     dt, duration, w = 0.01, 20.0, 2 * math.pi / 5.0
 
     def x(t: float) -> float:
