@@ -245,6 +245,7 @@ RTEST_DECKS = [RTEST + deck for deck in (
     "modules/moordyn/md_case2/moordyn.dat",
     "modules/moordyn/md_case5/moordyn.dat",
     "modules/moordyn/md_lineFail/moordyn.dat",
+    "modules/moordyn/md_viscoelastic/moordyn.dat",  # EA_s|EA_Dc|EA_D_Lm, BA_s|BA_d
     "modules/moordyn/md_waterkin3/moordyn.dat",
     "modules/moordyn/py_md_5MW_OC4Semi/md_primary.inp",
 )] + [
@@ -320,11 +321,9 @@ def test_public_decks_with_pinned_members_are_refused(deck, named, tmp_path):
 
 
 @pytest.mark.parametrize(("deck", "named"), [
-    # non-constant EA: MoorDyn's Syrope model and a static|dynamic|damping viscoelastic triple
-    ("modules/moordyn/md_syrope/moordyn.dat", "EA 'SYROPE:syrope.dat|1.53e8|23.12': only a "
-     "constant EA or an EA table file is supported"),
-    ("modules/moordyn/md_viscoelastic/moordyn.dat", "EA '1.424e+08|1.586e+08|0.4': only a "
-     "constant EA or an EA table file is supported"),
+    # MoorDyn's Syrope model (load-history dependent working curves)
+    ("modules/moordyn/md_syrope/moordyn.dat", "line 6, LINE TYPES: line type 'poly': EA "
+     "'SYROPE:syrope.dat|1.53e8|23.12': the Syrope model"),
     # a rod of a type the deck never defines (MoorDyn-C 2.7.2 refuses it too: "Unrecognized
     # rod type Can")
     ("modules/moordyn/md_waterkin2/moordyn.dat", "RODS: unknown rod type 'Can'"),

@@ -91,6 +91,10 @@ class Mesh:
         Strain offset of each element's law (:func:`dynamic_mesh`); ``None``: zero.
     EAd, EAd_Lm
         Fibre-rope dynamic stiffness per element (``EAd`` NaN where none).
+    static_dynamic
+        Elements of MoorDyn's viscoelastic rope (:mod:`moorline.physics.static_dynamic`):
+        ``(alpha, beta, c1, c2)`` per element (n_elements, 4), NaN on other elements (their
+        ``BA`` holds ``c1 c2 / (c1 + c2)``); ``None``: no such element.
     bend_nodes, bend_elements, bend_stiffness
         Bending stiffness (:mod:`moorline.physics.bending`): the node triplets
         ``(i-1, i, i+1)`` of the interior nodes of lines with ``EI > 0`` (n_b, 3), their two
@@ -150,6 +154,7 @@ class Mesh:
     strain_offset: FloatArray | None = None
     EAd: FloatArray | None = None
     EAd_Lm: FloatArray | None = None
+    static_dynamic: FloatArray | None = None
     bend_nodes: IntArray = field(default_factory=lambda: np.zeros((0, 3), dtype=np.int64))
     bend_elements: IntArray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
     bend_stiffness: FloatArray = field(default_factory=lambda: np.zeros(0))
@@ -258,10 +263,15 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
     types = [system.line_types[line.line_type] for line in lines]
     tables = {lt.name: StrainTable(lt.EA_table) for lt in types if lt.EA_table is not None}
     out["strain_laws"] = strain_laws([tables.get(lt.name) for lt in types], line_of_element)
-    if any(lt.EAd is not None for lt in types):
-        out["EAd"] = np.array([np.nan if lt.EAd is None else lt.EAd
-                               for lt in types])[line_of_element]
+    series = [lt.material == "static_dynamic" for lt in types]
+    if any(lt.EAd is not None and not sd for lt, sd in zip(types, series, strict=True)):
+        out["EAd"] = np.array([np.nan if lt.EAd is None or sd else lt.EAd
+                               for lt, sd in zip(types, series, strict=True)])[line_of_element]
         out["EAd_Lm"] = np.array([lt.EAd_Lm for lt in types], dtype=float)[line_of_element]
+    if any(series):
+        out["static_dynamic"] = np.array(
+            [(lt.EAd, lt.EAd_Lm, 0.0, lt.BA_dynamic) if sd else (np.nan,) * 4
+             for lt, sd in zip(types, series, strict=True)], dtype=float)[line_of_element]
     return out
 
 
@@ -314,6 +324,12 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
     props["BA"] = np.where(ratio, -props["BA"] * L0 * np.sqrt(props["EA"]
                                                               * props["mass_per_length"]),
                            props["BA"])
+    if props.get("static_dynamic") is not None:  # BA is the static branch's: c1
+        sd = props["static_dynamic"]
+        series = np.isfinite(sd[:, 0])
+        sd[series, 2] = props["BA"][series]
+        c1, c2 = sd[series, 2], sd[series, 3]
+        props["BA"][series] = c1 * c2 / (c1 + c2)  # the dashpot on the strain rate
 
     points = list(system.points.values())
     n_points = len(points)

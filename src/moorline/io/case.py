@@ -72,13 +72,16 @@ __all__ = ["MAX_DEPTH", "MAX_STRAIN", "MAX_VALUES", "SEABED_TOLERANCE", "load_ca
 
 logger = logging.getLogger(__name__)
 
-MAX_STRAIN = 0.5
+MAX_STRAIN = 1.0
 """Largest strain a line may need to reach between two fixed/prescribed ends.
 
 A line is rejected when the distance between its ends exceeds ``length * (1 + MAX_STRAIN)``.
-50 % is beyond the elastic range of any mooring material (steel chain and wire < 1 %,
+100 % is far beyond the elastic range of any mooring material (steel chain and wire < 1 %,
 polyester ~ 10-15 % and nylon ~ 20-30 % at break), so only data errors trip it, while an
-elastic line may legitimately be a little shorter than its span (a pretensioned string).
+elastic line may legitimately be shorter than its span (a pretensioned string). It is not
+lower because MoorDyn's own viscoelastic test deck (MoorDyn ``tests/Mooring/polyester/
+visco.txt``, OpenFAST r-test ``modules/moordyn/md_viscoelastic``) stretches a 1 m segment
+between points 2 m apart.
 """
 
 MAX_DEPTH = 32
@@ -320,6 +323,14 @@ def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
     for name, lt in spec.line_types.items():
         if lt.material == "viscoelastic" and lt.tau <= 0.0:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
+        if lt.material == "static_dynamic":
+            _check_static_dynamic(name, lt, fail)
+            for k, analysis in enumerate(spec.analyses or ()):
+                if analysis.kind in ("modal", "strumming", "stochastic", "harmonic"):
+                    fail(f"line type {name} is a static_dynamic rope (MoorDyn's mean-load "
+                         f"dependent viscoelastic model), modelled in statics and the time "
+                         f"domain only: no {analysis.kind} analysis (not linearized)",
+                         f"analyses[{k}].kind")
     depth = env.depth if env.depth is not None else math.inf
     bodies = spec.bodies or {}
     surface = _surface(depth, seabed)
@@ -447,6 +458,23 @@ def _check_resolved_periods(spec: CaseSpec, dt: float, field: str,
                 and history.period < 2.0 * dt:
             fail(f"period {history.period:g} is shorter than two time steps of the dynamics "
                  f"({field} = {dt:g}): the step cannot resolve it", f"{key}.period")
+
+
+def _check_static_dynamic(name: str, lt, fail) -> None:
+    """A ``static_dynamic`` line type (:mod:`moorline.physics.static_dynamic`): a constant
+    static ``EA``, a dynamic stiffness ``EAd`` above it, and some damping in a branch."""
+    where = f"line_types.{name}"
+    if lt.EA_table is not None or isinstance(lt.EA, dict):
+        fail("a static_dynamic material needs a constant static EA (no table)", f"{where}.EA")
+    if lt.EAd is None:
+        fail("a static_dynamic material needs EAd (the dynamic stiffness at zero load)",
+             f"{where}.EAd")
+    elif isinstance(lt.EA, int | float) and not lt.EAd > lt.EA:
+        fail(f"a static_dynamic material needs EAd > EA (the static stiffness), got EAd "
+             f"{lt.EAd:g} and EA {lt.EA:g}", f"{where}.EAd")
+    if lt.BA == 0.0 and lt.BA_dynamic == 0.0:
+        fail("a static_dynamic material needs damping in a branch (BA or BA_dynamic > 0)",
+             f"{where}.BA")
 
 
 def _check_point(

@@ -107,8 +107,9 @@ def _line_type(lt: LineType) -> dict[str, Any]:
         data["EA"] = {"table": [list(row) for row in table]}
     if "EAd" not in data:
         data.pop("EAd_Lm")
-    if not data["EI"]:
-        data.pop("EI")
+    for key in ("EI", "BA_dynamic"):
+        if not data[key]:
+            data.pop(key)
     return data
 
 

@@ -79,6 +79,7 @@ from .moordyn_bodies import body_attachment, body_problems, body_section
 from .moordyn_kinematics import deck_waves, water_kinematics
 from .moordyn_outputs import deck_channels, output_channels, time_options, time_settings
 from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
+from .moordyn_visco import viscoelastic_line_type
 from .schema import check_number
 from .seafloor import read_seafloor
 from .strain_table import read_strain_table
@@ -434,11 +435,13 @@ def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineTyp
         name, tok = row.tokens[0], row.tokens[1:]
         if name in types:
             raise reader.fail(f"line type {name!r} is defined twice", row, sec.title)
-        for index, what in ((2, "EA"), (3, "BA/-zeta")):
-            if "|" in tok[index] or (index == 3 and not _is_number(tok[index])):
-                raise reader.fail(f"{what} {tok[index]!r}: only a constant {what} or an EA "
-                                  "table file is supported (no viscoelastic pairs or "
-                                  "damping tables)", row, sec.title)
+        visco = viscoelastic_line_type(tok[2], tok[3], lambda why, n=name, r=row: reader.fail(
+            f"line type {n!r}: {why}", r, sec.title))
+        if visco is not None:  # EA_s|EA_d[|...] with BA_s[|BA_d]: numbers checked there
+            tok = [*tok[:2], "1", "0", *tok[4:]]
+        if not _is_number(tok[3]):
+            raise reader.fail(f"BA/-zeta {tok[3]!r}: only a constant BA is supported (no "
+                              "damping tables)", row, sec.title)
         table = None if _is_number(tok[2]) else _ea_table(tok[2], row, sec.title, reader)
         values = [_number(t, f"column {i + 2}", row, sec.title, reader)
                   for i, t in enumerate(tok) if i != 2 or table is None]
@@ -457,8 +460,9 @@ def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineTyp
             if value <= 0:
                 raise reader.fail(f"{what} must be positive, got {value:g}", row, sec.title)
         points = None if table is None else tuple(map(tuple, table.points.tolist()))
-        types[name] = LineType(name=name, diameter=d, mass_per_length=m, EA=EA, Cd=Cd, Ca=Ca,
-                               Ct=Ct, Cat=Cat, BA=BA, EA_table=points, EI=EI)
+        fields = {"EA": EA, "BA": BA, **(visco or {})}
+        types[name] = LineType(name=name, diameter=d, mass_per_length=m, Cd=Cd, Ca=Ca, Ct=Ct,
+                               Cat=Cat, EA_table=points, EI=EI, **fields)
     return types, version
 
 
@@ -719,12 +723,12 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
         omissions.append("the push of the sloped or gridded seabed along its normal "
                          "(MoorDyn-C's seafloor pushes vertically)")
     for lt in system.line_types.values():
-        if lt.material != "elastic":
+        if lt.material not in ("elastic", "static_dynamic"):
             errors.append(f"line type {lt.name}: {lt.material} material")
         if lt.EA_table is not None and len(lt.EA_table) > MOORDYN_CURVE_POINTS:
             errors.append(f"line type {lt.name}: an EA table of {len(lt.EA_table)} points "
                           f"(MoorDyn-C reads at most {MOORDYN_CURVE_POINTS})")
-        if lt.EAd is not None:
+        if lt.EAd is not None and lt.material != "static_dynamic":
             omissions.append(f"line type {lt.name}: dynamic stiffness EAd (MoorDyn's EA_s|EA_Dc|"
                              "EA_D_Lm is another, viscoelastic, model)")
         if lt.displaced_area is not None and not math.isclose(
@@ -775,6 +779,9 @@ def _line_type_rows(system: System, path: Path) -> list[str]:
         cells = [_fmt(v) for v in values]
         if lt.EA_table is not None:
             cells[2] = _write_ea_table(lt, path.with_name(f"{path.stem}_{lt.name}_EA.dat"))
+        if lt.material == "static_dynamic":  # MoorDyn's EA_s|EA_Dc|EA_D_Lm and BA_s|BA_d
+            cells[2] = "|".join(_fmt(v) for v in (lt.EA, lt.EAd, lt.EAd_Lm))
+            cells[3] = "|".join(_fmt(v) for v in (lt.BA, lt.BA_dynamic))
         rows.append(f"{lt.name:<10s} " + " ".join(cells))
     return rows
 

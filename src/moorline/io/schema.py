@@ -317,8 +317,11 @@ class LineTypeSpec(_Spec):
     ``EA`` may be a tension-strain table (``{table: [[strain, tension], ...]}``) or
     ``EA_table`` a table file (CSV or MoorDyn's EA table file, relative to the case file);
     ``EAd`` and ``EAd_Lm`` give the fibre-rope dynamic stiffness ``EA_d = EAd + EAd_Lm T_mean``
-    used about the static state in dynamic analyses. ``EI`` is the bending stiffness
-    [force*length^2] (:mod:`moorline.physics.bending`; line ends pinned), 0 for a cable.
+    used about the static state in dynamic analyses. ``material: static_dynamic`` is MoorDyn's
+    viscoelastic rope (:mod:`moorline.physics.static_dynamic`): ``EA`` static, ``EAd`` +
+    ``EAd_Lm`` the dynamic branch's stiffness, ``BA`` and ``BA_dynamic`` the two dampings.
+    ``EI`` is the bending stiffness [force*length^2] (:mod:`moorline.physics.bending`; line
+    ends pinned), 0 for a cable.
     """
 
     catalog: str | None = None
@@ -336,13 +339,14 @@ class LineTypeSpec(_Spec):
     Ca: Coefficient = 1.0
     Ct: Coefficient = 0.008
     Cat: Coefficient = 0.0
-    material: Literal["elastic", "viscoelastic"] = "elastic"
+    material: Literal["elastic", "viscoelastic", "static_dynamic"] = "elastic"
     EA1: quantity("force", ge=0.0) = 0.0
     tau: quantity("time", ge=0.0) = 0.0
     slack_stiffness_ratio: quantity("dimensionless", gt=0.0, le=1.0) = 1.0e-6
     slack_smoothing: quantity("dimensionless", ge=0.0, le=0.01) = 1.0e-5
     BA: Annotated[float, PlainValidator(_internal_damping)] = 0.0
     EI: quantity("force*length^2", ge=0.0) = 0.0
+    BA_dynamic: quantity("force*time", ge=0.0) = 0.0
 
 
 class MotionSpec(_Spec):

@@ -8,7 +8,7 @@ from typing import Literal
 
 Vector3 = tuple[float, float, float]
 PointKind = Literal["fixed", "free", "prescribed", "body"]
-MaterialKind = Literal["elastic", "viscoelastic"]
+MaterialKind = Literal["elastic", "viscoelastic", "static_dynamic"]
 
 
 @dataclass(frozen=True)
@@ -30,7 +30,11 @@ class LineType:
     Cd, Ca, Ct, Cat
         Normal drag, normal added mass, tangential drag and tangential added-mass coefficients.
     material
-        ``elastic`` (no compression) or ``viscoelastic`` (standard linear solid, Tuah 2.2.b).
+        ``elastic`` (no compression), ``viscoelastic`` (standard linear solid, Tuah 2.2.b) or
+        ``static_dynamic`` (MoorDyn's viscoelastic rope with a mean-load dependent dynamic
+        stiffness, :mod:`moorline.physics.static_dynamic`: static stiffness ``EA``, dynamic
+        stiffness ``EAd + EAd_Lm s``, static-branch damping ``BA`` and dynamic-branch damping
+        ``BA_dynamic``).
     EA1
         Viscoelastic: extra instantaneous stiffness K1*A [force]; instantaneous is EA + EA1.
     tau
@@ -54,7 +58,11 @@ class LineType:
     EAd, EAd_Lm
         Fibre-rope dynamic stiffness ``EA_d = EAd + EAd_Lm T_mean`` [force, -] used about the
         static state in dynamic analyses (Del Vecchio 1992; MoorPy's ``EAd``/``EAd_Lm``);
-        ``None``: the static law in dynamics too.
+        ``None``: the static law in dynamics too. For the ``static_dynamic`` material, the
+        dynamic branch's stiffness at zero load and its slope with the static branch's force.
+    BA_dynamic
+        ``static_dynamic`` material: damping of the dynamic branch [force*time] (MoorDyn's
+        ``BA_d``); ``BA`` is then the static branch's (``BA_s``).
     EI
         Bending stiffness [force*length^2] (0: a cable without bending stiffness;
         :mod:`moorline.physics.bending`, pinned line ends).
@@ -83,6 +91,7 @@ class LineType:
     EAd: float | None = None
     EAd_Lm: float = 0.0
     EI: float = 0.0
+    BA_dynamic: float = 0.0
 
     @property
     def area_displaced(self) -> float:

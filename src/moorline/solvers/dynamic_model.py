@@ -2,7 +2,8 @@
 
 The equation of motion at the free dofs is ``M_s a = F(x, v, a, t)`` (Tuah eq. 4.2.1-4.2.6):
 ``F`` holds the constant loads (submerged weight, point loads), point force histories, the
-axial element forces (elastic or standard linear solid, plus Kelvin-Voigt damping ``BA``),
+axial element forces (elastic, standard linear solid or MoorDyn's static-dynamic rope, plus
+Kelvin-Voigt damping ``BA``),
 seabed contact, Morison drag on relative velocity, fluid inertia and minus the added-mass
 force ``M_a(x) a`` (Tuah eq. 3.2.a.6, 4.2.3). ``M_s`` is the lumped structural mass. The
 derivatives are returned as element (6x6) and node (3x3) blocks: ``K = -dF/dx``,
@@ -21,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..physics import element, hydro, material, seabed
+from ..physics import element, hydro, material, seabed, static_dynamic
 from .equilibrium import StaticModel, bending_loads
 
 FloatArray = NDArray[np.float64]
@@ -31,8 +32,10 @@ FloatArray = NDArray[np.float64]
 class MaterialState:
     """Internal variables of the elements at the end of the last completed step.
 
-    ``strain`` is each element's strain and ``maxwell`` the force in the Maxwell branch of
-    the standard linear solid (zero for elastic elements).
+    ``strain`` is each element's strain and ``maxwell`` its internal force variable: the force
+    in the Maxwell branch of the standard linear solid, the static branch's spring force ``s``
+    of the static-dynamic rope (:mod:`moorline.physics.static_dynamic`), zero for elastic
+    elements.
     """
 
     strain: FloatArray
@@ -96,7 +99,9 @@ class DynamicModel:
         self.has_added_mass = bool(np.any(m.Ca > 0) or np.any(m.Cat > 0)) and self.rho > 0
         self.has_point_hydro = bool(np.any(m.node_Cd * m.node_drag_area > 0)
                                     or np.any(m.node_Ca * m.node_volume > 0))
-        self.any_viscoelastic = bool(np.any(m.viscoelastic))
+        self.series = (None if m.static_dynamic is None
+                       else np.flatnonzero(np.isfinite(m.static_dynamic[:, 0])))
+        self.any_viscoelastic = bool(np.any(m.viscoelastic)) or self.series is not None
         self.viscoelastic_update = viscoelastic_update
         self.seabed_ramp = static.seabed_ramp
         self.surface = m.seabed_surface
@@ -116,10 +121,14 @@ class DynamicModel:
         self.kernel = "numba" if self._fused is not None else "numpy"
 
     def initial_material(self, x: FloatArray) -> MaterialState:
-        """Material state in equilibrium at positions ``x`` (relaxed Maxwell branch)."""
+        """Material state in equilibrium at positions ``x`` (relaxed Maxwell branch; a relaxed
+        static-dynamic rope's static branch carries the static tension ``EA eps``)."""
         length, _ = element.element_geometry(x, self.mesh.elements)
         strain = length / self.mesh.length0 - 1.0
-        return MaterialState(strain, np.zeros_like(strain))
+        internal = np.zeros_like(strain)
+        if self.series is not None:
+            internal[self.series] = self.mesh.EA[self.series] * strain[self.series]
+        return MaterialState(strain, internal)
 
     def evaluate(self, x: FloatArray, v: FloatArray, a: FloatArray, t: float,
                  previous: MaterialState, dt: float, tangent: bool,
@@ -132,6 +141,9 @@ class DynamicModel:
         :mod:`moorline.solvers.harmonic_material`): their tension is then the linear law
         ``EA eps + Q`` and its tangent ``EA`` (``Q``'s own dependence on the strain history
         is the caller's)."""
+        if maxwell is not None and self.series is not None:
+            raise ValueError("the static-dynamic rope (MoorDyn's mean-load dependent "
+                             "viscoelastic model) is time-domain only: no harmonic balance")
         m = self.mesh
         el = m.elements
         if self._fused is not None:  # compiled element loads, elastic elements only
@@ -206,6 +218,11 @@ class DynamicModel:
             T[ve], maxwell[ve], dT_deps[ve] = self._viscoelastic(
                 strain[ve], previous.strain[ve], previous.maxwell[ve], dt, m.EA[ve], m.EA1[ve],
                 m.tau[ve], m.slack_ratio[ve])
+        if self.series is not None and given is None:
+            sd, k = m.static_dynamic[self.series], self.series
+            T[k], maxwell[k], dT_deps[k] = static_dynamic.static_dynamic_update(
+                strain[k], previous.strain[k], previous.maxwell[k], dt, m.EA[k], sd[:, 0],
+                sd[:, 1], sd[:, 2], sd[:, 3], m.slack_ratio[k])
         share, dshare = element.dashpot_share(length, m.length0, m.slack_smoothing,
                                               m.strain_offset)
         strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0

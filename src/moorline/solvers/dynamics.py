@@ -66,8 +66,9 @@ def simulate(
     progress
         Called with the current time after every step.
     maxwell
-        Initial Maxwell-branch force of viscoelastic elements (n_elements,); default relaxed
-        (zero) at the initial positions.
+        Initial Maxwell-branch force of viscoelastic elements, and static-branch force of
+        static-dynamic elements (n_elements,); default relaxed at the initial positions (zero,
+        and ``EA eps``).
     """
     mesh, fluid, excitation, state, stepper = start(system, settings, initial, fluid, maxwell)
     every = max(output_every or system.output.every, settings.dt)

@@ -146,7 +146,10 @@ class Stepper:
         self.layout = layout
         self.pattern = layout.pattern
         self.coupled = len(mesh.slave_node) > 0 or not self.bodies.empty
-        self.factorizer = None if self.coupled else SparseFactor(self.pattern)
+        # no unknowns (every node prescribed, e.g. one segment between a fixed and a coupled
+        # point): nothing to factorize, each step only evaluates the forces
+        self.factorizer = (None if self.coupled or layout.n_unknowns == 0
+                           else SparseFactor(self.pattern))
         self.dof = mesh.dof_of_node
         self.free = mesh.free_nodes
         self.rayleigh = rayleigh
