@@ -192,9 +192,9 @@ def write_moorline(folder: Path, segments: int, dt: float, duration: float) -> P
 
 
 def write_cabledyn(folder: Path, segments: int, dt: float, duration: float,
-                   system_=None, channels: tuple[str, ...] = ()) -> Path:
+                   system_=None) -> Path:
     """A CableDyn deck of the case (cabledyn.DeckWriter) and its motion file (``system_``:
-    as :func:`motion_table`; ``channels``: more output channels)."""
+    as :func:`motion_table`)."""
     from cabledyn import DeckWriter
 
     from moorline.verification.oc3_line import DEPTH, DIAMETER, EA, LENGTH, MASS, RHO, G
@@ -217,8 +217,6 @@ def write_cabledyn(folder: Path, segments: int, dt: float, duration: float,
         deck.set_option(value, key)
     for k in range(1, len(sys_.lines) + 1):
         deck.add_output(f"FairTen{k}")
-    for channel in channels:
-        deck.add_output(channel)
     table = motion_table(segments, dt, duration, sys_)
     fair = [ids[n] for n, p in sys_.points.items() if p.kind == "prescribed"]
     rows = []
