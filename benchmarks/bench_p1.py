@@ -154,12 +154,14 @@ def system(segments: int):
     return oc3_three_lines(segments, BA=BA)
 
 
-def motion_table(segments: int, step: float, duration: float) -> dict[str, np.ndarray]:
+def motion_table(segments: int, step: float, duration: float,
+                 system_=None) -> dict[str, np.ndarray]:
     """Positions, velocities, accelerations of the fairleads at every ``step``:
-    ``t`` (n,), ``x``, ``v``, ``a`` (n, 3 points x 3)."""
+    ``t`` (n,), ``x``, ``v``, ``a`` (n, 3 points x 3). ``system_``: another system than the
+    case's (:func:`system`; e.g. one line of it, or other coefficients)."""
     from moorline.solvers.excitation import motion_value
 
-    sys_ = system(segments)
+    sys_ = system(segments) if system_ is None else system_
     fair = [p for p in sys_.points.values() if p.kind == "prescribed"]
     t = np.arange(round(duration / step) + 1) * step
     x = np.empty((len(t), 3 * len(fair)))
@@ -189,16 +191,18 @@ def write_moorline(folder: Path, segments: int, dt: float, duration: float) -> P
     return path
 
 
-def write_cabledyn(folder: Path, segments: int, dt: float, duration: float) -> Path:
-    """A CableDyn deck of the case (cabledyn.DeckWriter) and its motion file."""
+def write_cabledyn(folder: Path, segments: int, dt: float, duration: float,
+                   system_=None) -> Path:
+    """A CableDyn deck of the case (cabledyn.DeckWriter) and its motion file (``system_``:
+    as :func:`motion_table`)."""
     from cabledyn import DeckWriter
 
     from moorline.verification.oc3_line import DEPTH, DIAMETER, EA, LENGTH, MASS, RHO, G
 
-    sys_ = system(segments)
+    sys_ = system(segments) if system_ is None else system_
     lt = sys_.line_types["chain"]
     deck = DeckWriter(title="OC3-Hywind three lines, fairleads surging 5 m at 10 s (moorline P1)")
-    deck.add_line_type("chain", diam=DIAMETER, mass=MASS, ea=EA, ba=BA, ei=0.0, cdn=lt.Cd,
+    deck.add_line_type("chain", diam=DIAMETER, mass=MASS, ea=EA, ba=lt.BA, ei=0.0, cdn=lt.Cd,
                        cdt=lt.Ct, can=lt.Ca, cat=lt.Cat)
     ids = {name: k for k, name in enumerate(sys_.points, start=1)}
     for name, p in sys_.points.items():
@@ -213,7 +217,7 @@ def write_cabledyn(folder: Path, segments: int, dt: float, duration: float) -> P
         deck.set_option(value, key)
     for k in range(1, len(sys_.lines) + 1):
         deck.add_output(f"FairTen{k}")
-    table = motion_table(segments, dt, duration)
+    table = motion_table(segments, dt, duration, sys_)
     fair = [ids[n] for n, p in sys_.points.items() if p.kind == "prescribed"]
     rows = []
     for k, t in enumerate(table["t"]):
@@ -226,13 +230,17 @@ def write_cabledyn(folder: Path, segments: int, dt: float, duration: float) -> P
     return deck.write(folder / "p1.dat")
 
 
-def write_moordyn(folder: Path, segments: int, dt: float, duration: float) -> Path:
-    """A MoorDyn deck of the case and the coupling table of the driver script."""
+def write_moordyn(folder: Path, segments: int, dt: float, duration: float,
+                  system_=None, **options: Any) -> Path:
+    """A MoorDyn deck of the case and the coupling table of the driver script (``system_``:
+    as :func:`motion_table`; ``options``: more arguments of
+    :func:`moorline.io.moordyn.write_moordyn`, e.g. ``time_scheme``)."""
     from moorline.io.moordyn import write_moordyn as write
 
-    table = motion_table(segments, SAMPLE, duration)
+    sys_ = system(segments) if system_ is None else system_
+    table = motion_table(segments, SAMPLE, duration, sys_)
     np.savez(folder / "motion.npz", t=table["t"], x=table["x"], v=table["v"])
-    return write(system(segments), folder / "p1.dat", dt)
+    return write(sys_, folder / "p1.dat", dt, **options)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -8,8 +8,10 @@ every line (``|GetLineNodeForce(line, N)|``, the force of the line on its fairle
 moorline's ``fairlead_tension``) at every interval to a text file; it prints the CPU time
 of the stepping loop on stderr (``loop SECONDS``).
 
-Usage: ``python moordyn_drive.py DECK MOTION.npz OUT.txt`` where ``MOTION.npz`` holds ``t``
-(n,), ``x`` and ``v`` (n, 3 * coupled points). Exit code 1 when a value is not finite.
+Usage: ``python moordyn_drive.py DECK MOTION.npz OUT.txt [segment]`` where ``MOTION.npz`` holds
+``t`` (n,), ``x`` and ``v`` (n, 3 * coupled points). Exit code 1 when a value is not finite.
+With ``segment`` the tension written is that of the line's last segment instead
+(``|GetLineNodeTen(line, N)|``, the segment's ``T + Td``: moorline's last ``tension``).
 """
 
 from __future__ import annotations
@@ -20,8 +22,10 @@ import time
 import numpy as np
 
 
-def main(deck: str, motion: str, out: str) -> int:
-    """Run the deck along the motion table; write ``time T1 T2 ...`` rows to ``out``."""
+def main(deck: str, motion: str, out: str, quantity: str = "force") -> int:
+    """Run the deck along the motion table; write ``time T1 T2 ...`` rows to ``out``
+    (``quantity``: ``force``, the end node's force, or ``segment``, the last segment's
+    tension)."""
     import moordyn
 
     table = np.load(motion)
@@ -34,9 +38,11 @@ def main(deck: str, motion: str, out: str) -> int:
     ends = [moordyn.GetLineN(line) for line in lines]
     tension = np.empty((len(t), len(lines)))
 
+    get = moordyn.GetLineNodeTen if quantity == "segment" else moordyn.GetLineNodeForce
+
     def record(k: int) -> None:
         for j, (line, n) in enumerate(zip(lines, ends, strict=True)):
-            tension[k, j] = np.linalg.norm(moordyn.GetLineNodeForce(line, n))
+            tension[k, j] = np.linalg.norm(get(line, n))
 
     record(0)
     ok = True
@@ -57,4 +63,4 @@ def main(deck: str, motion: str, out: str) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(*sys.argv[1:4]))
+    sys.exit(main(*sys.argv[1:5]))

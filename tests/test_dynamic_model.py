@@ -29,12 +29,14 @@ def _system(friction=(0.6, 0.6)) -> System:
     return System("fd", environment=env, line_types={"chain": lt}, points=points, lines=lines)
 
 
-@pytest.mark.parametrize("friction", [(0.6, 0.6), (0.0, 0.0)])
-def test_dynamic_tangents_match_central_differences(friction):
+@pytest.mark.parametrize("friction, options", [
+    ((0.6, 0.6), {}), ((0.0, 0.0), {}),
+    ((0.0, 0.0), {"slack_damping": True, "drag_velocity": "node"})])
+def test_dynamic_tangents_match_central_differences(friction, options):
     system = _system(friction)
     mesh = discretize(system)
     model = DynamicModel(mesh, CurrentProfile.uniform(0.7, 25.0),
-                         seabed_model=system.environment.seabed)
+                         seabed_model=system.environment.seabed, **options)
     rng = np.random.default_rng(3)
     x = mesh.node_position.copy()
     x[mesh.line_nodes[0][1:4], 2] = -100.004  # resting on the seabed, past the blend band

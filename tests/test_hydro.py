@@ -108,6 +108,40 @@ def test_drag_derivatives_match_central_differences(case):
     assert np.linalg.eigvalsh(-dF_dv).min() > -1e-10 * np.abs(dF_dv).max()
 
 
+@pytest.mark.parametrize("case", ["generic", "nearly_tangent", "nearly_normal"])
+def test_nodal_drag_derivatives_match_central_differences(case):
+    x, elements = _chain(4)
+    v, uf_cases = _flow_cases(x, elements)
+    uf = uf_cases[case]
+    L0 = RNG.uniform(0.5, 2.0, len(elements))
+    _, dF_dv, dF_dx = hydro.nodal_drag_forces(x, v, uf, elements, L0, D, CD, CT, RHO)
+    n = len(x)
+    fd_v = _fd(lambda vv: hydro.nodal_drag_forces(x, vv, uf, elements, L0, D, CD, CT, RHO)[0], v)
+    fd_x = _fd(lambda xx: hydro.nodal_drag_forces(xx, v, uf, elements, L0, D, CD, CT, RHO)[0], x)
+    _assert_close(_dense(dF_dv, elements, n), fd_v)
+    _assert_close(_dense(dF_dx, elements, n), fd_x)
+    assert np.linalg.eigvalsh(-dF_dv).min() > -1e-10 * np.abs(dF_dv).max()
+
+
+def test_nodal_drag_equals_element_drag_for_equal_node_velocities_and_damps_zigzag():
+    """Both rules agree when an element's nodes move together; on the odd-even mode (node
+    velocities alternating in sign across a still fluid) the element rule's mean velocity is
+    zero, so it exerts no drag, while the nodal rule opposes every node's motion."""
+    x, elements = _chain(5)
+    L0 = np.ones(len(elements))
+    still = np.zeros((len(elements), 3))
+    common = np.tile(RNG.normal(size=3), (len(x), 1))
+    a = hydro.drag_forces(x, common, still, elements, L0, D, CD, CT, RHO)[0]
+    b = hydro.nodal_drag_forces(x, common, still, elements, L0, D, CD, CT, RHO)[0]
+    assert np.allclose(a, b, rtol=1e-14, atol=0.0)
+    zigzag = np.outer((-1.0) ** np.arange(len(x)), [0.0, 0.0, 1.0])
+    element_rule = hydro.drag_forces(x, zigzag, still, elements, L0, D, CD, CT, RHO)[0]
+    nodal_rule = hydro.nodal_drag_forces(x, zigzag, still, elements, L0, D, CD, CT, RHO)[0]
+    assert np.abs(element_rule).max() == 0.0
+    power = np.einsum("eij,eij->", nodal_rule, zigzag[elements])
+    assert power < 0.0
+
+
 def test_no_nan_at_zero_relative_velocity():
     x, elements = _chain(3)
     v = np.zeros_like(x)

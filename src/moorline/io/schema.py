@@ -569,6 +569,8 @@ class DynamicsSpec(_Spec):
                                     AfterValidator(lambda v: _pair(v))] = Field(
         default_factory=lambda: [0.0, 0.0])
     envelope_start: quantity("time", ge=0.0) | None = None
+    slack_damping: bool = False
+    drag_velocity: Literal["element", "node"] = "element"
 
 
 def _band(values: list[float]) -> list[float]:

@@ -114,6 +114,13 @@ class DynamicsSettings:
     envelope_start
         Time from which the output records enter the tension envelope (min, max, mean, std
         per element, :mod:`moorline.envelope`); ``None``: ``ramp_time`` (after the ramp).
+    slack_damping, drag_velocity
+        MoorDyn's choices where moorline's differ (:class:`~moorline.solvers.dynamic_model.
+        DynamicModel`; both run on the numpy path): ``slack_damping`` keeps the axial dashpot
+        ``BA`` in slack elements; ``drag_velocity: node`` evaluates each node's share of an
+        element's drag at the node's own velocity instead of the element's mean velocity
+        (``element``). They change the slack, grounded part of a line most (issue 16, the
+        OC3 minimum tension: ``benchmarks/min_tension_study.py``).
     """
 
     kind: Literal["dynamics"] = "dynamics"
@@ -132,6 +139,8 @@ class DynamicsSettings:
     rayleigh_ratio: float = 0.0
     rayleigh_frequencies: tuple[float, float] = (0.0, 0.0)
     envelope_start: float | None = None
+    slack_damping: bool = False
+    drag_velocity: Literal["element", "node"] = "element"
 
 
 ModalMass = Literal["lumped", "consistent"]

@@ -170,9 +170,55 @@ def drag_forces(
     """
     elements = np.asarray(elements)
     n_el = elements.shape[0]
-    length, t = _tangent(x, elements)
     u = np.broadcast_to(fluid_velocity_mid, (n_el, 3)) - 0.5 * (v[elements[:, 0]]
                                                                  + v[elements[:, 1]])
+    f, df_dv, g = _drag_share(x, u, -0.5, elements, length0, diameter, Cd, Ct, rho)
+    return np.stack((f, f), axis=1), _node_blocks(df_dv), _position_blocks(g)
+
+
+def nodal_drag_forces(
+    x: FloatArray,
+    v: FloatArray,
+    fluid_velocity_mid: FloatArray,
+    elements: IntArray,
+    length0: ArrayLike,
+    diameter: ArrayLike,
+    Cd: ArrayLike,
+    Ct: ArrayLike,
+    rho: ArrayLike,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The drag of :func:`drag_forces` with each node's half of an element evaluated with that
+    node's own velocity, ``u_a = u_fluid(mid) - v_a`` (the trapezoidal rule over the element
+    instead of the midpoint rule; MoorDyn-C v2.7 source/Line.cpp evaluates its drag at the
+    nodes with the node velocities). The two rules converge to the same line; the midpoint
+    rule exerts no drag on the odd-even (zig-zag) velocity mode of a mesh, which the
+    trapezoidal rule damps. Arguments and returns as :func:`drag_forces`; ``dF_dv`` couples
+    each node with itself only.
+    """
+    elements = np.asarray(elements)
+    n_el = elements.shape[0]
+    forces = np.empty((n_el, 2, 3))
+    dF_dv = np.zeros((n_el, 6, 6))
+    dF_dx = np.empty((n_el, 6, 6))
+    for side in (0, 1):
+        u = np.broadcast_to(fluid_velocity_mid, (n_el, 3)) - v[elements[:, side]]
+        f, df_dv, g = _drag_share(x, u, -1.0, elements, length0, diameter, Cd, Ct, rho)
+        rows = slice(3 * side, 3 * side + 3)
+        forces[:, side] = f
+        dF_dv[:, rows, rows] = df_dv
+        dF_dx[:, rows] = _position_blocks(g)[:, rows]
+    return forces, dF_dv, dF_dx
+
+
+def _drag_share(x: FloatArray, u: FloatArray, du_dv: float, elements: IntArray,
+                length0: ArrayLike, diameter: ArrayLike, Cd: ArrayLike, Ct: ArrayLike,
+                rho: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """One node's share of each element's drag at relative velocity ``u`` (n_el, 3), its
+    derivative with respect to a node velocity of which ``u`` changes by ``du_dv`` times
+    (3x3 per element) and ``g``, its derivative with respect to ``x2`` through ``t``
+    (:func:`_position_blocks`)."""
+    n_el = elements.shape[0]
+    length, t = _tangent(x, elements)
     s = np.einsum("ij,ij->i", u, t)
     u_n = u - s[:, None] * t
     un = np.sqrt(np.einsum("ij,ij->i", u_n, u_n))
@@ -184,18 +230,16 @@ def drag_forces(
     ct = half * np.pi * _per_element(Ct, n_el)  # B_T L0 / 2
     # f: force on each node (half the element total)
     f = (cn * un)[:, None] * u_n + (ct * abs_s * s)[:, None] * t
-    node_forces = np.stack((f, f), axis=1)
 
     # velocity (Tuah eq. 3.2.a.6): with w = u_n, d(|w| w)/dw = |w| I + w w^T / |w| (exact limit
     # 0 at w = 0) and w^T t = 0,
-    #   df/du = cn |w| I + (2 ct |s| - cn |w|) t t^T + cn w w^T / |w|,   du/dv_a = -I / 2.
+    #   df/du = cn |w| I + (2 ct |s| - cn |w|) t t^T + cn w w^T / |w|,   du/dv = du_dv I.
     inv = np.divide(1.0, un, out=np.zeros_like(un), where=un > 0.0)
     cnw = cn * un
     beta = 2.0 * ct * abs_s - cnw
-    df_du = _outer(t, (-0.5 * beta)[:, None] * t)  # times -1/2 (du/dv_a) up front
-    df_du += _outer(u_n, (-0.5 * cn * inv)[:, None] * u_n)
-    df_du[:, (0, 1, 2), (0, 1, 2)] -= 0.5 * cnw[:, None]
-    dF_dv = _node_blocks(df_du)
+    df_du = _outer(t, (du_dv * beta)[:, None] * t)  # times du/dv up front
+    df_du += _outer(u_n, (du_dv * cn * inv)[:, None] * u_n)
+    df_du[:, (0, 1, 2), (0, 1, 2)] += du_dv * cnw[:, None]
 
     # position through t (u fixed): d u_n/dt = -(t u^T + s I),
     # d(|s| s t)/dt = |s| s I + 2 |s| t u^T, so
@@ -205,8 +249,7 @@ def drag_forces(
     inv_l = 1.0 / length
     g = _projector_terms(s * (ct * abs_s - cnw) * inv_l, t, (beta * inv_l)[:, None] * u_n)
     g += _outer(u_n, (-cn * s * inv * inv_l)[:, None] * u_n)
-    dF_dx = _position_blocks(g)
-    return node_forces, dF_dv, dF_dx
+    return f, df_du, g
 
 
 def _mass_scale(elements: IntArray, length0: ArrayLike, diameter: ArrayLike,

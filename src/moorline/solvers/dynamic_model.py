@@ -81,10 +81,21 @@ class DynamicModel:
         dynamic stiffness included); systems with viscoelastic elements, and ``numpy``, use
         the numpy path (the reference). ``self.kernel`` is the one in use. Bending stiffness
         is added by numpy on either path.
+    slack_damping
+        Keep the Kelvin-Voigt dashpot ``BA`` in slack elements (MoorDyn's law: a slack element
+        then pushes by ``BA`` times its strain rate) instead of blending it off with the
+        tension (:func:`moorline.physics.element.dashpot_share`).
+    drag_velocity
+        ``element``: an element's drag at the mean of its node velocities, half to each node
+        (:func:`moorline.physics.hydro.drag_forces`); ``node``: each node's half at its own
+        velocity (:func:`moorline.physics.hydro.nodal_drag_forces`, MoorDyn's node-based
+        drag). Either non-default choice runs on the numpy path.
     """
 
     def __init__(self, mesh: Mesh, fluid, viscoelastic_update: str = "exponential",
-                 seabed_model=None, kernel: Literal["numpy", "numba"] = "numba") -> None:
+                 seabed_model=None, kernel: Literal["numpy", "numba"] = "numba",
+                 slack_damping: bool = False,
+                 drag_velocity: Literal["element", "node"] = "element") -> None:
         self.mesh = mesh
         self.fluid = fluid
         static = StaticModel(mesh)
@@ -108,8 +119,13 @@ class DynamicModel:
         self.friction = _friction_coefficients(seabed_model) if seabed_model else None
         if kernel not in ("numpy", "numba"):
             raise ValueError(f"kernel must be 'numpy' or 'numba', got {kernel!r}")
+        if drag_velocity not in ("element", "node"):
+            raise ValueError(f"drag_velocity must be 'element' or 'node', got {drag_velocity!r}")
+        self.slack_damping = bool(slack_damping)
+        self._drag = hydro.nodal_drag_forces if drag_velocity == "node" else hydro.drag_forces
         self._fused = None
-        if kernel == "numba" and not self.any_viscoelastic:
+        if kernel == "numba" and not self.any_viscoelastic and not self.slack_damping \
+                and drag_velocity == "element":
             from ..physics import fused  # imports numba only when used
 
             laws = m.strain_laws if m.strain_laws is not None and m.strain_laws.active else None
@@ -223,8 +239,11 @@ class DynamicModel:
             T[k], maxwell[k], dT_deps[k] = static_dynamic.static_dynamic_update(
                 strain[k], previous.strain[k], previous.maxwell[k], dt, m.EA[k], sd[:, 0],
                 sd[:, 1], sd[:, 2], sd[:, 3], m.slack_ratio[k])
-        share, dshare = element.dashpot_share(length, m.length0, m.slack_smoothing,
-                                              m.strain_offset)
+        if self.slack_damping:
+            share, dshare = np.ones_like(length), np.zeros_like(length)
+        else:
+            share, dshare = element.dashpot_share(length, m.length0, m.slack_smoothing,
+                                                  m.strain_offset)
         strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0
         T = T + m.BA * share * strain_rate
         dT_deps = dT_deps + m.BA * dshare * strain_rate
@@ -258,7 +277,7 @@ class DynamicModel:
         m = self.mesh
         el = m.elements
         if self.has_drag:
-            f, dF_dv, dF_dx = hydro.drag_forces(x, v, u_f, el, m.length0, m.diameter, m.Cd,
+            f, dF_dv, dF_dx = self._drag(x, v, u_f, el, m.length0, m.diameter, m.Cd,
                                                 m.Ct, self.rho)
             forces = forces + f
             if tangent:

@@ -128,7 +128,8 @@ def start(system: System, settings: DynamicsSettings,
     fluid = fluid if fluid is not None else _fluid(
         system, settings, ramp_current=not getattr(initial, "current_drag", False))
     model = DynamicModel(mesh, fluid, settings.viscoelastic_update,
-                         system.environment.seabed)
+                         system.environment.seabed, slack_damping=settings.slack_damping,
+                         drag_velocity=settings.drag_velocity)
     excitation = Excitation(mesh, x0)
     state = _initial_state(model, excitation, x0, settings.dt, maxwell, initial)
     # force scale of the residual tolerance: the larger of the nodal loads and the tensions
