@@ -132,6 +132,46 @@ def test_second_sigint_during_the_clean_up_still_exits_130(tmp_path: Path) -> No
     _check_kept(results, "interrupted")
 
 
+@posix
+@needs_case
+def test_sigkill_leaves_a_readable_file_complete_up_to_the_last_block(tmp_path: Path) -> None:
+    """SIGKILL (no clean-up at all) right after a block reached the disk: the file opens, the
+    statics group is whole, and the dynamics group holds at least every record on disk
+    before the kill, finite and in order, with the envelope of exactly those records and
+    the status it had while running. The kill is sent just after a block was seen (blocks
+    are SYNC_WALL = 1 s apart), not in the middle of one: HDF5 does not promise a readable
+    file after a kill during a write."""
+    proc, results = _start_long_run(tmp_path)
+    _wait_for_records(proc, results)
+    before = _records(results)
+    deadline = time.monotonic() + 300.0
+    while _records(results) == before:  # the next block: written about 1 s after the first
+        assert proc.poll() is None, f"the run ended early: {proc.communicate()}"
+        assert time.monotonic() < deadline, "no second block within 300 s"
+        time.sleep(0.02)
+    seen = _records(results)
+    proc.kill()
+    proc.communicate(timeout=60)
+    assert proc.returncode == -signal.SIGKILL
+    with netCDF4.Dataset(results) as root:
+        assert root.complete == 0 and root.status == "running"
+        group = root["dynamics"]
+        assert group.status == "running" and group.complete == 0
+        times = group["time"][:]
+        assert len(times) >= seen > before >= 1
+        assert np.all(np.diff(times) > 0)
+        for name in ("position", "velocity", "tension", "end_force"):
+            assert np.isfinite(group[name][:]).all(), name
+        tension = np.asarray(group["tension"][:])
+        start = float(group.envelope_start)
+        assert group.envelope_records == int(np.sum(times >= start))
+        if group.envelope_records:
+            np.testing.assert_array_equal(group["tension_max"][:],
+                                          tension[times >= start].max(axis=0))
+    with xr.open_dataset(results, group="statics") as statics:
+        assert statics.attrs["converged"] == 1
+
+
 @pytest.fixture
 def own_handlers():
     """The test process' SIGINT and SIGTERM handlers, put back after the test (after a
