@@ -213,9 +213,8 @@ class TensionEnvelope:
         np.minimum(self._min, kept.min(axis=0), out=self._min)
         np.maximum(self._max, kept.max(axis=0), out=self._max)
         shifted = kept - self.static
-        self._sum = np.add.accumulate(np.vstack([self._sum, shifted]), axis=0)[-1]
-        self._square = np.add.accumulate(np.vstack([self._square, shifted * shifted]),
-                                         axis=0)[-1]
+        self._sum = _in_order(self._sum, shifted)
+        self._square = _in_order(self._square, shifted * shifted)
         self.count += len(kept)
 
     def values(self) -> dict[str, FloatArray]:
@@ -231,3 +230,15 @@ class TensionEnvelope:
         return {"tension_min": self._min.copy(), "tension_max": self._max.copy(),
                 "tension_mean": self.static + mean_shift, "tension_std": np.sqrt(variance),
                 "tension_static": self.static.copy()}
+
+
+def _in_order(total: FloatArray, rows: FloatArray) -> FloatArray:
+    """``total + rows[0] + rows[1] + ...`` added in that order, element by element (the
+    rounding of a record-by-record sum, whatever the blocks): numpy reduces a C-ordered
+    (n, m) array over axis 0 row after row when m > 1 (checked bit for bit in
+    ``tests/test_envelope.py``); a single column would be summed pairwise, so it is
+    accumulated instead."""
+    stacked = np.vstack([total, rows])
+    if stacked.shape[1] > 1:
+        return np.add.reduce(stacked, axis=0)
+    return np.add.accumulate(stacked, axis=0)[-1]
