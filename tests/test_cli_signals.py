@@ -230,16 +230,43 @@ def test_stream_is_written_within_one_second_of_wall_time(tmp_path: Path,
             clock[0] = 0.3 * k
             writer.append(float(t), record(float(t)))
             on_disk.append(writer.written)
-            # what a SIGKILL now would leave: every record older than SYNC_WALL of wall time
-            assert 0.3 * (k + 1 - writer.written) <= stream.SYNC_WALL + 0.3 + 1e-12
-        with netCDF4.Dataset(tmp_path / "h.nc", "r") as mid:
-            kept = mid["time"][:]
-            assert len(kept) == writer.written < len(times)
-            np.testing.assert_array_equal(kept, times[:len(kept)])
+            # what a SIGKILL now would leave: no record waiting longer than SYNC_WALL
+            assert 0.3 * (k - writer.written) <= stream.SYNC_WALL + 1e-12
+            if k == 20:  # records waiting: the disk holds the blocks written, in order
+                with netCDF4.Dataset(tmp_path / "h.nc", "r") as mid:
+                    kept = mid["time"][:]
+                    assert len(kept) == writer.written < writer.count
+                    np.testing.assert_array_equal(kept, times[:len(kept)])
     assert on_disk[0] == 1  # the first record at once
     with xr.open_dataset(tmp_path / "h.nc") as ds:
         np.testing.assert_array_equal(ds["time"], times)
         np.testing.assert_array_equal(ds["tension"][:, 0], 2 * times)
+
+
+@needs_case
+def test_records_further_apart_than_the_sync_interval_are_written_at_once(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Slow steps (2 s of wall time between records): every record is on disk when the next
+    step starts; at a steady 0.4 s interval a block is written when the next record would
+    find the oldest one waiting 1 s or more (every second record)."""
+    mesh = discretize(load_case(OC3_DYNAMICS))
+    n = mesh.n_nodes
+    record = {"position": np.zeros((n, 3)), "velocity": np.zeros((n, 3)),
+              "tension": np.zeros(len(mesh.elements)),
+              "end_force": np.zeros((len(mesh.line_names), 2, 3)),
+              "body_pose": np.zeros((0, 6)), "body_velocity": np.zeros((0, 6)),
+              "body_mooring_force": np.zeros((0, 6)), "wave_elevation": 0.0}
+    clock = [0.0]
+    monkeypatch.setattr(stream.time, "monotonic", lambda: clock[0])
+    for step, expected in ((2.0, list(range(1, 8))), (0.4, [1, 1, 3, 3, 5, 5, 7])):
+        clock[0] = 0.0
+        with HistoryWriter(tmp_path / f"h{step}.nc", mesh, {"case": "x", "units": "SI"}) as w:
+            written = []
+            for k in range(7):
+                clock[0] += step
+                w.append(0.1 * k, record)
+                written.append(w.written)
+        assert written == expected, step
 
 
 @needs_case

@@ -4,17 +4,20 @@ The histories go into a group of a NetCDF-4 file (the run's ``results.nc``, next
 of the other analyses) or into the root group of a file of their own. The group has an
 unlimited ``time`` dimension. Records are buffered in memory (by reference: a record is not
 copied until its block is written) and written in blocks: a block is written and the file
-synced to disk when the group is created and at the first record, then as soon as
-:data:`SYNC_WALL` of wall time has passed since the last write or :data:`BLOCK_RECORDS`
-records are buffered, so a run killed outright (SIGKILL, a power cut) loses at most the
-last second of wall time, while the output costs a few per cent of the stepping even at one
-record per step (a netCDF4 write has a fixed cost per call of about 0.07 ms per variable,
-paid once per block instead of once per record; the envelope is updated per block,
-vectorized). A block is written with SIGINT and SIGTERM
-held back, so a signal never leaves a half-written record. :class:`HistoryWriter` is a
-context manager: leaving it (normally, by an exception, by Ctrl-C or SIGTERM) writes what is
-buffered and closes the file with its final attributes: ``success`` and ``complete`` (1 or
-0), ``status`` (``completed``, ``failed``, ``interrupted``, ``terminated``) and ``message``.
+synced when the group is created and at the first record, then when :data:`SYNC_WALL` of
+wall time will have passed since the last write by the next record (judged from the last
+interval between records) or :data:`BLOCK_RECORDS` records are buffered. So a run killed
+outright (SIGKILL) loses at most about the last second of wall time (more only when one
+output interval suddenly takes far longer than those before it), while the output costs
+little beside the stepping even at one record per step: a netCDF4 write has a fixed cost
+per call of about 0.07 ms per variable, paid once per block instead of once per record, and
+the envelope is updated per block, vectorized; what remains is moving the data (a block is
+stacked, copied into HDF5's chunk cache and synced to the operating system). A block is
+written with SIGINT and SIGTERM held back, so a signal never leaves a half-written record.
+:class:`HistoryWriter` is a context manager: leaving it (normally, by an exception, by
+Ctrl-C or SIGTERM) writes what is buffered and closes the file with its final attributes:
+``success`` and ``complete`` (1 or 0), ``status`` (``completed``, ``failed``,
+``interrupted``, ``terminated``) and ``message``.
 """
 
 from __future__ import annotations
@@ -108,7 +111,7 @@ class HistoryWriter:
         self.count = 0
         self.written = 0
         self.last_time = float("nan")
-        self._written_at = time.monotonic()
+        self._written_at = self._appended_at = time.monotonic()
         self.variables = record_variables(mesh)
         self._block_records = block_records
         self._limit = 0  # records per block, from the first record's size
@@ -134,7 +137,13 @@ class HistoryWriter:
     def append(self, t: float, record: dict[str, FloatArray]) -> None:
         """Buffer one output record at time ``t`` (kept by reference until written: its
         arrays must not be changed afterwards); write the block when it is the first record,
-        when :data:`SYNC_WALL` has passed since the last write or when the block is full."""
+        when the block is full, or when :data:`SYNC_WALL` will have passed since the last
+        write by the next record, judged from the wall time since the previous one (so the
+        oldest record waiting is at most about :data:`SYNC_WALL` old when the output
+        interval is steady, and records more than :data:`SYNC_WALL` apart are written at
+        once)."""
+        now = time.monotonic()
+        interval, self._appended_at = now - self._appended_at, now
         self._pending.append(record)
         self._times.append(t)
         self.count += 1
@@ -142,7 +151,7 @@ class HistoryWriter:
         if not self._limit:
             self._limit = self._records_per_block(record)
         if (self.written == 0 or len(self._pending) >= self._limit
-                or time.monotonic() - self._written_at >= SYNC_WALL):
+                or now - self._written_at + interval >= SYNC_WALL):
             self.flush()
 
     def flush(self) -> None:
@@ -164,7 +173,7 @@ class HistoryWriter:
             self.written = self.count
             self._pending.clear()
             self._times.clear()
-            self._written_at = time.monotonic()
+            self._written_at = self._appended_at = time.monotonic()
 
     def _write_envelope(self, times: FloatArray, tension: FloatArray) -> None:
         """Add a block's records to the envelope and write it."""
