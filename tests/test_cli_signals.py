@@ -243,6 +243,16 @@ def test_stream_is_written_within_one_second_of_wall_time(tmp_path: Path,
         np.testing.assert_array_equal(ds["tension"][:, 0], 2 * times)
 
 
+def _zero_record(mesh) -> dict:
+    """A dynamics record of zeros for ``mesh`` (no bodies)."""
+    n = mesh.n_nodes
+    return {"position": np.zeros((n, 3)), "velocity": np.zeros((n, 3)),
+            "tension": np.zeros(len(mesh.elements)),
+            "end_force": np.zeros((len(mesh.line_names), 2, 3)),
+            "body_pose": np.zeros((0, 6)), "body_velocity": np.zeros((0, 6)),
+            "body_mooring_force": np.zeros((0, 6)), "wave_elevation": 0.0}
+
+
 @needs_case
 def test_records_further_apart_than_the_sync_interval_are_written_at_once(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -250,12 +260,7 @@ def test_records_further_apart_than_the_sync_interval_are_written_at_once(
     step starts; at a steady 0.4 s interval a block is written when the next record would
     find the oldest one waiting 1 s or more (every second record)."""
     mesh = discretize(load_case(OC3_DYNAMICS))
-    n = mesh.n_nodes
-    record = {"position": np.zeros((n, 3)), "velocity": np.zeros((n, 3)),
-              "tension": np.zeros(len(mesh.elements)),
-              "end_force": np.zeros((len(mesh.line_names), 2, 3)),
-              "body_pose": np.zeros((0, 6)), "body_velocity": np.zeros((0, 6)),
-              "body_mooring_force": np.zeros((0, 6)), "wave_elevation": 0.0}
+    record = _zero_record(mesh)
     clock = [0.0]
     monkeypatch.setattr(stream.time, "monotonic", lambda: clock[0])
     for step, expected in ((2.0, list(range(1, 8))), (0.4, [1, 1, 3, 3, 5, 5, 7])):
@@ -273,12 +278,7 @@ def test_records_further_apart_than_the_sync_interval_are_written_at_once(
 def test_stream_writes_full_blocks_without_waiting(tmp_path: Path) -> None:
     """A frozen clock: blocks are written when full (block_records), and the rest on close."""
     mesh = discretize(load_case(OC3_DYNAMICS))
-    n = mesh.n_nodes
-    record = {"position": np.zeros((n, 3)), "velocity": np.zeros((n, 3)),
-              "tension": np.zeros(len(mesh.elements)),
-              "end_force": np.zeros((len(mesh.line_names), 2, 3)),
-              "body_pose": np.zeros((0, 6)), "body_velocity": np.zeros((0, 6)),
-              "body_mooring_force": np.zeros((0, 6)), "wave_elevation": 0.0}
+    record = _zero_record(mesh)
     written = []
     with HistoryWriter(tmp_path / "h.nc", mesh, {"case": "x", "units": "SI"},
                        block_records=8) as writer:
