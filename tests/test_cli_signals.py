@@ -132,6 +132,46 @@ def test_second_sigint_during_the_clean_up_still_exits_130(tmp_path: Path) -> No
     _check_kept(results, "interrupted")
 
 
+@posix
+@needs_case
+def test_sigkill_leaves_a_readable_file_complete_up_to_the_last_block(tmp_path: Path) -> None:
+    """SIGKILL (no clean-up at all) right after a block reached the disk: the file opens, the
+    statics group is whole, and the dynamics group holds at least every record on disk
+    before the kill, finite and in order, with the envelope of exactly those records and
+    the status it had while running. The kill is sent just after a block was seen (blocks
+    are SYNC_WALL = 1 s apart), not in the middle of one: HDF5 does not promise a readable
+    file after a kill during a write."""
+    proc, results = _start_long_run(tmp_path)
+    _wait_for_records(proc, results)
+    before = _records(results)
+    deadline = time.monotonic() + 300.0
+    while _records(results) == before:  # the next block: written about 1 s after the first
+        assert proc.poll() is None, f"the run ended early: {proc.communicate()}"
+        assert time.monotonic() < deadline, "no second block within 300 s"
+        time.sleep(0.02)
+    seen = _records(results)
+    proc.kill()
+    proc.communicate(timeout=60)
+    assert proc.returncode == -signal.SIGKILL
+    with netCDF4.Dataset(results) as root:
+        assert root.complete == 0 and root.status == "running"
+        group = root["dynamics"]
+        assert group.status == "running" and group.complete == 0
+        times = group["time"][:]
+        assert len(times) >= seen > before >= 1
+        assert np.all(np.diff(times) > 0)
+        for name in ("position", "velocity", "tension", "end_force"):
+            assert np.isfinite(group[name][:]).all(), name
+        tension = np.asarray(group["tension"][:])
+        start = float(group.envelope_start)
+        assert group.envelope_records == int(np.sum(times >= start))
+        if group.envelope_records:
+            np.testing.assert_array_equal(group["tension_max"][:],
+                                          tension[times >= start].max(axis=0))
+    with xr.open_dataset(results, group="statics") as statics:
+        assert statics.attrs["converged"] == 1
+
+
 @pytest.fixture
 def own_handlers():
     """The test process' SIGINT and SIGTERM handlers, put back after the test (after a
@@ -190,28 +230,55 @@ def test_stream_is_written_within_one_second_of_wall_time(tmp_path: Path,
             clock[0] = 0.3 * k
             writer.append(float(t), record(float(t)))
             on_disk.append(writer.written)
-            # what a SIGKILL now would leave: every record older than SYNC_WALL of wall time
-            assert 0.3 * (k + 1 - writer.written) <= stream.SYNC_WALL + 0.3 + 1e-12
-        with netCDF4.Dataset(tmp_path / "h.nc", "r") as mid:
-            kept = mid["time"][:]
-            assert len(kept) == writer.written < len(times)
-            np.testing.assert_array_equal(kept, times[:len(kept)])
+            # what a SIGKILL now would leave: no record waiting longer than SYNC_WALL
+            assert 0.3 * (k - writer.written) <= stream.SYNC_WALL + 1e-12
+            if k == 20:  # records waiting: the disk holds the blocks written, in order
+                with netCDF4.Dataset(tmp_path / "h.nc", "r") as mid:
+                    kept = mid["time"][:]
+                    assert len(kept) == writer.written < writer.count
+                    np.testing.assert_array_equal(kept, times[:len(kept)])
     assert on_disk[0] == 1  # the first record at once
     with xr.open_dataset(tmp_path / "h.nc") as ds:
         np.testing.assert_array_equal(ds["time"], times)
         np.testing.assert_array_equal(ds["tension"][:, 0], 2 * times)
 
 
+def _zero_record(mesh) -> dict:
+    """A dynamics record of zeros for ``mesh`` (no bodies)."""
+    n = mesh.n_nodes
+    return {"position": np.zeros((n, 3)), "velocity": np.zeros((n, 3)),
+            "tension": np.zeros(len(mesh.elements)),
+            "end_force": np.zeros((len(mesh.line_names), 2, 3)),
+            "body_pose": np.zeros((0, 6)), "body_velocity": np.zeros((0, 6)),
+            "body_mooring_force": np.zeros((0, 6)), "wave_elevation": 0.0}
+
+
+@needs_case
+def test_records_further_apart_than_the_sync_interval_are_written_at_once(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Slow steps (2 s of wall time between records): every record is on disk when the next
+    step starts; at a steady 0.4 s interval a block is written when the next record would
+    find the oldest one waiting 1 s or more (every second record)."""
+    mesh = discretize(load_case(OC3_DYNAMICS))
+    record = _zero_record(mesh)
+    clock = [0.0]
+    monkeypatch.setattr(stream.time, "monotonic", lambda: clock[0])
+    for step, expected in ((2.0, list(range(1, 8))), (0.4, [1, 1, 3, 3, 5, 5, 7])):
+        clock[0] = 0.0
+        with HistoryWriter(tmp_path / f"h{step}.nc", mesh, {"case": "x", "units": "SI"}) as w:
+            written = []
+            for k in range(7):
+                clock[0] += step
+                w.append(0.1 * k, record)
+                written.append(w.written)
+        assert written == expected, step
+
+
 @needs_case
 def test_stream_writes_full_blocks_without_waiting(tmp_path: Path) -> None:
     """A frozen clock: blocks are written when full (block_records), and the rest on close."""
     mesh = discretize(load_case(OC3_DYNAMICS))
-    n = mesh.n_nodes
-    record = {"position": np.zeros((n, 3)), "velocity": np.zeros((n, 3)),
-              "tension": np.zeros(len(mesh.elements)),
-              "end_force": np.zeros((len(mesh.line_names), 2, 3)),
-              "body_pose": np.zeros((0, 6)), "body_velocity": np.zeros((0, 6)),
-              "body_mooring_force": np.zeros((0, 6)), "wave_elevation": 0.0}
+    record = _zero_record(mesh)
     written = []
     with HistoryWriter(tmp_path / "h.nc", mesh, {"case": "x", "units": "SI"},
                        block_records=8) as writer:

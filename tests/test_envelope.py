@@ -275,3 +275,27 @@ def test_a_stream_holds_the_envelope_of_the_records_it_holds(run: dict, tmp_path
         np.testing.assert_array_equal(ds["tension_min"], after.min(axis=0))
         np.testing.assert_allclose(ds["tension_std"], after.std(axis=0), rtol=1e-9)
         np.testing.assert_array_equal(ds["tension_static"], tensions[0])
+
+
+@pytest.mark.parametrize("n_elements", [1, 2, 7, 60, 1000])
+def test_blocks_give_the_record_by_record_envelope_bit_for_bit(n_elements: int) -> None:
+    """The stream adds records a block at a time, the in-memory dataset all at once: both
+    must equal the record-by-record sums to the last bit (same mean and std in the file as
+    in ``to_xarray()``), at any number of elements (numpy sums one column pairwise)."""
+    from moorline.envelope import TensionEnvelope
+
+    rng = np.random.default_rng(n_elements)
+    tensions = 8.0e5 + 1.0e5 * rng.standard_normal((2000, n_elements))
+    times = 0.05 * np.arange(2000)
+    one = TensionEnvelope(n_elements, 10.0)
+    for t, tension in zip(times, tensions, strict=True):
+        one.add(float(t), tension)
+    blocks = TensionEnvelope(n_elements, 10.0)
+    for i in range(0, 2000, 333):
+        blocks.add_records(times[i:i + 333], tensions[i:i + 333])
+    whole = TensionEnvelope(n_elements, 10.0)
+    whole.add_records(times, tensions)
+    assert one.count == blocks.count == whole.count == int(np.sum(times >= 10.0))
+    for name, value in one.values().items():
+        np.testing.assert_array_equal(blocks.values()[name], value, err_msg=name)
+        np.testing.assert_array_equal(whole.values()[name], value, err_msg=name)

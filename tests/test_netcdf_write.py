@@ -84,3 +84,82 @@ def test_unsupported_dtype_is_refused(tmp_path: Path) -> None:
     ds = xr.Dataset({"z": ("x", np.array([1 + 2j]))})
     with pytest.raises(ValueError, match="not written"):
         write_dataset(ds, tmp_path / "c.nc")
+
+
+def _structure(path: Path, group: str | None = None) -> list:
+    """Dimensions, variables (dtype, dimensions, attributes in order, raw values) and group
+    attributes of a file or group, read with netCDF4 alone."""
+    import netCDF4
+
+    with netCDF4.Dataset(path) as root:
+        g = root[group] if group else root
+        dims = [(n, len(d), d.isunlimited()) for n, d in g.dimensions.items()]
+        variables = []
+        for name, var in g.variables.items():
+            var.set_auto_maskandscale(False)
+            values = np.asarray(var[...])
+            attrs = [(k, repr(np.asarray(var.getncattr(k)).tolist())) for k in var.ncattrs()]
+            variables.append((name, str(var.dtype), var.dimensions, attrs,
+                              values.astype(str).tolist() if values.dtype.kind in "OU"
+                              else values.tobytes()))
+        attrs = [(k, repr(np.asarray(g.getncattr(k)).tolist())) for k in g.ncattrs()]
+    return [dims, variables, attrs]
+
+
+@pytest.fixture(scope="module")
+def plain_results() -> dict:
+    """The plain datasets of a statics, a modal analysis and 2 s of dynamics of the OC3 line."""
+    import dataclasses
+
+    from moorline.io import load_case
+    from moorline.model import ModalSettings
+    from moorline.solvers.dynamics import simulate
+    from moorline.solvers.modal import solve_modes
+    from moorline.solvers.statics import solve_statics
+
+    system = load_case(Path(__file__).parents[1] / "cases" / "oc3_dynamics.yaml")
+    static = solve_statics(system)
+    settings = dataclasses.replace(system.first("dynamics"), duration=2.0)
+    return {"statics": static.to_plain(),
+            "modal": solve_modes(system, ModalSettings(n_modes=3), static).to_plain(),
+            "dynamics": simulate(system, settings, static).to_plain()}
+
+
+@pytest.mark.parametrize("kind", ["statics", "modal", "dynamics"])
+def test_plain_datasets_write_the_files_of_their_xarray_twins(plain_results: dict, kind: str,
+                                                              tmp_path: Path) -> None:
+    """A run writes numpy containers (moorline.plain_dataset), the Python API returns xarray
+    (to_xarray): the two files are the same to the byte of every value, attribute and
+    dimension, in the same order; and xarray's own to_netcdf of the xarray twin reads back
+    identical to the plain dataset's file."""
+    plain = plain_results[kind]
+    write_dataset(plain, tmp_path / "plain.nc", group=kind)
+    write_dataset(plain.to_xarray(), tmp_path / "xarray.nc", group=kind)
+    assert _structure(tmp_path / "plain.nc", kind) == _structure(tmp_path / "xarray.nc", kind)
+    plain.to_xarray().to_netcdf(tmp_path / "theirs.nc", engine="netcdf4", group=kind)
+    ours, theirs = _reread(tmp_path / "plain.nc", kind), _reread(tmp_path / "theirs.nc", kind)
+    xr.testing.assert_identical(ours, theirs)
+    assert list(ours.variables) == list(theirs.variables)
+
+
+@pytest.mark.parametrize("kind", ["statics", "dynamics"])
+def test_read_plain_gives_back_what_was_written(plain_results: dict, kind: str,
+                                               tmp_path: Path) -> None:
+    """netCDF4 read-back (the summary of a run that raised): the same variables, coordinates,
+    values and attributes as the dataset written, and xarray reads the same dataset."""
+    from moorline.io.netcdf_read import read_plain
+
+    plain = plain_results[kind]
+    write_dataset(plain, tmp_path / "r.nc", group=kind)
+    back = read_plain(tmp_path / "r.nc", kind)
+    assert set(back.variables) == set(plain.variables)
+    assert set(back.coords) == set(plain.coords)
+    assert back.sizes == plain.sizes
+    for name, var in plain.variables.items():
+        got = back[name]
+        assert got.dims == var.dims and list(got.attrs) == list(var.attrs), name
+        for key, value in var.attrs.items():
+            np.testing.assert_array_equal(got.attrs[key], value, err_msg=f"{name}.{key}")
+        np.testing.assert_array_equal(got.values, var.values, err_msg=name)
+    assert back.attrs.keys() == plain.attrs.keys()
+    xr.testing.assert_identical(back.to_xarray(), _reread(tmp_path / "r.nc", kind))

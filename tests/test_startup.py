@@ -1,12 +1,16 @@
 """What the command line imports before it needs it (issue 16: a process that starts fast).
 
 Not a timing test: it checks which heavy modules are loaded, in a fresh interpreter, by
-``moorline --help`` and by reading a case in plain SI numbers (pint only when a string carries
-a unit; matplotlib, xarray, netCDF4, numba, scipy and dask only when an analysis uses them).
+``moorline --help``, by reading a case in plain SI numbers (pint only when a string carries
+a unit; matplotlib, xarray, netCDF4, numba, scipy and dask only when an analysis uses them), by
+``moorline statics --json`` and by ``moorline run --no-plots`` (results written from numpy
+with netCDF4, summaries from the results in memory: no xarray, pandas or dask; numba only for
+the compiled time step; matplotlib only when plotting).
 """
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -27,6 +31,50 @@ def _loaded_after(code: str) -> list[str]:
 
 def test_help_imports_no_heavy_module() -> None:
     assert _loaded_after("from moorline.cli import cli") == []
+
+
+def _loaded_by_cli(*args: str) -> set[str]:
+    """The heavy modules (:data:`HEAVY`, pandas) loaded after ``moorline ARGS`` ran in a fresh
+    interpreter (exit code 0 required)."""
+    code = (f"import sys\nsys.argv = ['moorline', *{list(args)!r}]\n"
+            "from moorline.cli import main\n"
+            "try:\n    main()\nexcept SystemExit as exc:\n    assert not exc.code, exc.code\n"
+            f"print('LOADED', *(m for m in {(*HEAVY, 'pandas')!r} if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=ROOT, timeout=900)
+    assert out.returncode == 0, out.stderr
+    return set(out.stdout.rsplit("LOADED", 1)[1].split())
+
+
+def test_help_command_imports_no_heavy_module() -> None:
+    assert _loaded_by_cli("--help") == set()
+
+
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")
+def test_statics_json_writes_results_without_xarray_or_plots(tmp_path: Path) -> None:
+    """scipy (the solver) and netCDF4 (results.nc), nothing else heavy: no plots with --json."""
+    loaded = _loaded_by_cli("statics", "cases/oc3_line.yaml", "--json", "-q",
+                            "--out", str(tmp_path))
+    assert loaded == {"scipy", "netCDF4"}
+    assert (tmp_path / "oc3-line" / "results.nc").is_file()
+    assert not list((tmp_path / "oc3-line").glob("*.png"))
+
+
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_dynamics.yaml").is_file(), reason="no case file")
+def test_run_without_plots_needs_neither_xarray_nor_matplotlib(tmp_path: Path) -> None:
+    """Statics and 1 s of dynamics of the OC3 three lines: numba (the compiled step), scipy,
+    netCDF4; with plots (here of a statics), matplotlib too (and xarray, which the plots
+    read)."""
+    case = tmp_path / "short.yaml"
+    text = (ROOT / "cases" / "oc3_dynamics.yaml").read_text(encoding="utf-8")
+    case.write_text(re.sub(r"duration: *[0-9.]+", "duration: 1", text), encoding="utf-8")
+    loaded = _loaded_by_cli("run", str(case), "--no-plots", "-q", "--out", str(tmp_path))
+    assert loaded == {"scipy", "netCDF4", "numba"}
+    assert not list((tmp_path / "oc3-dynamics").glob("*.png"))
+    plotted = _loaded_by_cli("statics", "cases/oc3_line.yaml", "-q", "--out",
+                             str(tmp_path / "plots"))
+    assert {"matplotlib", "xarray"} <= plotted
+    assert list((tmp_path / "plots" / "oc3-line").glob("*.png"))
 
 
 @pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")

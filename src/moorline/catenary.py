@@ -24,7 +24,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from moorline.errors import MoorlineError
 
@@ -306,6 +305,8 @@ def _newton(X, Z, args, H, V, tol_abs, max_iter):
 
 def _bracketed(X, Z, args):
     """Robust fallback: nested bracketed roots, V_b(H) from Z, then H from X."""
+    from scipy.optimize import brentq  # 0.2 s to import: only on this fallback
+
     L, w, contact = args[0], args[1], args[-1]
     v_floor = 0.0 if contact else 0.5 * w * L  # Z(H, v_floor) <= 0 <= Z
 

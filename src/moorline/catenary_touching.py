@@ -24,7 +24,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
 from .catenary import _suspended
 
@@ -44,6 +43,8 @@ def _hanging_length(h: float, H: float, w: float, EA: float) -> float:
     """Unstretched length hanging from a touchdown up to height ``h`` under ``H``."""
     if h <= 0.0:
         return 0.0
+    from scipy.optimize import brentq  # imported on use (0.2 s)
+
     return float(brentq(lambda s: float(_rise(H, w, EA, s)[0]) - h, 0.0, h + H / w + 1.0,
                         xtol=1e-13 * (h + 1.0), rtol=1e-14))
 
@@ -132,6 +133,8 @@ def solve_touching(horizontal_span: float, height_a: float, height_b: float, len
         if H_hi > 1e8 * w * L:
             return None
     scale = w * L
+    from scipy.optimize import brentq
+
     H_top = float(brentq(lambda H: sum(hanging(H)) - L, 0.0, H_hi, xtol=1e-13 * scale))
     if span(H_top) < 0.0:
         return None

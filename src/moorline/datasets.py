@@ -1,7 +1,9 @@
 """The one dataset builder of the results, its variable table and the dynamics record list.
 
-Every analysis group (in memory, ``to_xarray()``; on disk, a group of ``results.nc``) is made
-by :func:`build_dataset`: it stamps the group with the same attributes (:func:`group_attrs`:
+Every analysis group (in memory, ``to_plain()`` or ``to_xarray()``; on disk, a group of
+``results.nc``) is made by :func:`build_plain` (a :class:`~moorline.plain_dataset.PlainDataset`
+of numpy arrays: what a run writes, without importing xarray; :func:`build_dataset` gives it
+as an :class:`xarray.Dataset`): it stamps the group with the same attributes (:func:`group_attrs`:
 ``analysis``, ``case``, ``units``, ``moorline_version``, ``success``, ``status``, ``message``,
 the counters and the settings as ``setting_<name>``) and gives every data variable and
 coordinate its ``units`` (in the case's unit system) and ``long_name`` from :data:`VARIABLES`;
@@ -10,7 +12,7 @@ a variable the table does not know is an error.
 :data:`DYNAMIC_VARIABLES` lists the variables of a dynamics record (name, dimensions after
 ``time``, how each is derived from a record): the streamed file
 (:class:`moorline.io.stream.HistoryWriter`) and the in-memory dataset
-(:meth:`moorline.results.DynamicResult.to_xarray`) are both made from it.
+(:meth:`moorline.results.DynamicResult.to_plain`) are both made from it.
 
 Conventions: body dofs are labelled :data:`BODY_DOFS` (``surge, sway, heave, roll, pitch,
 yaw``: translations of the body origin along x, y, z, then the rotation vector's components);
@@ -22,14 +24,17 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import xarray as xr
 from numpy.typing import NDArray
 
 from . import __version__
 from .envelope import ENVELOPE_VARIABLES, TensionEnvelope, envelope_start, line_coords
+from .plain_dataset import PlainDataset
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 FloatArray = NDArray[np.float64]
 
@@ -284,8 +289,8 @@ def group_attrs(kind: str, *, case: str, units: str, success: bool, status: str,
     return attrs
 
 
-def build_dataset(kind: str, data_vars: Mapping[str, Any], coords: Mapping[str, Any],
-                  attrs: Mapping[str, Any]) -> xr.Dataset:
+def build_plain(kind: str, data_vars: Mapping[str, Any], coords: Mapping[str, Any],
+                attrs: Mapping[str, Any]) -> PlainDataset:
     """An analysis group: the variables, coordinates and :func:`group_attrs`, every variable
     and coordinate with ``units`` and ``long_name``.
 
@@ -294,7 +299,8 @@ def build_dataset(kind: str, data_vars: Mapping[str, Any], coords: Mapping[str, 
     kind
         The analysis kind (the table of :data:`VARIABLES` to use).
     data_vars, coords
-        As for :class:`xarray.Dataset`.
+        As for :class:`xarray.Dataset`: ``name -> (dims, values)``, a dimension coordinate
+        also as a 1-D sequence.
     attrs
         The group attributes (:func:`group_attrs`); ``attrs["units"]`` is the unit system.
 
@@ -303,14 +309,20 @@ def build_dataset(kind: str, data_vars: Mapping[str, Any], coords: Mapping[str, 
     KeyError
         When a variable or coordinate is not in :data:`VARIABLES`.
     """
-    ds = xr.Dataset(dict(data_vars), coords=dict(coords), attrs=dict(attrs))
+    ds = PlainDataset(data_vars, coords, attrs)
     units = str(attrs.get("units", "SI"))
-    for name in [*ds.data_vars, *ds.coords]:
-        ds[name].attrs.update(describe(kind, str(name), units))
+    for name, var in ds.variables.items():
+        var.attrs.update(describe(kind, name, units))
     return ds
 
 
-def check_described(ds: xr.Dataset) -> list[str]:
+def build_dataset(kind: str, data_vars: Mapping[str, Any], coords: Mapping[str, Any],
+                  attrs: Mapping[str, Any]) -> xr.Dataset:
+    """:func:`build_plain` as an :class:`xarray.Dataset`."""
+    return build_plain(kind, data_vars, coords, attrs).to_xarray()
+
+
+def check_described(ds: xr.Dataset | PlainDataset) -> list[str]:
     """Names of the variables and coordinates of ``ds`` without ``units`` or ``long_name``."""
     return [str(n) for n in [*ds.data_vars, *ds.coords]
             if not ds[n].attrs.get("units") or not ds[n].attrs.get("long_name")]
@@ -394,7 +406,7 @@ def mesh_coords(mesh: Any) -> tuple[dict[str, Any], dict[str, Any]]:
 
 def dynamics_dataset(mesh: Any, time: FloatArray, records: Mapping[str, Any],
                      attrs: Mapping[str, Any],
-                     static_tension: FloatArray | None = None) -> xr.Dataset:
+                     static_tension: FloatArray | None = None) -> PlainDataset:
     """The dynamics group from stacked records (leading axis ``time``; ``records`` may be
     empty with ``time`` of length 0: the group a stream starts from).
 
@@ -417,9 +429,9 @@ def dynamics_dataset(mesh: Any, time: FloatArray, records: Mapping[str, Any],
     if n_t:
         envelope.add_records(coords["time"], np.asarray(records["tension"], dtype=float))
     data.update({k: (("element",), v) for k, v in envelope.values().items()})
-    ds = build_dataset("dynamics", data, coords,
-                       {**attrs, "envelope_start": envelope.start,
-                        "envelope_records": envelope.count})
+    ds = build_plain("dynamics", data, coords,
+                     {**attrs, "envelope_start": envelope.start,
+                      "envelope_records": envelope.count})
     for name, method in ENVELOPE_VARIABLES:
         if method:
             ds[name].attrs["cell_methods"] = method

@@ -17,11 +17,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import xarray as xr
 from numpy.typing import NDArray
 
 from .errors import MoorlineError
 from .extremes import gumbel_fit, gumbel_mpm, peaks, rayleigh_mpm, weibull_fit, weibull_mpm
+from .plain_dataset import PlainDataset, PlainResult
 from .spectral import spectral_moments, upcrossing_rate
 from .tension_records import TensionRecords
 
@@ -31,7 +31,7 @@ FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class ExtremesResult:
+class ExtremesResult(PlainResult):
     """Extreme tensions of one analysed state.
 
     Attributes
@@ -89,9 +89,9 @@ class ExtremesResult:
     units: str = "SI"
     counters: dict = field(default_factory=dict)
 
-    def to_xarray(self) -> xr.Dataset:
+    def to_plain(self) -> PlainDataset:
         """Group ``extremes``: MPM, maxima, statistics, percentiles and fit parameters."""
-        from .datasets import build_dataset, group_attrs
+        from .datasets import build_plain, group_attrs
 
         le = ("line", "end")
         data = {"mpm": (le, self.mpm), "maximum": (le, self.maximum),
@@ -114,7 +114,7 @@ class ExtremesResult:
                                    "realizations": self.realizations,
                                    "record_length": self.record_length,
                                    "seeds": ",".join(map(str, self.seeds))})
-        return build_dataset("extremes", data, coords, attrs)
+        return build_plain("extremes", data, coords, attrs)
 
 
 def _time_domain(signals: FloatArray, settings: Any, record: float

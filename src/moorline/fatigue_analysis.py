@@ -17,11 +17,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import xarray as xr
 from numpy.typing import NDArray
 
 from .errors import MoorlineError
 from .fatigue import miner_damage, rainflow, spectral_damage
+from .plain_dataset import PlainDataset, PlainResult
 from .spectral import spectral_moments, upcrossing_rate
 from .tension_records import TensionRecords
 from .tn_curves import TNCurve, curve
@@ -35,7 +35,7 @@ YEAR = 365.25 * 86400.0
 
 
 @dataclass(frozen=True)
-class FatigueResult:
+class FatigueResult(PlainResult):
     """Fatigue damage and life of one analysed state.
 
     Attributes
@@ -99,10 +99,10 @@ class FatigueResult:
         """Fatigue life per element [years]."""
         return _life(self.element_damage, self.duration, self.safety_factor)
 
-    def to_xarray(self) -> xr.Dataset:
+    def to_plain(self) -> PlainDataset:
         """Group ``fatigue``: damage, annual damage, life and cycles per method at the line
         ends and per element, mean tensions."""
-        from .datasets import build_dataset, group_attrs
+        from .datasets import build_plain, group_attrs
 
         annual = YEAR / self.duration
         data = {
@@ -130,7 +130,7 @@ class FatigueResult:
                                    "safety_factor": self.safety_factor, "curves": curves,
                                    "curve_sources": sources})
         attrs.update(_settings_attrs(self.settings))
-        return build_dataset("fatigue", data, coords, attrs)
+        return build_plain("fatigue", data, coords, attrs)
 
 
 def _life(damage: FloatArray, duration: float, factor: float) -> FloatArray:

@@ -13,11 +13,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import xarray as xr
 from numpy.typing import NDArray
 
-from .datasets import BODY_DOFS, build_dataset, group_attrs
+from .datasets import BODY_DOFS, build_plain, group_attrs
 from .offset_group import OffsetGroup
+from .plain_dataset import PlainDataset, PlainResult
 from .results import _settle_status
 from .status import Status
 
@@ -42,7 +42,7 @@ SWEEP_VARIABLES: dict[str, tuple[str, tuple[str, ...]]] = {
 
 
 @dataclass(frozen=True)
-class OffsetResult:
+class OffsetResult(PlainResult):
     """Outcome of an offset analysis.
 
     Attributes
@@ -94,7 +94,7 @@ class OffsetResult:
         heading)."""
         return self.sweeps[0].stiffness[len(self.offsets) // 2]
 
-    def to_xarray(self) -> xr.Dataset:
+    def to_plain(self) -> PlainDataset:
         """Group ``offset`` (see the module docstring)."""
         data: dict[str, Any] = {"reference": (("xyz",), np.asarray(self.reference, float))}
         for name, (attr, dims) in SWEEP_VARIABLES.items():
@@ -112,7 +112,7 @@ class OffsetResult:
                             status=self.status, message=self.message, settings=self.settings,
                             extra={"body": self.group.body or "",
                                    "points": ",".join(self.group.points)})
-        return build_dataset("offset", data, coords, attrs)
+        return build_plain("offset", data, coords, attrs)
 
 
 def _as_stored(values: Any) -> Any:

@@ -1,4 +1,5 @@
-"""Result objects of the analyses and their conversion to xarray datasets."""
+"""Result objects of the analyses and their datasets (:meth:`to_plain`: numpy arrays, what a run
+writes; :meth:`to_xarray`: the same in xarray)."""
 
 from __future__ import annotations
 
@@ -7,13 +8,13 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
-import xarray as xr
 from numpy.typing import NDArray
 
-from .datasets import BODY_DOFS, build_dataset, dynamics_dataset, group_attrs
+from .datasets import BODY_DOFS, build_plain, dynamics_dataset, group_attrs
 from .envelope import line_coords, line_profile
 from .mesh import Mesh
 from .physics import seabed as seabed_physics
+from .plain_dataset import PlainDataset, PlainResult
 from .status import Status
 
 FloatArray = NDArray[np.float64]
@@ -30,7 +31,7 @@ def _settle_status(result: Any, ok: Status) -> None:
 
 
 @dataclass(frozen=True)
-class StaticResult:
+class StaticResult(PlainResult):
     """Outcome of a static analysis.
 
     Attributes
@@ -198,8 +199,9 @@ class StaticResult:
 
         return StaticModel(self.mesh).seabed_share(self.positions)
 
-    def to_xarray(self) -> xr.Dataset:
-        """The result as an :class:`xarray.Dataset` (dims node, element, xyz, line, end, point).
+    def to_plain(self) -> PlainDataset:
+        """The result as a dataset (dims node, element, xyz, line, end, point;
+        :meth:`to_xarray`: in xarray).
 
         ``max_tension`` is the largest tension of each line, its end tensions included (as in
         the ``--json`` summary); the attribute ``seabed_z`` (``-inf`` without seabed) and the
@@ -242,11 +244,11 @@ class StaticResult:
                             settings=self.settings,
                             extra={"converged": int(self.success), "method": self.method,
                                    "seabed_z": float(m.seabed_z)})
-        return build_dataset("statics", data, coords, attrs)
+        return build_plain("statics", data, coords, attrs)
 
 
 @dataclass(frozen=True)
-class DynamicResult:
+class DynamicResult(PlainResult):
     """Outcome of a time-domain analysis.
 
     Attributes
@@ -333,9 +335,9 @@ class DynamicResult:
                            extra={"complete": int(self.success),
                                   "seabed_z": float(self.mesh.seabed_z)})
 
-    def to_xarray(self) -> xr.Dataset:
-        """The histories as an :class:`xarray.Dataset` (dims time, node, element, xyz, line,
-        end, point; body, dof with bodies).
+    def to_plain(self) -> PlainDataset:
+        """The histories as a dataset (dims time, node, element, xyz, line, end, point; body,
+        dof with bodies; :meth:`to_xarray`: in xarray).
 
         The same variables, coordinates and attributes as the ``dynamics`` group that
         :class:`~moorline.io.stream.HistoryWriter` streams: both come from
@@ -348,7 +350,7 @@ class DynamicResult:
 
 
 @dataclass(frozen=True)
-class ModalResult:
+class ModalResult(PlainResult):
     """Natural frequencies and mode shapes about a static equilibrium
     (:func:`moorline.solvers.modal.solve_modes`).
 
@@ -428,8 +430,9 @@ class ModalResult:
         return np.array([i for i, d in enumerate(self.dominant) if d == direction],
                         dtype=np.int64)
 
-    def to_xarray(self) -> xr.Dataset:
-        """The result as an :class:`xarray.Dataset` (dims mode, node, xyz, element, point).
+    def to_plain(self) -> PlainDataset:
+        """The result as a dataset (dims mode, node, xyz, element, point; :meth:`to_xarray`:
+        in xarray).
 
         The coordinate ``mode`` numbers the modes from 1; ``position`` is the static
         configuration and ``mode_shape(mode, node, xyz)`` the mass-normalized node
@@ -460,13 +463,13 @@ class ModalResult:
                             settings=self.settings,
                             extra={"converged": int(self.success), "solver": self.solver,
                                    "seabed_z": float(m.seabed_z)})
-        ds = build_dataset("modal", data, coords, attrs)
+        ds = build_plain("modal", data, coords, attrs)
         ds["mode_shape"].attrs["normalization"] = "phi^T M phi = 1"
         return ds
 
 
 @dataclass(frozen=True)
-class StrummingResult:
+class StrummingResult(PlainResult):
     """Histories of a strumming analysis (:func:`moorline.solvers.strumming.solve_strumming`),
     at the in-line steps.
 
@@ -532,12 +535,12 @@ class StrummingResult:
         """Strumming displacement history of one node (n_t, 3)."""
         return self.displacement[:, node]
 
-    def to_xarray(self) -> xr.Dataset:
-        """The histories as an :class:`xarray.Dataset`.
+    def to_plain(self) -> PlainDataset:
+        """The histories as a dataset (:meth:`to_xarray`: in xarray).
 
         Returns
         -------
-        xarray.Dataset
+        PlainDataset
             ``lift_coefficient`` (time, element), ``modal_amplitude`` (time, mode),
             ``displacement`` (time, node, xyz: the transverse strumming displacement),
             ``strouhal_frequency`` and ``normal_speed`` (time, element), ``omega`` and
@@ -558,11 +561,11 @@ class StrummingResult:
                             counters=self.counters, settings=self.settings,
                             extra={"CL0": self.settings.CL0,
                                    "strouhal": self.settings.strouhal})
-        return build_dataset("strumming", data, coords, attrs)
+        return build_plain("strumming", data, coords, attrs)
 
 
 @dataclass(frozen=True)
-class StochasticResult:
+class StochasticResult(PlainResult):
     """Spectra, standard deviations and time series of the stochastic response
     (:func:`moorline.solvers.stochastic.solve_stochastic`).
 
@@ -629,7 +632,7 @@ class StochasticResult:
         shape = (-1,) + (1,) * (np.ndim(transfer) - 1)
         return np.abs(transfer) ** 2 * self.wave_spectrum.reshape(shape)
 
-    def to_xarray(self) -> xr.Dataset:
+    def to_plain(self) -> PlainDataset:
         """Spectra (dim ``omega``), standard deviations and time series (dim ``time``)."""
         data = {"wave_spectrum": (("omega",), self.wave_spectrum),
                 "displacement_spectrum": (("omega", "node", "xyz"),
@@ -657,11 +660,11 @@ class StochasticResult:
                             counters={"iterations": self.iterations, **self.counters},
                             settings=self.settings,
                             extra={"method": self.settings.method, "d_omega": self.d_omega})
-        return build_dataset("stochastic", data, coords, attrs)
+        return build_plain("stochastic", data, coords, attrs)
 
 
 @dataclass(frozen=True)
-class HarmonicResult:
+class HarmonicResult(PlainResult):
     """The periodic response by harmonic balance (:func:`moorline.solvers.harmonic.
     solve_harmonic`).
 
@@ -720,7 +723,7 @@ class HarmonicResult:
         a, b = self.coefficients[2 * harmonic - 1], self.coefficients[2 * harmonic]
         return np.sqrt(a * a + b * b)
 
-    def to_xarray(self) -> xr.Dataset:
+    def to_plain(self) -> PlainDataset:
         """Coefficients (dim ``term``), one period of positions and tensions (dim ``time``)."""
         n = self.settings.harmonics
         terms = ["mean"] + [f"{p}{k}" for k in range(1, n + 1) for p in ("cos", "sin")]
@@ -739,4 +742,4 @@ class HarmonicResult:
                             counters={"iterations": self.iterations, **self.counters},
                             settings=self.settings,
                             extra={"period": self.period, "harmonics": n})
-        return build_dataset("harmonic", data, coords, attrs)
+        return build_plain("harmonic", data, coords, attrs)

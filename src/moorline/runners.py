@@ -137,7 +137,6 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     or SIGTERM closes the group the same way (``interrupted``, ``terminated``) and raises
     :class:`_RunInterruptedError`.
     """
-    from .io.writers import read_group
     from .mesh import discretize
     from .solvers.dynamics import simulate
     from .summaries import history_summary
@@ -146,7 +145,7 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     statics = context.latest("statics")
     initial = statics.result if statics is not None and statics.success else None
     mesh = initial.mesh if initial is not None else discretize(system)
-    result, counters = None, {}
+    result, counters, attrs = None, {}, {}
     first_step: list[float] = []
     started = time.monotonic()
     try:
@@ -165,6 +164,7 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
             result = simulate(system, settings, initial=initial, writer=writer,
                               progress=progress)
             writer.close(result.dataset_attrs())
+            attrs = writer.attrs
         _note_compilation(first_step[0] if first_step else time.monotonic() - started,
                           context.quiet)
         success, message, status = result.success, result.message, result.status
@@ -174,7 +174,7 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
         success, message, status = False, str(exc), str(Status.FAILED)
     if not success:
         logger.info("dynamics of %s failed: %s", system.name, message)
-    ds = read_group(context.results, label)
+    ds = _history(result, attrs, context, label)
     summary = history_summary(ds, settings, success, message, counters, status)
     files: list[Path] = _moordyn_channels(ds, context, label)
     summary["design"] = _design("dynamics", context, ds, summary)
@@ -183,10 +183,24 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
                                         "the records written")
     if context.plots:
         with _status("plotting ...", context.quiet):
-            files += KINDS["dynamics"].plot_group(ds, context.directory,
+            files += KINDS["dynamics"].plot_group(ds.to_xarray(), context.directory,
                                                   _prefix(label, "dynamics"))
     return Outcome("dynamics", success, message, summary, files,
                    result if success else None)
+
+
+def _history(result: Any, attrs: dict[str, Any], context: RunContext, label: str) -> Any:
+    """The dynamics group the summary and plots are made from: the result's records in
+    memory (the same variables the stream wrote, :meth:`~moorline.results.DynamicResult.
+    to_plain`) with the attributes of the group written (``attrs``), or, after a run that
+    raised, the records streamed to group ``label`` (read back with netCDF4)."""
+    if result is not None:
+        ds = result.to_plain()
+        ds.attrs.update(attrs)
+        return ds
+    from .io.netcdf_read import read_plain
+
+    return read_plain(context.results, label)
 
 
 def _moordyn_channels(ds: Any, context: RunContext, label: str) -> list[Path]:
@@ -350,7 +364,7 @@ def _solve_and_write(kind: str, what: str, solve: Callable[[], Any], context: Ru
                                                    "message": str(exc)})
         logger.info("%s of %s: %s", kind, context.system.name, result.message)
         update("writing results ...")
-        ds = result.to_xarray()
+        ds = result.to_plain()
         if kind in _DESIGN_KINDS:
             from .design import line_attrs
 
@@ -359,7 +373,7 @@ def _solve_and_write(kind: str, what: str, solve: Callable[[], Any], context: Ru
         files: list[Path] = []
         if context.plots:
             update("plotting ...")
-            files = entry.plot_group(ds, context.directory, _prefix(label, kind))
+            files = entry.plot_group(ds.to_xarray(), context.directory, _prefix(label, kind))
         summary = entry.summarize(result)
         if kind in _DESIGN_KINDS:
             summary["design"] = _design(kind, context, result, summary)

@@ -93,7 +93,7 @@ def _bodies_summary(result: Any, with_stiffness: bool) -> dict[str, Any]:
 def dynamics_summary(result: Any) -> dict[str, Any]:
     """The ``--json`` object of a :class:`~moorline.results.DynamicResult` (see
     :func:`history_summary`)."""
-    return history_summary(result.to_xarray(), result.settings, result.success,
+    return history_summary(result.to_plain(), result.settings, result.success,
                            result.message, result.counters, result.status)
 
 
@@ -104,7 +104,8 @@ def history_summary(ds: Any, settings: Any, success: bool, message: str,
     Parameters
     ----------
     ds
-        The dynamics group read back (or :meth:`~moorline.results.DynamicResult.to_xarray`):
+        The dynamics group (:meth:`~moorline.results.DynamicResult.to_plain` or
+        ``to_xarray``, or read back):
         ``time``, ``end_force(time, line, end, xyz)``, ``position(time, node, xyz)``,
         ``point_node`` and the coordinate ``point_kind``.
     settings

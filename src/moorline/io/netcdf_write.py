@@ -1,4 +1,7 @@
-"""Write an in-memory :class:`xarray.Dataset` to a NetCDF-4 file or group with netCDF4 directly.
+"""Write an in-memory dataset to a NetCDF-4 file or group with netCDF4 directly.
+
+The dataset is a :class:`moorline.plain_dataset.PlainDataset` (numpy arrays: what a run
+writes, without importing xarray) or an :class:`xarray.Dataset`; both give the same file.
 
 xarray's own ``to_netcdf`` asks dask for the active scheduler to pick a write lock, which
 imports dask and dask.distributed when they are installed (about 0.5 s of a ``moorline run``
@@ -25,7 +28,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-__all__ = ["nc_attrs", "write_dataset"]
+__all__ = ["nc_attrs", "write_dataset", "write_into"]
 
 
 def nc_attrs(attrs: Mapping[str, Any]) -> dict[str, Any]:
@@ -42,7 +45,8 @@ def write_dataset(ds: Any, path: str | Path, *, group: str | None = None,
     Parameters
     ----------
     ds
-        An in-memory :class:`xarray.Dataset`.
+        An in-memory :class:`~moorline.plain_dataset.PlainDataset` or
+        :class:`xarray.Dataset`.
     path
         The NetCDF-4 file.
     group
@@ -63,25 +67,41 @@ def write_dataset(ds: Any, path: str | Path, *, group: str | None = None,
 
     path = Path(path)
     mode = "a" if mode == "a" and path.exists() else "w"
+    with netCDF4.Dataset(path, mode, format="NETCDF4") as root:
+        write_into(root, ds, group=group, unlimited_dims=unlimited_dims, chunksizes=chunksizes)
+
+
+def write_into(root: Any, ds: Any, *, group: str | None = None,
+               unlimited_dims: Iterable[str] = (),
+               chunksizes: Mapping[str, tuple[int, ...]] | None = None) -> Any:
+    """Write ``ds`` into an open :class:`netCDF4.Dataset` ``root`` (as :func:`write_dataset`,
+    which opens and closes the file around it); returns the group written (``root`` itself
+    when ``group`` is ``None``).
+
+    Raises
+    ------
+    ValueError
+        When ``group`` already exists, or a variable has a type this writer does not encode.
+    """
     unlimited = set(unlimited_dims)
     chunks = dict(chunksizes or {})
-    with netCDF4.Dataset(path, mode, format="NETCDF4") as root:
-        if group is None:
-            target = root
-        elif group in root.groups:
-            raise ValueError(f"{path} already has a group {group!r}")
-        else:
-            target = root.createGroup(group)
-        for dim, size in ds.sizes.items():
-            target.createDimension(str(dim), None if dim in unlimited else int(size))
-        coordinates = _coordinates(ds)
-        for name, var in ds.variables.items():
-            _write_variable(target, str(name), var, chunks.get(str(name)),
-                            coordinates.get(str(name)))
-        attrs = nc_attrs(ds.attrs)
-        if coordinates.get(None):
-            attrs["coordinates"] = coordinates[None]
-        target.setncatts(attrs)
+    if group is None:
+        target = root
+    elif group in root.groups:
+        raise ValueError(f"{root.filepath()} already has a group {group!r}")
+    else:
+        target = root.createGroup(group)
+    for dim, size in ds.sizes.items():
+        target.createDimension(str(dim), None if dim in unlimited else int(size))
+    coordinates = _coordinates(ds)
+    for name, var in ds.variables.items():
+        _write_variable(target, str(name), var, chunks.get(str(name)),
+                        coordinates.get(str(name)))
+    attrs = nc_attrs(ds.attrs)
+    if coordinates.get(None):
+        attrs["coordinates"] = coordinates[None]
+    target.setncatts(attrs)
+    return target
 
 
 def _coordinates(ds: Any) -> dict[str | None, str]:

@@ -27,7 +27,6 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy import integrate
 
 FloatArray = NDArray[np.float64]
 SpectrumKind = Literal["pierson-moskowitz", "jonswap"]
@@ -91,6 +90,8 @@ def _jonswap_area(m0: float, omega_p: float, gamma: float, sigma_a: float,
         w = np.array([u * omega_p])
         return float((pierson_moskowitz(w, m0, omega_p)
                       * _peak_shape(w, omega_p, gamma, sigma_a, sigma_b))[0]) * omega_p
+
+    from scipy import integrate  # imported on use (0.3 s with scipy.optimize)
 
     low, _ = integrate.quad(f, 0.0, 1.0, limit=200, epsabs=0.0, epsrel=1e-12)
     high, _ = integrate.quad(f, 1.0, np.inf, limit=200, epsabs=0.0, epsrel=1e-12)
