@@ -148,6 +148,8 @@ def _body(b: Body) -> dict[str, Any]:
             data[key] = [list(r) for r in getattr(b, key)]
     if b.force_history is not None:
         data["force_history"] = _motion(b.force_history)
+    if b.motion is not None:
+        data["motion"] = _motion(b.motion)
     return data
 
 

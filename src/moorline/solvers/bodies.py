@@ -14,7 +14,7 @@ this module unpacks the model's :class:`~moorline.model.Body` for them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -25,7 +25,7 @@ from ..model import Body
 from ..physics import rigid_body as rb
 from ..physics.rigid_body import inverse_left_jacobian, rotation_matrix, rotation_vector, skew
 
-__all__ = ["BodyDofs", "BodyState", "body_loads", "body_mass_matrix",
+__all__ = ["BodyDofs", "BodyState", "body_loads", "body_mass_matrix", "hold_dofs",
            "inverse_left_jacobian", "long_wave_geometry", "place_slaves", "rotation_vector",
            "skew", "transformation", "waterplane", "world_arms"]
 
@@ -171,9 +171,14 @@ def body_mass_matrix(body: Body, R: FloatArray) -> FloatArray:
 
 @dataclass(frozen=True)
 class BodyDofs:
-    """Layout of the coupled unknowns: the free node dofs, then six per free body; and the
-    extended node dofs (free nodes, then the attached nodes) the line tangent is assembled
-    over before the master-slave transformation."""
+    """Layout of the coupled unknowns: the free node dofs, then six per free or pinned body;
+    and the extended node dofs (free nodes, then the attached nodes) the line tangent is
+    assembled over before the master-slave transformation.
+
+    A pinned body keeps its six unknowns, but its three translations are held (``held``):
+    they follow the pin, their residual rows (the pin's reaction) are set to zero and their
+    rows and columns of the tangent to the identity (:func:`hold_dofs`), so a Newton step
+    leaves them where the pin puts them."""
 
     n_free: int
     body_dof: NDArray[np.int64]
@@ -181,6 +186,8 @@ class BodyDofs:
     ext_dofs: int
     pattern: object
     ext_map: NDArray[np.int64]  # (n_nodes, 3) extended dof of every node (-1: held)
+    held: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    pinned: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
 
     @classmethod
     def of(cls, mesh: Mesh, bodies: list[Body]) -> BodyDofs:
@@ -188,10 +195,25 @@ class BodyDofs:
         from .assembly import BlockPattern
 
         n_free = mesh.n_dofs
-        free = np.array([b.kind == "free" for b in bodies], dtype=bool)
+        pinned = np.array([b.kind == "pinned" for b in bodies], dtype=bool)
+        free = np.array([b.kind in ("free", "pinned") for b in bodies], dtype=bool)
         body_dof = np.where(free, n_free + 6 * (np.cumsum(free) - 1), -1).astype(np.int64)
         ext = mesh.dof_of_node.copy()
         for k, node in enumerate(mesh.slave_node):
             ext[node] = n_free + 3 * k + np.arange(3)
-        return cls(n_free, body_dof, n_free + 6 * int(free.sum()),
-                   n_free + 3 * len(mesh.slave_node), BlockPattern(mesh.pattern_pairs, ext), ext)
+        n_unknowns = n_free + 6 * int(free.sum())
+        held = np.zeros(n_unknowns, dtype=bool)
+        for d in body_dof[pinned]:
+            held[d:d + 3] = True
+        return cls(n_free, body_dof, n_unknowns, n_free + 3 * len(mesh.slave_node),
+                   BlockPattern(mesh.pattern_pairs, ext), ext, held, pinned)
+
+
+def hold_dofs(K: sp.spmatrix, held: NDArray[np.bool_], scale: float = 1.0) -> sp.csc_matrix:
+    """``K`` with the ``held`` unknowns' rows and columns replaced by ``scale`` times the
+    identity (a pinned body's translations): with a zero residual there, a solve leaves
+    them unchanged and the other unknowns see the constrained system."""
+    if not held.any():
+        return sp.csc_matrix(K)
+    keep = sp.diags((~held).astype(float))
+    return (keep @ sp.csr_matrix(K) @ keep + sp.diags(scale * held.astype(float))).tocsc()

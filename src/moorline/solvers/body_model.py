@@ -22,6 +22,12 @@ physics are the kernels of :mod:`moorline.physics.rigid_body`; the body blocks o
 matrix are exact, the gyroscopic and centripetal terms and the rotation of the inertia
 included (the long-wave loads' dependence on the draft aside).
 
+A pinned body moves like a free one but for its origin, which follows its pin
+(:meth:`BodyModel.pin_state`): its translational equations are the pin's reaction, held out of
+the Newton system by the stepper (:func:`~moorline.solvers.bodies.hold_dofs`), while the
+inertia of its prescribed translation enters its rotational equations (``c x m a_pin``; as
+MoorDyn-C 2.7 ``Rod::getStateDeriv`` for a pinned rod).
+
 A system without bodies has an empty :class:`BodyModel`: every method is then a no-op, so the
 time stepper has one code path.
 """
@@ -38,7 +44,7 @@ from ..mesh import Mesh
 from ..physics import radiation as rad
 from ..physics import rigid_body as rb
 from .bodies import BodyDofs, BodyState, body_loads, body_mass_matrix, long_wave_geometry, skew
-from .excitation import history_value, ramp
+from .excitation import history_value, motion_value, ramp
 
 logger = logging.getLogger(__name__)
 FloatArray = NDArray[np.float64]
@@ -61,6 +67,7 @@ class BodyModel:
         self.bodies = list(mesh.bodies)
         self.layout = BodyDofs.of(mesh, self.bodies)
         self.body_dof = self.layout.body_dof
+        self.pinned = self.layout.pinned
         self.memory = [memory_model(b) if radiation_memory else None for b in self.bodies]
         self.added = [_matrix(b.added_mass) if mem is None else mem.added_mass_infinite
                       for b, mem in zip(self.bodies, self.memory, strict=True)]
@@ -85,14 +92,27 @@ class BodyModel:
 
     # ------------------------------------------------------------------ kinematics
     def advance(self, b0: BodyState, dq: FloatArray, h: float, beta: float,
-                gamma: float) -> BodyState:
-        """Body state after the motion ``dq`` (nb, 6) over a step ``h`` (Newmark)."""
+                gamma: float, t1: float = 0.0) -> BodyState:
+        """Body state after the motion ``dq`` (nb, 6) over a step ``h`` (Newmark) ending at
+        ``t1``; a pinned body's origin where its pin is at ``t1`` (whatever ``dq`` says)."""
+        pinned = self.pinned
+        if pinned.any():
+            r, v, a = self.pin_state(t1)
+            dq = dq.copy()
+            dq[pinned, :3] = r[pinned] - b0.r[pinned]
         acc = (dq - h * b0.vel - h * h * (0.5 - beta) * b0.acc) / (beta * h * h)
         vel = b0.vel + h * ((1 - gamma) * b0.acc + gamma * acc)
         held = self.body_dof < 0
         acc[held], vel[held] = 0.0, 0.0
+        if pinned.any():
+            vel[pinned, :3], acc[pinned, :3] = v[pinned], a[pinned]
         moved = b0.moved(dq[:, :3], dq[:, 3:])
         return BodyState(moved.r, moved.R, vel, acc)
+
+    def pin_state(self, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Position, velocity and acceleration of every pinned body's pin at ``t``
+        (:func:`pin_state`)."""
+        return pin_state(self.bodies, t)
 
     def place(self, x: FloatArray, v: FloatArray, a: FloatArray, bs: BodyState) -> FloatArray:
         """Put the attached nodes on their bodies (in place); returns their world arms."""
@@ -270,6 +290,34 @@ class BodyModel:
             return np.zeros(6)
         a, w, shift, amp, phase, ramp_time = terms
         return rb.wave_excitation(t, a, w, shift, amp, phase, ramp(t, ramp_time)[0])
+
+
+def pin_state(bodies, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Position, velocity and acceleration of every pinned body's pin at ``t`` (nb, 3)
+    each: its ``position`` plus its ``motion`` (zeros for the other bodies)."""
+    nb = len(bodies)
+    r, v, a = np.zeros((nb, 3)), np.zeros((nb, 3)), np.zeros((nb, 3))
+    for b, body in enumerate(bodies):
+        if body.kind != "pinned":
+            continue
+        r[b] = body.position
+        if body.motion is not None:
+            d, dv, da = motion_value(body.motion, t)
+            r[b] += d
+            v[b], a[b] = dv, da
+    return r, v, a
+
+
+def with_pins(bodies, state: BodyState, t: float) -> BodyState:
+    """``state`` with every pinned body's origin, velocity and acceleration those of its
+    pin at ``t`` (the start of a run)."""
+    pinned = np.array([b.kind == "pinned" for b in bodies], dtype=bool)
+    if not pinned.any():
+        return state
+    r, v, a = pin_state(bodies, t)
+    out = state.copy()
+    out.r[pinned], out.vel[pinned, :3], out.acc[pinned, :3] = r[pinned], v[pinned], a[pinned]
+    return out
 
 
 def memory_model(body) -> rad.MemoryModel | None:

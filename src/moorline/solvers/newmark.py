@@ -17,7 +17,8 @@ forces) and whose tangent is the effective stiffness of eq. 4.2.9a, assembled ex
 
     K_eff = (M_s + M_a) / (beta h^2) + (1 + alpha) (gamma C / (beta h) + K).
 
-The unknowns are the free node dofs and the six dofs of every free body (none without bodies);
+The unknowns are the free node dofs and the six dofs of every free or pinned body (none without
+bodies; a pinned body's three translations held at its pin, :func:`.bodies.hold_dofs`);
 nodes on bodies are slaves through the master-slave transformation (Tuah eq. 3.3.6-3.3.10),
 ``P``, and the line tangent is ``P^T K P`` plus the body blocks (:mod:`.body_model`). Rayleigh
 damping ``a0 M + a1 K0`` (``M`` and ``K0`` at the start) applies to all unknowns.
@@ -37,7 +38,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from .assembly import BlockPattern, SparseFactor, factorize, gather_free, scatter_free, solve_sparse
-from .bodies import BodyState, transformation
+from .bodies import BodyState, hold_dofs, transformation
 from .body_model import BodyModel
 from .dynamic_model import DynamicModel, Evaluation, MaterialState
 from .newton import Counters, NewtonPolicy, TangentCache, max_norm, solve
@@ -52,7 +53,9 @@ class StepState:
     ``body_other`` holds the bodies' non-inertial generalized forces (nb, 6) at this state
     (HHT weights them with the next step's); ``memory`` the radiation memory states of the
     bodies with a radiation table (:meth:`BodyModel.advance_memory`; None: at rest), so a
-    repeated or cut step starts from them.
+    repeated or cut step starts from them; ``pin_force`` the force of the pin on every pinned
+    body (nb, 3; zeros for the others; None without pinned bodies): minus the translational
+    residual of its body equation, inertia included (with HHT, of the weighted equation).
     """
 
     t: float
@@ -64,6 +67,7 @@ class StepState:
     bodies: BodyState | None = None
     body_other: FloatArray | None = None
     memory: tuple | None = None
+    pin_force: FloatArray | None = None
 
 
 @dataclass(frozen=True)
@@ -98,6 +102,7 @@ class _Trial:
     #                                 which attached nodes pass to their bodies (with bodies
     #                                 or HHT; else None)
     memory: tuple | None = None  # the bodies' radiation memory states at the trial
+    pin_force: FloatArray | None = None  # (nb, 3) force of the pins on pinned bodies
 
     @property
     def has_tangent(self) -> bool:
@@ -192,7 +197,7 @@ class Stepper:
         v1[fixed], a1[fixed] = st.constrained[1], st.constrained[2]
         bs, arms, memory = None, np.zeros((0, 3)), None
         if s0.bodies is not None:
-            bs = self.bodies.advance(s0.bodies, dq, h, b, g)
+            bs = self.bodies.advance(s0.bodies, dq, h, b, g, s0.t + h)
             memory = self.bodies.advance_memory(s0.memory, s0.bodies, bs, h)
             x1 = x1.copy()
             arms = self.bodies.place(x1, v1, a1, bs)
@@ -226,7 +231,15 @@ class Stepper:
                 damping = (1 + alpha) * damping - alpha * (self.C_rayleigh
                                                            @ self._velocity(s0.v, s0.bodies))
             r -= damping
-        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other, node_forces, memory)
+        pin_force = None
+        if self.layout.held.any():  # a pinned body's translational rows: the pin's reaction
+            pin_force = np.zeros((len(self.bodies.bodies), 3))
+            for k in np.flatnonzero(self.layout.pinned):
+                d = self.bodies.body_dof[k]
+                pin_force[k] = -r[d:d + 3]
+            r[self.layout.held] = 0.0
+        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other, node_forces, memory,
+                      pin_force)
 
     def factorize(self, u, trial: _Trial):
         """Factorization of the effective tangent (eq. 4.2.9a) at the trial."""
@@ -259,6 +272,8 @@ class Stepper:
         out = lines + self._body_matrix(body)
         if self.C_rayleigh is not None:
             out = out + cv * self.C_rayleigh
+        if self.layout.held.any():
+            out = hold_dofs(out, self.layout.held, float(np.abs(out.diagonal()).max()))
         return out.tocsr()
 
     def _factors(self, h: float) -> tuple[float, float, float]:
@@ -286,6 +301,7 @@ class Stepper:
     def update(self, u, du: FloatArray):
         """Unknowns after the step ``du``."""
         x1, dq = u
+        du = np.where(self.layout.held, 0.0, du)  # a pinned body's translations follow its pin
         x1 = x1 + scatter_free(du[: self.layout.n_free], self.dof)
         if len(dq):
             dq = dq.copy()
@@ -313,7 +329,8 @@ class Stepper:
     def _state(self, trial: _Trial) -> StepState:
         st = self._current
         return StepState(st.s0.t + st.h, trial.x, trial.v, trial.a, trial.ev.material,
-                         trial.ev, trial.bodies, trial.body_other, trial.memory)
+                         trial.ev, trial.bodies, trial.body_other, trial.memory,
+                         trial.pin_force)
 
     def _one_shot(self, u, h: float) -> tuple[StepState, bool, float]:
         """Residual feedback / purely incremental: one solve per step, no iteration."""

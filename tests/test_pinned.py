@@ -1,0 +1,293 @@
+"""Pinned bodies (translation held at a pin, rotation free; MoorDyn's ``Pinned`` and
+``CoupledPinned`` rods and ``CoupledPinned`` bodies): a compound pendulum against its
+closed-form period, a rod held by a line against the moment balance about its pin, a
+pendulum on an accelerating pin against the exact mean angle, and the exact tangents of the
+statics and of the time step against finite differences."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from moorline.io.moordyn import read_moordyn_deck
+from moorline.model import (
+    Body,
+    DynamicsSettings,
+    Environment,
+    Line,
+    LineType,
+    Motion,
+    Point,
+    System,
+)
+from moorline.physics.rigid_body import rotation_matrix
+from moorline.solvers.dynamics import simulate
+from moorline.solvers.statics import solve_statics
+
+RHO, G = 1025.0, 9.80665
+
+
+def rod_deck(path: Path, *, d: float, mpl: float, Ca: float, a: tuple, b: tuple,
+             lines: str = "", points: str = "") -> Path:
+    """A MoorDyn v2 deck with one ``Pinned`` rod (no drag) from ``a`` to ``b``, a dummy wire
+    between two fixed points far away (a deck needs a line) and the given extra points and
+    lines."""
+    text = f"""pinned rod
+--- LINE TYPES ---
+Name Diam MassDen EA BA EI Can Cat Cdn Cdt
+(-) (m) (kg/m) (N) (-) (-) (-) (-) (-) (-)
+wire 0.05 5.0 1e7 -0.8 0 1 0 1 0
+--- ROD TYPES ---
+Name Diam Mass/m Cd Ca CdEnd CaEnd
+(-) (m) (kg/m) (-) (-) (-) (-)
+can {d!r} {mpl!r} 0 {Ca!r} 0 0
+--- RODS ---
+ID RodType Attachment Xa Ya Za Xb Yb Zb NumSegs Outputs
+(#) (-) (-) (m) (m) (m) (m) (m) (m) (-) (-)
+1 can Pinned {a[0]!r} {a[1]!r} {a[2]!r} {b[0]!r} {b[1]!r} {b[2]!r} 10 -
+--- POINTS ---
+ID Type X Y Z M V CdA Ca
+(#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)
+1 Fixed 50 0 -30 0 0 0 0
+2 Fixed 55 0 -30 0 0 0 0
+{points}--- LINES ---
+ID LineType AttachA AttachB UnstrLen NumSegs Outputs
+(#) (-) (-) (-) (m) (-) (-)
+1 wire 1 2 5 2 -
+{lines}--- OPTIONS ---
+{RHO!r} WtrDnsty
+{G!r} g
+100 WtrDpth
+--- END ---
+"""
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _period(time: np.ndarray, x: np.ndarray) -> float:
+    """Mean period of ``x`` about its mean from its zero crossings (linear interpolation)."""
+    x = x - 0.5 * (x.max() + x.min())
+    s = np.sign(x)
+    i = np.nonzero(s[:-1] * s[1:] < 0)[0]
+    crossing = time[i] - x[i] * (time[i + 1] - time[i]) / (x[i + 1] - x[i])
+    return float(2.0 * (crossing[-1] - crossing[0]) / (len(crossing) - 1))
+
+
+def test_pinned_rod_pendulum_period_is_the_compound_pendulum_formula(tmp_path):
+    """A 10 m rod (d 0.5 m, 400 kg/m, Ca 1, no drag) pinned at its end A 20 m deep, released
+    at rest 2 deg off the vertical in still water: the period of its small oscillations is
+    ``2 pi sqrt(I / ((m - rho V) g L / 2))`` with ``I = m (L^2/3 + d^2/16) + Ca rho A L^3/3``
+    about the pin (the solid rod's transverse inertia as MoorDyn's, the transverse added mass
+    of the submerged rod). Tolerance 5e-4: the amplitude's nonlinear lengthening
+    ``theta0^2 / 16 = 7.6e-5`` and the average-acceleration scheme's period elongation
+    ``(omega dt)^2 / 12 = 1.0e-4`` at dt = 0.05 s, plus the zero-crossing estimate."""
+    L, d, mpl, Ca, tilt = 10.0, 0.5, 400.0, 1.0, math.radians(2.0)
+    deck = rod_deck(tmp_path / "pendulum.dat", d=d, mpl=mpl, Ca=Ca, a=(0.0, 0.0, -20.0),
+                    b=(L * math.sin(tilt), 0.0, -20.0 - L * math.cos(tilt)))
+    system = read_moordyn_deck(deck).system
+    body = system.bodies["rod1"]
+    assert body.kind == "pinned" and body.position == (0.0, 0.0, -20.0)
+    static = solve_statics(system)
+    assert static.success, static.message
+    A = math.pi * d * d / 4
+    m, V = mpl * L, A * L
+    # hanging straight down, the pin carrying the weight less the buoyancy
+    axis = rotation_matrix(static.body_rotation("rod1")) @ np.array([1.0, 0.0, 0.0])
+    assert axis == pytest.approx([0.0, 0.0, -1.0], abs=1e-8)
+    assert static.pin_reaction("rod1") == pytest.approx([0.0, 0.0, (m - RHO * V) * G],
+                                                        rel=1e-9, abs=1e-6)
+    released = solve_statics(replace(system, bodies={"rod1": replace(body, kind="fixed")}))
+    run = simulate(system, DynamicsSettings(duration=20.0, dt=0.05), initial=released)
+    assert run.success, run.message
+    axes = rotation_matrix(run.body_pose[:, 0, 3:])[:, :, 0]
+    angle = np.arctan2(axes[:, 0], -axes[:, 2])
+    assert angle.max() == pytest.approx(tilt, rel=1e-3)  # no drag: no decay
+    inertia = m * (L * L / 3 + d * d / 16) + Ca * RHO * A * L**3 / 3
+    expected = 2 * math.pi * math.sqrt(inertia / ((m - RHO * V) * G * L / 2))
+    assert _period(run.time, angle) == pytest.approx(expected, rel=5e-4)
+    # the pin carries the rod: its vertical force averages the submerged weight
+    pin = run.body_pin_force[1:, 0]
+    assert np.abs(pin[:, 2] / ((m - RHO * V) * G) - 1).max() < 1e-2
+
+
+def test_pinned_rod_held_by_a_line_balances_its_moments_about_the_pin(tmp_path):
+    """A buoyant rod (d 1 m, 200 kg/m, 12 m) pinned at its end A on the seabed's anchor,
+    its end B held down by a 22 m rope to an anchor 25 m away: at equilibrium the moments about
+    the pin of the rope's force at end B, the weight at the middle and the buoyancy at the
+    submerged centroid sum to zero, and the pin's reaction is minus the sum of the three
+    forces (the rope's force read from the result, the rest written here)."""
+    L, d, mpl = 12.0, 1.0, 200.0
+    pin = np.array([0.0, 0.0, -60.0])
+    deck = rod_deck(tmp_path / "held.dat", d=d, mpl=mpl, Ca=1.0, a=(0.0, 0.0, -60.0),
+                    b=(0.0, 0.0, -48.0), points="3 Fixed 25 0 -60 0 0 0 0\n",
+                    lines="2 rope 3 R1B 22 20 -\n")
+    deck.write_text(deck.read_text().replace("wire 0.05 5.0 1e7 -0.8 0 1 0 1 0",
+                                             "wire 0.05 5.0 1e7 -0.8 0 1 0 1 0\n"
+                                             "rope 0.08 10.0 5e7 -0.8 0 1 0 1 0"))
+    system = read_moordyn_deck(deck).system
+    static = solve_statics(system)
+    assert static.success, static.message
+    axis = rotation_matrix(static.body_rotation("rod1")) @ np.array([1.0, 0.0, 0.0])
+    assert static.body_position("rod1") == pytest.approx(pin, abs=1e-12)
+    assert axis[0] > 0.3  # pulled over towards the anchor
+    end_b = pin + L * axis
+    line = next(n for n, ln in system.lines.items() if "rod1B" in (ln.end_a, ln.end_b))
+    end = "a" if system.lines[line].end_a == "rod1B" else "b"
+    rope = static.end_force(line, end)
+    weight = np.array([0.0, 0.0, -mpl * L * G])
+    buoyancy = np.array([0.0, 0.0, RHO * G * math.pi * d * d / 4 * L])
+    middle = pin + 0.5 * L * axis
+    moment = (np.cross(end_b - pin, rope) + np.cross(middle - pin, weight + buoyancy))
+    scale = L * float(np.linalg.norm(buoyancy + weight))
+    assert np.abs(moment).max() < 1e-6 * scale
+    assert static.pin_reaction("rod1") == pytest.approx(-(rope + weight + buoyancy),
+                                                        abs=1e-6 * scale / L)
+
+
+def _accelerating_pin(accel: float, duration: float, dt: float) -> System:
+    """MoorDyn's ``tests/Mooring/body_tests/pinnedBody.txt`` as moorline objects: a pinned
+    body at (0, 0, -5) carrying a 10 m rod (d 2 m, 5 t/m) hanging below it, in a vacuum
+    (the deck's ``WtrDnsty 0``), its pin moved along y by ``accel t^2 / 2`` (MoorDyn's
+    ``tests/bodies.cpp`` "Pinned body")."""
+    L, d, mpl = 10.0, 2.0, 5.0e3
+    m = mpl * L
+    transverse = m * (L * L / 12 + d * d / 16)
+    times = tuple(np.linspace(0.0, duration + 1.0, 41))
+    motion = Motion("table", times=times, values=tuple((0.0, 0.5 * accel * t * t, 0.0)
+                                                      for t in times))
+    body = Body("pin", "pinned", position=(0.0, 0.0, -5.0), mass=m,
+                center_of_gravity=(0.0, 0.0, -10.0),
+                inertia=((transverse, 0, 0), (0, transverse, 0), (0, 0, m * d * d / 8)),
+                motion=motion)
+    lt = LineType("nylon", 0.124, 35.0, 5515288.0, Cd=0.0, Ca=0.0)
+    points = {"1": Point("1", "fixed", (30.0, 0.0, -5.0)),
+              "2": Point("2", "fixed", (30.0, 0.0, -10.0))}
+    env = Environment(depth=30.0, water_density=0.0, gravity=G)
+    return System("pinned_body", environment=env, line_types={"nylon": lt}, points=points,
+                  lines={"1": Line("1", "nylon", 5.0, 1, "1", "2")}, bodies={"pin": body})
+
+
+def test_a_pendulum_on_an_accelerating_pin_swings_about_the_exact_tilt():
+    """A pendulum whose pin accelerates at a = 0.5 m/s^2 from rest (MoorDyn's pinned-body
+    test: pinnedBody.txt in a vacuum) swings between 0 and twice the tilt
+    ``theta = atan(-a / g)`` of the effective gravity (exact, whatever the amplitude: the
+    motion is symmetric about it), with the compound pendulum's period under
+    ``sqrt(g^2 + a^2)``; 2e-4 rad and 1e-3 in period (dt 0.02 s: the scheme's period error
+    is ``(omega dt)^2 / 12 = 6e-6``; the amplitude's lengthening, 1.6e-4, is in the
+    expected period)."""
+    a, duration, dt = 0.5, 12.0, 0.02
+    system = _accelerating_pin(a, duration, dt)
+    static = solve_statics(system)
+    assert static.success, static.message
+    run = simulate(system, DynamicsSettings(duration=duration, dt=dt), initial=static)
+    assert run.success, run.message
+    pose = run.body_pose[:, 0]
+    assert pose[:, 1] == pytest.approx(0.5 * a * run.time**2, abs=1e-9)
+    roll = pose[:, 3]
+    theta = math.atan(-a / G)
+    assert 0.5 * (roll.max() + roll.min()) == pytest.approx(theta, abs=2e-4)
+    assert roll.max() == pytest.approx(0.0, abs=2e-4)
+    L, d = 10.0, 2.0
+    arm = 10.0  # pin to centre of gravity
+    inertia = L * L / 12 + d * d / 16 + arm * arm  # per unit mass, about the pin
+    amplitude = abs(theta)
+    expected = 2 * math.pi * math.sqrt(inertia / (math.hypot(G, a) * arm)) * (
+        1 + amplitude**2 / 16)
+    assert _period(run.time, roll) == pytest.approx(expected, rel=1e-3)
+    # the pin pushes the body along with its acceleration and holds its weight: on average
+    # over whole swings (m a, m g); checked on the instantaneous balance's mean
+    m = 5.0e4
+    mean = run.body_pin_force[1:, 0].mean(axis=0)
+    assert mean[1] == pytest.approx(m * a, rel=0.1)
+    assert mean[2] == pytest.approx(m * G, rel=0.01)
+
+
+def test_pinned_body_statics_tangent_matches_finite_differences():
+    """The coupled statics' tangent with a pinned body off its equilibrium (a rod on a line):
+    its rotational rows and columns against central differences of the residual; the held
+    translations are an identity block decoupled from the rest."""
+    from moorline.mesh import discretize
+    from moorline.solvers.bodies import BodyState, place_slaves
+    from moorline.solvers.coupled_statics import CoupledStatics
+    from moorline.solvers.initial_shape import initial_positions
+
+    system = _accelerating_pin(0.0, 1.0, 0.1)
+    body = replace(system.bodies["pin"], motion=None, center_of_gravity=(0.4, -0.3, -10.0))
+    points = {**system.points, "b": Point("b", "body", (1.0, 0.5, -14.0), body="pin"),
+              "anchor": Point("anchor", "fixed", (20.0, 3.0, -25.0))}
+    lines = {**system.lines, "2": Line("2", "nylon", 22.0, 8, "anchor", "b")}
+    system = replace(system, bodies={"pin": body}, points=points, lines=lines,
+                     environment=replace(system.environment, water_density=RHO))
+    mesh = discretize(system)
+    problem = CoupledStatics(mesh)
+    poses = BodyState.initial(mesh).moved(np.zeros((1, 3)), np.array([[0.1, -0.2, 0.05]]))
+    x = place_slaves(mesh, poses, initial_positions(system, mesh))
+    x[mesh.free_nodes] += np.random.default_rng(3).normal(scale=0.05,
+                                                           size=x[mesh.free_nodes].shape)
+    R, state = problem.residual(x, poses)
+    K = problem.tangent(x, poses, state).toarray()
+    held = problem.held
+    assert held.sum() == 3 and not R[held].any()
+    n = problem.n_unknowns
+    fd = np.zeros_like(K)
+    for j in np.flatnonzero(~held):
+        du = np.zeros(n)
+        du[j] = 1e-6
+        plus = problem.residual(*problem.update(x, poses, du))[0]
+        minus = problem.residual(*problem.update(x, poses, -du))[0]
+        fd[:, j] = -(plus - minus) / 2e-6
+    free = ~held
+    Kf, fdf = K[np.ix_(free, free)], fd[np.ix_(free, free)]
+    assert np.allclose(Kf, fdf, rtol=1e-4, atol=1e-5 * np.abs(K).max())
+    assert not K[np.ix_(held, free)].any() and not K[np.ix_(free, held)].any()
+    assert np.allclose(K[np.ix_(held, held)], K[held, held][0] * np.eye(3))
+
+
+def test_pinned_body_step_tangent_matches_finite_differences():
+    """The effective tangent of a time step with a pinned body on a moving pin (spinning,
+    accelerating, a line on it) against central differences of the step's residual in every
+    unknown but the held translations."""
+    from moorline.solvers.bodies import BodyState
+    from moorline.solvers.dynamic_model import DynamicModel
+    from moorline.solvers.dynamics import _fluid, _initial_state, _stepper
+    from moorline.solvers.excitation import Excitation
+    from moorline.solvers.newmark import _Step
+
+    system = _accelerating_pin(0.5, 2.0, 0.05)
+    body = replace(system.bodies["pin"], center_of_gravity=(0.4, -0.3, -10.0),
+                   added_mass=tuple(tuple(float(v) for v in row)
+                                    for row in 1e3 * (np.eye(6) + 0.1)))
+    points = {**system.points, "b": Point("b", "body", (1.0, 0.5, -14.0), body="pin"),
+              "anchor": Point("anchor", "fixed", (20.0, 3.0, -25.0))}
+    lines = {**system.lines, "2": Line("2", "nylon", 22.0, 8, "anchor", "b")}
+    system = replace(system, bodies={"pin": body}, points=points, lines=lines)
+    start = solve_statics(system)
+    assert start.success, start.message
+    settings = DynamicsSettings(dt=0.05)
+    fluid = _fluid(system, settings)
+    model = DynamicModel(start.mesh, fluid)
+    exc = Excitation(start.mesh, start.positions)
+    state = _initial_state(model, exc, start.positions, settings.dt, initial=start)
+    spin = np.array([[0.0, 0.3, 0.0, 0.3, -0.2, 0.4]])
+    state = replace(state, bodies=BodyState(state.bodies.r, state.bodies.R, spin, 0.5 * spin))
+    stepper = _stepper(model, fluid, settings, 1e-6, system)
+    h = settings.dt
+    stepper._current = _Step(state, h, exc.constrained_state(h), None)
+    u = (state.x + h * state.v, np.array([[0.0, 0.0, 0.0, 0.04, -0.03, 0.05]]))
+    K = stepper.tangent_matrix(u, stepper.residual(u, True)).toarray()
+    held = stepper.layout.held
+    fd = np.zeros_like(K)
+    for j in np.flatnonzero(~held):
+        e = np.zeros(K.shape[0])
+        e[j] = 1e-6
+        plus = stepper.residual(stepper.update(u, e), False).r
+        minus = stepper.residual(stepper.update(u, -e), False).r
+        fd[:, j] = -(plus - minus) / 2e-6
+    free = ~held
+    assert np.allclose(K[np.ix_(free, free)], fd[np.ix_(free, free)], rtol=1e-5,
+                       atol=1e-6 * np.abs(K).max())
+    assert not K[np.ix_(held, free)].any() and not K[np.ix_(free, held)].any()
