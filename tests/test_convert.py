@@ -225,16 +225,50 @@ def test_public_body_decks_convert_solve_and_run(deck, tmp_path):
     assert run.success, run.message
 
 
-@pytest.mark.parametrize(("deck", "named"), [
-    ("MoorDyn/BodiesAndRods.dat", "rod 2 (Body1Pinned, line 21)"),
-    ("MoorDyn/body_tests/pinnedBody.txt", "body 1 (CoupledPinned, line 14)"),
-])
-def test_public_decks_with_pinned_members_are_refused(deck, named, tmp_path):
-    """Pinned rods and pinned coupled bodies cannot be represented: exit 2 naming them."""
-    result = CliRunner().invoke(cli, ["convert", str(PUBLIC / deck), "--out",
-                                      str(tmp_path / "c.yaml")])
+def test_public_deck_with_a_rod_pinned_to_a_body_is_refused(tmp_path):
+    """BodiesAndRods.dat's rod 2 is pinned to body 1 (Body1Pinned), which moorline cannot
+    represent (a pin on another body): exit 2 naming it."""
+    result = CliRunner().invoke(cli, ["convert", str(PUBLIC / "MoorDyn/BodiesAndRods.dat"),
+                                      "--out", str(tmp_path / "c.yaml")])
     assert result.exit_code == 2
-    assert named in result.output and "cannot be represented" in result.output
+    assert "rod 2 (Body1Pinned, line 21)" in result.output
+    assert "cannot be represented" in result.output
+
+
+def test_public_coupled_pinned_body_deck_converts_solves_and_runs(tmp_path):
+    """pinnedBody.txt (a CoupledPinned body carrying a rod) sets WtrDnsty 0, a vacuum, which
+    moorline's cases refuse (water_density > 0): exit 2 naming the option. With water
+    (WtrDnsty 1025, the only change) it converts: the body is pinned at its reference point,
+    its statics converge with the rod hanging straight down and the pin holding its weight
+    less its buoyancy, and a short dynamics runs."""
+    import json
+
+    from moorline.model import DynamicsSettings
+    from moorline.solvers.dynamics import simulate
+    from moorline.solvers.statics import solve_statics
+
+    deck = PUBLIC / "MoorDyn/body_tests/pinnedBody.txt"
+    runner = CliRunner()
+    refused = runner.invoke(cli, ["convert", str(deck), "--out", str(tmp_path / "v.yaml")])
+    assert refused.exit_code == 2 and "option rho must be positive, got 0" in refused.output
+    wet = tmp_path / "pinnedBody.txt"
+    wet.write_text(deck.read_text().replace("0.0     WtrDnsty", "1025    WtrDnsty"))
+    out = tmp_path / "case.yaml"
+    result = runner.invoke(cli, ["convert", str(wet), "--out", str(out), "--quiet"])
+    assert result.exit_code == 0, result.output
+    system = load_case(out)
+    (name, body), = system.bodies.items()
+    assert body.kind == "pinned" and body.position == (0.0, 0.0, -5.0)
+    statics = runner.invoke(cli, ["statics", str(out), "--out", str(tmp_path / "o"),
+                                  "--json", "--quiet", "--no-plots"])
+    assert statics.exit_code == 0, statics.output
+    summary = json.loads(statics.stdout)
+    assert summary["converged"] is True
+    weight = 5e3 * 10 * 9.80665 - 1025 * 9.80665 * np.pi * 10  # rod of 5 t/m, d 2 m, 10 m
+    assert summary["bodies"][name]["pin_reaction"] == pytest.approx([0, 0, weight],
+                                                                     rel=1e-9, abs=1e-6)
+    run = simulate(system, DynamicsSettings(duration=2.0, dt=0.05), initial=solve_statics(system))
+    assert run.success, run.message
 
 
 def test_coupled_body_stiffness_against_moorpy(tmp_path):

@@ -291,3 +291,15 @@ def test_pinned_body_step_tangent_matches_finite_differences():
     assert np.allclose(K[np.ix_(free, free)], fd[np.ix_(free, free)], rtol=1e-5,
                        atol=1e-6 * np.abs(K).max())
     assert not K[np.ix_(held, free)].any() and not K[np.ix_(free, held)].any()
+
+
+def test_modal_analysis_refuses_pinned_bodies():
+    """Modal (and strumming, stochastic) matrices have no held body dofs: a clear error
+    naming the pinned body, not spurious modes."""
+    from moorline.errors import CaseError
+    from moorline.solvers.modal import solve_modes
+
+    system = _accelerating_pin(0.0, 1.0, 0.1)
+    system = replace(system, bodies={"pin": replace(system.bodies["pin"], motion=None)})
+    with pytest.raises(CaseError, match=r"pinned bodies \(pin\)"):
+        solve_modes(system)

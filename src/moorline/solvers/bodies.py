@@ -209,6 +209,18 @@ class BodyDofs:
                    BlockPattern(mesh.pattern_pairs, ext), ext, held, pinned)
 
 
+def refuse_pinned(mesh: Mesh, analysis: str) -> None:
+    """A :class:`~moorline.errors.CaseError` naming the pinned bodies of ``mesh`` for an
+    ``analysis`` that has no held body dofs (modal, stochastic, strumming, harmonic)."""
+    from ..errors import CaseError
+
+    pinned = [b.name for b in mesh.bodies if b.kind == "pinned"]
+    if pinned:
+        raise CaseError(f"{analysis} analyses do not support pinned bodies ("
+                        f"{', '.join(pinned)}): use statics or dynamics",
+                        field=f"bodies.{pinned[0]}.kind")
+
+
 def hold_dofs(K: sp.spmatrix, held: NDArray[np.bool_], scale: float = 1.0) -> sp.csc_matrix:
     """``K`` with the ``held`` unknowns' rows and columns replaced by ``scale`` times the
     identity (a pinned body's translations): with a zero residual there, a solve leaves
