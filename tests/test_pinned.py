@@ -18,6 +18,7 @@ from moorline.model import (
     Body,
     DynamicsSettings,
     Environment,
+    Hydrostatics,
     Line,
     LineType,
     Motion,
@@ -344,3 +345,72 @@ def test_accelerating_pin_against_moordyn_on_pinned_body_deck():
     assert 0.5 * (ours.max() + ours.min()) == pytest.approx(
         0.5 * (theirs.max() + theirs.min()), abs=2e-5)
     assert _period(run.time, ours) == pytest.approx(_period(times, theirs), rel=1e-4)
+
+
+def _hosted() -> System:
+    """A free buoy (matrix hydrostatics, four lines) carrying a rod pinned to it 1 m off its
+    axis: the rod hangs 8 m below, a line from its end to the seabed pulls it over."""
+    host = Body("host", "free", position=(0.0, 0.0, 0.0), mass=4.0e5,
+                center_of_gravity=(0.0, 0.0, -1.0),
+                inertia=((5e6, 0, 0), (0, 5e6, 0), (0, 0, 8e6)),
+                hydrostatics=Hydrostatics("matrix", volume=4.6e2, center_of_buoyancy=(0, 0, -2.0),
+                                          stiffness=tuple(tuple(float(v) for v in row) for row in
+                                                          np.diag([0, 0, 8e5, 2e7, 2e7, 0]))))
+    rod = Body("rod", "pinned", position=(1.0, 0.5, -3.0), rotation=(0.0, math.pi / 2, 0.0),
+               mass=3.0e3, center_of_gravity=(4.0, 0.0, 0.0),
+               inertia=((50.0, 0, 0), (0, 1.6e4, 0), (0, 0, 1.6e4)),
+               hydrostatics=Hydrostatics("matrix", volume=1.0, center_of_buoyancy=(4.0, 0, 0)),
+               pin_body="host")
+    lt = LineType("chain", 0.1, 60.0, 5e8, Cd=1.0)
+    points = {"tip": Point("tip", "body", (8.0, 0.0, 0.0), body="rod"),
+              "foot": Point("foot", "fixed", (30.0, 0.0, -60.0))}
+    lines = {"pull": Line("pull", "chain", 62.0, 10, "foot", "tip")}
+    for k in range(4):
+        c, s = math.cos(k * math.pi / 2 + 0.3), math.sin(k * math.pi / 2 + 0.3)
+        points[f"f{k}"] = Point(f"f{k}", "body", (5 * c, 5 * s, -2.0), body="host")
+        points[f"a{k}"] = Point(f"a{k}", "fixed", (200 * c, 200 * s, -80.0))
+        lines[f"m{k}"] = Line(f"m{k}", "chain", 215.0, 12, f"a{k}", f"f{k}")
+    env = Environment(depth=80.0, water_density=RHO, gravity=G)
+    return System("hosted", environment=env, line_types={"chain": lt}, points=points,
+                  lines=lines, bodies={"host": host, "rod": rod})
+
+
+def test_pin_on_a_free_body_statics_tangent_matches_finite_differences():
+    """A rod pinned to a free buoy: the coupled statics' tangent (the rod's translation
+    following the buoy, the pin force moved onto it) against central differences of the
+    residual, off equilibrium."""
+    from moorline.mesh import discretize
+    from moorline.solvers.bodies import BodyState, place_slaves, spin_projection
+    from moorline.solvers.coupled_statics import CoupledStatics
+    from moorline.solvers.initial_shape import initial_positions
+
+    system = _hosted()
+    mesh = discretize(system)
+    problem = CoupledStatics(mesh)
+    poses = BodyState.initial(mesh).moved(np.array([[0.5, -0.3, 0.2], [0.0, 0.0, 0.0]]),
+                                          np.array([[0.05, -0.04, 0.1], [0.1, -0.2, 0.05]]))
+    poses = problem.layout.place_pins(poses)
+    x = place_slaves(mesh, poses, initial_positions(system, mesh))
+    x[mesh.free_nodes] += np.random.default_rng(4).normal(scale=0.05,
+                                                           size=x[mesh.free_nodes].shape)
+    R, state = problem.residual(x, poses)
+    K = problem.tangent(x, poses, state).toarray()
+    held = problem.held
+    n = problem.n_unknowns
+    fd = np.zeros_like(K)
+    for j in np.flatnonzero(~held):
+        du = np.zeros(n)
+        du[j] = 1e-6
+        plus = problem.residual(*problem.update(x, poses, du))[0]
+        minus = problem.residual(*problem.update(x, poses, -du))[0]
+        fd[:, j] = -(plus - minus) / 2e-6
+    # the rod's spin about its own axis is projected out (a mechanism): compare across it
+    assert problem.layout.spin.tolist() == [False, True]
+    S = spin_projection(problem.layout, poses)[0].toarray()
+    K, fd = S @ K @ S, S @ fd @ S
+    free = ~held
+    Kf, fdf = K[np.ix_(free, free)], fd[np.ix_(free, free)]
+    bad = np.argwhere(~np.isclose(Kf, fdf, rtol=1e-4, atol=1e-5 * np.abs(K).max()))
+    assert not len(bad), [(i, j, Kf[i, j], fdf[i, j]) for i, j in bad[:6]]
+    host, rod = problem.body_dof
+    assert np.abs(K[host:host + 6, rod + 3:rod + 6]).max() > 1e4  # the pin couples them

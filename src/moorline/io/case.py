@@ -316,6 +316,14 @@ def _cross_check(spec: CaseSpec, file: str) -> None:
             fail(f"only body points take 'body'; this point is {point.kind}",
                  f"points.{name}.body")
     for name, body in bodies.items():
+        if body.pin_body is not None:
+            parent = bodies.get(body.pin_body)
+            if body.kind != "pinned" or body.motion is not None:
+                fail("only a pinned body without a motion takes a pin_body",
+                     f"bodies.{name}.pin_body")
+            if parent is None or body.pin_body == name or parent.kind == "pinned":
+                fail(f"pin_body {body.pin_body!r} must be another body, free or fixed "
+                     f"(bodies: {', '.join(bodies)})", f"bodies.{name}.pin_body")
         if body.motion is not None:
             if body.kind != "pinned":
                 fail(f"only pinned bodies take a motion (of their pin); this body is "
@@ -637,7 +645,7 @@ def _body(name: str, spec: Any, source: str | None, environment: Environment,
         force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"),
         drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads,
         excitation=excitation, radiation=radiation,
-        motion=_motion(spec.motion, source, f"bodies.{name}.motion"))
+        motion=_motion(spec.motion, source, f"bodies.{name}.motion"), pin_body=spec.pin_body)
 
 
 def _waves(spec: Any) -> Waves:

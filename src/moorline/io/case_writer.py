@@ -150,6 +150,8 @@ def _body(b: Body) -> dict[str, Any]:
         data["force_history"] = _motion(b.force_history)
     if b.motion is not None:
         data["motion"] = _motion(b.motion)
+    if b.pin_body is not None:
+        data["pin_body"] = b.pin_body
     return data
 
 

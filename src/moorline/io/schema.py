@@ -443,6 +443,7 @@ class BodySpec(_Spec):
     kind: Literal["free", "fixed", "pinned"] = "free"
     position: Vector3
     motion: MotionSpec | None = None
+    pin_body: str | None = None
     rotation: Annotated[list[quantity("angle")], AfterValidator(_three)] = (0.0, 0.0, 0.0)
     mass: quantity("mass", ge=0.0)
     center_of_gravity: Vector3 = (0.0, 0.0, 0.0)

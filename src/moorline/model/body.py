@@ -135,6 +135,10 @@ class Body:
     motion
         A pinned body only: a displacement history of its pin (added to ``position`` in
         dynamics, as a prescribed point's ``motion``); ``None``: the pin stays put.
+    pin_body
+        A pinned body only: the free or fixed body its pin sits on (MoorDyn's
+        ``Body<k>Pinned`` rods); ``position`` is then where the pin is at both bodies' initial
+        poses, and the pin moves with that body. ``None``: the pin is held in space.
     additional_damping
         Constant 6x6 linear damping added to the radiation damping (viscous damping not in a
         potential-flow table, e.g. OC3-Hywind's additional linear damping, Jonkman 2010
@@ -166,11 +170,15 @@ class Body:
     radiation: RadiationTable | None = None
     additional_damping: Matrix6 | None = None
     motion: Motion | None = None
+    pin_body: str | None = None
 
     def __post_init__(self) -> None:
-        if self.motion is not None and self.kind != "pinned":
-            raise ValueError(f"body {self.name!r}: only a pinned body takes a motion (of its "
-                             f"pin), this one is {self.kind}")
+        for key in ("motion", "pin_body"):
+            if getattr(self, key) is not None and self.kind != "pinned":
+                raise ValueError(f"body {self.name!r}: only a pinned body takes a {key}, this "
+                                 f"one is {self.kind}")
+        if self.motion is not None and self.pin_body is not None:
+            raise ValueError(f"body {self.name!r}: a pin on a body moves with it: no motion")
         if self.radiation is not None and (self.added_mass is not None
                                            or self.damping is not None):
             raise ValueError(f"body {self.name!r}: give either a radiation table or "

@@ -24,6 +24,7 @@ from .bodies import (
     hold_dofs,
     place_slaves,
     skew,
+    spin_projection,
     transformation,
     world_arms,
 )
@@ -47,6 +48,7 @@ class CoupledStatics:
                                                        layout.n_unknowns)
         self.ext_dofs, self.pattern, self.ext_map = layout.ext_dofs, layout.pattern, layout.ext_map
         self.held = layout.held
+        self.layout = layout
 
     def residual(self, x: FloatArray, poses: BodyState) -> tuple[FloatArray, ForceState]:
         """Out-of-balance forces at the free node dofs, then force and moment on every free
@@ -57,7 +59,10 @@ class CoupledStatics:
         for b, generalized in enumerate(self.body_forces(state, poses)):
             if self.body_dof[b] >= 0:
                 out[self.body_dof[b]: self.body_dof[b] + 6] = generalized
+        self.layout.transfer(out, self.layout.pin_arms(poses))
         out[self.held] = 0.0
+        if self.layout.spin.any():
+            out = spin_projection(self.layout, poses)[0] @ out
         return out, state
 
     def body_forces(self, state: ForceState, poses: BodyState) -> FloatArray:
@@ -94,6 +99,14 @@ class CoupledStatics:
                 block[3:, 3:] -= skew(f) @ skew(arm)
             K[d:d + 6, d:d + 6] = K[d:d + 6, d:d + 6].toarray() + block
         K = K.tocsc()
+        if self.layout.chains:  # pins on free bodies: their translations follow the hosts
+            full = np.zeros(self.n_unknowns)
+            for b, generalized in enumerate(self.body_forces(state, poses)):
+                if self.body_dof[b] >= 0:
+                    full[self.body_dof[b]: self.body_dof[b] + 6] = generalized
+            pins = self.layout.pin_arms(poses)
+            Q = self.layout.chain_map(pins)
+            K = (Q.T @ K @ Q + self.layout.arm_turning(full, pins)).tocsc()
         # a body free to turn about an axis with nothing resisting it (yaw of a buoy on one
         # line) is a mechanism of the statics: a vanishing regularization of the body
         # diagonal keeps the Newton matrix solvable without changing the equilibrium
@@ -104,12 +117,17 @@ class CoupledStatics:
             K = K + sp.csc_matrix((np.full(body.size, 1e-9 * largest), (body, body)),
                                   shape=K.shape)
             K = hold_dofs(K, self.held, largest)  # a pinned body's translations
+            if self.layout.spin.any():  # a pinned rod's spin about its axis
+                S, N = spin_projection(self.layout, poses)
+                K = (S @ K @ S + largest * N).tocsc()
         return K
 
     def update(self, x: FloatArray, poses: BodyState,
                du: FloatArray) -> tuple[FloatArray, BodyState]:
         """Apply a step of the unknowns (a pinned body's translations stay)."""
         du = np.where(self.held, 0.0, du)
+        if self.layout.spin.any():
+            du = spin_projection(self.layout, poses)[0] @ du
         x = x + scatter_free(du[: self.n_free], self.mesh.dof_of_node)
         nb = len(self.bodies)
         dr, dtheta = np.zeros((nb, 3)), np.zeros((nb, 3))
@@ -117,7 +135,7 @@ class CoupledStatics:
             d = self.body_dof[b]
             if d >= 0:
                 dr[b], dtheta[b] = du[d:d + 3], du[d + 3:d + 6]
-        poses = poses.moved(dr, dtheta)
+        poses = self.layout.place_pins(poses.moved(dr, dtheta))
         return place_slaves(self.mesh, poses, x), poses
 
 
