@@ -107,7 +107,7 @@ class BodyModel:
         if pinned.any():
             vel[pinned, :3], acc[pinned, :3] = v[pinned], a[pinned]
         moved = b0.moved(dq[:, :3], dq[:, 3:])
-        return BodyState(moved.r, moved.R, vel, acc)
+        return self.layout.place_pins(BodyState(moved.r, moved.R, vel, acc))
 
     def pin_state(self, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Position, velocity and acceleration of every pinned body's pin at ``t``
@@ -139,21 +139,24 @@ class BodyModel:
             da = ca dr + ca d alpha x arm + alpha x d arm + d omega x (omega x arm)
                  + omega x (d omega x arm) + omega x (omega x d arm)
         """
-        m = self.mesh
-        n = len(m.slave_node)
-        bx, bv, ba = (np.zeros((n, 3, 6)) for _ in range(3))
-        eye = np.eye(3)
-        for k in range(n):
-            b = m.slave_body[k]
-            A = skew(arms[k])
-            W, Al = skew(bs.vel[b, 3:]), skew(bs.acc[b, 3:])
-            d_arm = -A @ rb.left_jacobian(dq[b, 3:])
-            bx[k] = np.hstack((eye, d_arm))
-            bv[k] = np.hstack((cv * eye, -cv * A + W @ d_arm))
-            wa = skew(np.cross(bs.vel[b, 3:], arms[k]))
-            ba[k] = np.hstack((ca * eye, -ca * A + Al @ d_arm - cv * (wa + W @ A)
-                               + W @ W @ d_arm))
-        return bx, bv, ba
+        return _kinematic_blocks(bs, self.mesh.slave_body, arms, dq, ca, cv)
+
+    def pin_blocks(self, bs: BodyState, dq: FloatArray, ca: float, cv: float
+                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """:meth:`kinematic_blocks` of every chained pinned body's pin on its host (nb, 3, 6)
+        each, zeros for the other bodies: how the pinned body's origin moves with its
+        host's step."""
+        nb = len(self.bodies)
+        out = [np.zeros((nb, 3, 6)) for _ in range(3)]
+        chains = self.layout.chains
+        if chains:
+            child = np.array([c for c, _ in chains])
+            host = np.array([p for _, p in chains])
+            arms = self.layout.pin_arms(bs)[child]
+            for whole, part in zip(out, _kinematic_blocks(bs, host, arms, dq, ca, cv),
+                                   strict=True):
+                whole[child] = part
+        return out[0], out[1], out[2]
 
     # ------------------------------------------------------------------ radiation memory
     def advance_memory(self, memory: tuple | None, b0: BodyState, b1: BodyState,
@@ -210,19 +213,29 @@ class BodyModel:
     def blocks(self, bs: BodyState, node_forces: FloatArray, arms: FloatArray, t: float,
                ca: float, cv: float, ck: float, dq: FloatArray | None = None,
                h: float | None = None) -> list[FloatArray]:
-        """Body blocks (6, 6) of the effective tangent ``ca M + cv C + ck K`` of the free
-        bodies: rigid mass and added mass, damping (with the radiation memory's ``d mu /
-        d v1`` over the step ``h``) and drag, hydrostatics, the rotation of the
-        attached nodes' moment arms under their forces ``node_forces`` (as weighted in the
-        residual), and the exact derivative of the rigid-body inertia (never HHT-weighted):
-        ``ca d_acc + (cv / ck) d_vel + d_rot``. Derivatives with respect to a rotation are
+        """The body blocks (6, 6) of the effective tangent (:meth:`block_parts` combined:
+        ``ca J_a + (cv / ck) J_v + J_x``)."""
+        return [ca * a + (cv / ck) * v + x for x, v, a in
+                self.block_parts(bs, node_forces, arms, t, ck, dq, h)]
+
+    def block_parts(self, bs: BodyState, node_forces: FloatArray, arms: FloatArray,
+                    t: float, ck: float, dq: FloatArray | None = None,
+                    h: float | None = None) -> list[tuple[FloatArray, FloatArray, FloatArray]]:
+        """Per body, the parts ``(J_x, J_v, J_a)`` of its block (6, 6) of the effective
+        tangent ``ca M + cv C + ck K`` by what they multiply (the step's change of position,
+        of velocity over ``d vel / d dq``, of acceleration over ``d acc / d dq``): rigid mass
+        and added mass, damping (with the radiation memory's ``d mu / d v1`` over the step
+        ``h``) and drag, hydrostatics, the rotation of the attached nodes' moment arms under
+        their forces ``node_forces`` (as weighted in the residual), and the exact derivative
+        of the rigid-body inertia (never HHT-weighted): ``ca d_acc + (cv / ck) d_vel +
+        d_rot``. Derivatives with respect to a rotation are
         taken for ``R <- exp([e x]) R`` and chained to the step's rotation vector ``dq`` by the
         left Jacobian ``J(dq)``."""
         out = []
         m = self.mesh
         for b, body in enumerate(self.bodies):
             if self.body_dof[b] < 0:
-                out.append(np.zeros((6, 6)))
+                out.append((np.zeros((6, 6)),) * 3)
                 continue
             stiff = body_loads(body, bs.r[b], bs.R[b], m.gravity, m.water_density)[1]
             mine = m.slave_body == b
@@ -239,7 +252,7 @@ class BodyModel:
             turned = ck * stiff + arm_terms + d_rot  # derivatives for R <- exp([e x]) R
             if dq is not None:
                 turned[:, 3:] = turned[:, 3:] @ rb.left_jacobian(dq[b, 3:])
-            out.append(ca * (d_acc + self.added[b]) + cv * damp + (cv / ck) * d_vel + turned)
+            out.append((turned, ck * damp + d_vel, d_acc + self.added[b]))
         return out
 
     def mass_and_stiffness(self, bs: BodyState) -> list[tuple[FloatArray, FloatArray]]:
@@ -290,6 +303,27 @@ class BodyModel:
             return np.zeros(6)
         a, w, shift, amp, phase, ramp_time = terms
         return rb.wave_excitation(t, a, w, shift, amp, phase, ramp(t, ramp_time)[0])
+
+
+def _kinematic_blocks(bs: BodyState, body: NDArray[np.int64], arms: FloatArray,
+                      dq: FloatArray, ca: float, cv: float
+                      ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Position, velocity and acceleration blocks (n, 3, 6) of points at world ``arms`` on
+    the bodies ``body`` (:meth:`BodyModel.kinematic_blocks`)."""
+    n = len(body)
+    bx, bv, ba = (np.zeros((n, 3, 6)) for _ in range(3))
+    eye = np.eye(3)
+    for k in range(n):
+        b = body[k]
+        A = skew(arms[k])
+        W, Al = skew(bs.vel[b, 3:]), skew(bs.acc[b, 3:])
+        d_arm = -A @ rb.left_jacobian(dq[b, 3:])
+        bx[k] = np.hstack((eye, d_arm))
+        bv[k] = np.hstack((cv * eye, -cv * A + W @ d_arm))
+        wa = skew(np.cross(bs.vel[b, 3:], arms[k]))
+        ba[k] = np.hstack((ca * eye, -ca * A + Al @ d_arm - cv * (wa + W @ A)
+                           + W @ W @ d_arm))
+    return bx, bv, ba
 
 
 def pin_state(bodies, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
