@@ -579,9 +579,9 @@ def _rods_deck(tmp_path: Path, rods: list[str]) -> tuple[Path, str]:
     return path, text
 
 
-def test_rods_pinned_to_bodies_are_refused_at_once(tmp_path: Path) -> None:
-    """Two Body<k>Pinned rods (a pin on another body): one error naming both, each with its
-    line, before the lines are read."""
+def test_rods_pinned_to_a_pinned_body_are_refused_at_once(tmp_path: Path) -> None:
+    """Two Body<k>Pinned rods on a CoupledPinned body (a pin on a pinned body): one error
+    naming both, each with its line, before the lines are read."""
     path, text = _rods_deck(tmp_path, ["1 rod Body1Pinned 0 0 -1 0 0 -5 4 -",
                                        "2 rod Body1Pin 1 0 -1 1 0 -5 4 -"])
     with pytest.raises(CaseError) as info:
@@ -589,7 +589,7 @@ def test_rods_pinned_to_bodies_are_refused_at_once(tmp_path: Path) -> None:
     reason = info.value.reason
     assert f"rod 1 (Body1Pinned, line {_line_of(text, '1 rod Body1Pinned')})" in reason
     assert f"rod 2 (Body1Pin, line {_line_of(text, '2 rod Body1Pin')})" in reason
-    assert "rods pinned to a body" in reason and "cannot be represented" in reason
+    assert "rods pinned to a pinned body" in reason and "cannot be represented" in reason
 
 
 def test_pinned_rods_and_coupled_pinned_bodies_become_pinned_bodies(tmp_path: Path) -> None:

@@ -460,3 +460,30 @@ def test_pin_on_a_free_body_step_tangent_matches_finite_differences(scheme, zeta
     Kf, fdf = K[np.ix_(free, free)], fd[np.ix_(free, free)]
     bad = np.argwhere(~np.isclose(Kf, fdf, rtol=1e-5, atol=1e-6 * np.abs(K).max()))
     assert not len(bad), [(i, j, Kf[i, j], fdf[i, j]) for i, j in bad[:6]]
+
+
+def test_rod_pinned_to_a_free_buoy_balances_forces_and_moments():
+    """The buoy and the rod pinned to it at equilibrium: the pin is internal, so the loads
+    written here (weights, constant buoyancies, the buoy's heave restoring ``K33 dz``) and
+    the lines' forces on both bodies sum to zero; the rod's moments about its pin sum to
+    zero; and the pin sits on the buoy where it was put."""
+    system = _hosted()
+    static = solve_statics(system)
+    assert static.success, static.message
+    host, rod = system.bodies["host"], system.bodies["rod"]
+    up = np.array([0.0, 0.0, 1.0])
+    rise = static.body_position("host")[2] - host.position[2]
+    host_load = (RHO * G * host.hydrostatics.volume - host.mass * G - 8e5 * rise) * up
+    rod_load = (RHO * G * rod.hydrostatics.volume - rod.mass * G) * up
+    mooring = sum(static.end_force(f"m{k}", "b") for k in range(4))
+    pull = static.end_force("pull", "b")
+    scale = host.mass * G
+    assert np.abs(host_load + rod_load + mooring + pull).max() < 1e-6 * scale
+    pin = static.body_position("rod")
+    R_host = rotation_matrix(static.body_rotation("host"))
+    assert pin == pytest.approx(static.body_position("host") + R_host @ [1.0, 0.5, -3.0],
+                                abs=1e-9)
+    axis = rotation_matrix(static.body_rotation("rod")) @ np.array([1.0, 0.0, 0.0])
+    moment = np.cross(8.0 * axis, pull) + np.cross(4.0 * axis, rod_load)
+    assert np.abs(moment).max() < 1e-6 * 8.0 * np.linalg.norm(pull)
+    assert static.pin_reaction("rod") == pytest.approx(-(pull + rod_load), abs=1e-6 * scale)

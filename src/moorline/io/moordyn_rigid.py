@@ -52,8 +52,9 @@ The mapping to moorline (:class:`moorline.model.Body`):
   The rod's spin about its own axis keeps MoorDyn's inertia ``m d^2 / 8`` (a solid cylinder's;
   with axial added mass none, as MoorDyn's nodes sit on the axis) and has no stiffness: the
   coupled statics' vanishing body regularization keeps it solvable;
-- ``Body<k>Pinned`` rods (pinned to a body) cannot be represented (a pin on another body):
-  an error naming them;
+- ``Body<k>Pinned`` rods (pinned to a body) -> pinned bodies whose pin (end A, body frame
+  coordinates as MoorDyn's) sits on that body (``pin_body``); on a ``CoupledPinned`` body
+  they cannot be represented (a pin on a pinned body): an error naming them;
 - a deck's ``Coupled`` points and no body: ``moorline stiffness`` takes them as one rigid
   group (its default); ``moorline convert --vessel-body`` (:func:`vessel_body`) holds them by
   one fixed body at the origin instead, so that the statics summary reports its 6x6.
@@ -120,6 +121,7 @@ class _Rigid:
     drag: FloatArray = field(default_factory=lambda: np.zeros(3))
     stiffness: FloatArray = field(default_factory=lambda: np.zeros((6, 6)))
     has_rods: bool = False
+    pin_body: str | None = None
 
     def add_mass(self, mass: float, at: FloatArray, inertia: FloatArray | None = None) -> None:
         """A mass at body-frame point ``at`` with its own inertia about it (body frame)."""
@@ -159,7 +161,8 @@ class _Rigid:
                     position=_vec(self.position), rotation=_vec(rotation_vector(self.R)),
                     mass=self.mass, center_of_gravity=_vec(cg),
                     inertia=tuple(_vec(r) for r in inertia), added_mass=added,
-                    hydrostatics=hydro, drag_area=_vec(self.drag), Cd=1.0)
+                    hydrostatics=hydro, drag_area=_vec(self.drag), Cd=1.0,
+                    pin_body=self.pin_body)
 
 
 def _vec(v: Any) -> tuple[float, float, float]:
@@ -484,9 +487,27 @@ def parse_rods(rows: list[Any], types: Mapping[str, RodType], rho: float, g: flo
         label = f"rod {number} ({tok[2]}, line {row.lineno})"
         name = f"rod{number}"
         if word == "BODY" and after in ("PINNED", "PIN"):
-            on_bodies.append(label)
-            continue
-        if word == "BODY":
+            host = parts.body_ids.get(int(digits)) if digits else None
+            if host is None:
+                raise fail(f"rod {number}: no body {tok[2]!r} (bodies: "
+                           f"{', '.join(map(str, parts.body_ids)) or 'none'})", row)
+            if parts.rigid[host].kind == "pinned":
+                on_bodies.append(label)
+                continue
+            length, t = _rod_geometry(a, b)
+            if length == 0:
+                raise fail(f"rod {number}: a pinned rod needs a length (Xa Ya Za and Xb Yb Zb "
+                           "coincide)", row)
+            parent = parts.rigid[host]
+            rigid = _Rigid(name, "pinned", parent.position + parent.world_arm(a),
+                           parent.R @ _align_x(t), pin_body=host)
+            tip = np.array([length, 0.0, 0.0])
+            add_rod(rigid, rod, np.zeros(3), tip, rho, g, label, parts.warnings)
+            parts.rigid[name] = rigid
+            for end, at in (("A", np.zeros(3)), ("B", tip)):
+                parts.rod_points[f"{name}{end}"] = Point(f"{name}{end}", "body", _vec(at),
+                                                         body=name)
+        elif word == "BODY":
             body = parts.body_ids.get(int(digits)) if digits else None
             if body is None:
                 raise fail(f"rod {number}: no body {tok[2]!r} (bodies: "
@@ -537,10 +558,8 @@ def parse_rods(rows: list[Any], types: Mapping[str, RodType], rho: float, g: flo
         parts.rod_ends[(number, "A")] = f"{name}A"
         parts.rod_ends[(number, "B")] = f"{name}B"
     if on_bodies:
-        parts.errors.append("rods pinned to a body (Body<k>Pinned: end A on the body, rotation "
-                            "free) cannot be represented (moorline's pinned bodies have their "
-                            "pin fixed or moving on its own, not on another body): "
-                            + "; ".join(on_bodies))
+        parts.errors.append("rods pinned to a pinned body (a CoupledPinned body) cannot be "
+                            "represented (a pin on a pinned body): " + "; ".join(on_bodies))
 
 
 def _align_x(t: FloatArray) -> FloatArray:
