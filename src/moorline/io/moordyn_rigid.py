@@ -50,8 +50,10 @@ The mapping to moorline (:class:`moorline.model.Body`):
   with its origin, the pin, at end A and its x axis along the rod, the same contributions as a
   free rod; a coupled pin is held at the deck's position (as ``Coupled`` rods and bodies are).
   The rod's spin about its own axis keeps MoorDyn's inertia ``m d^2 / 8`` (a solid cylinder's;
-  with axial added mass none, as MoorDyn's nodes sit on the axis) and has no stiffness: the
-  coupled statics' vanishing body regularization keeps it solvable;
+  with axial added mass none, as MoorDyn's nodes sit on the axis) and meets no moment and no
+  stiffness: the coupled statics project it out (:func:`moorline.solvers.bodies.
+  spin_projection`); the rod's drag, which moorline would apply at its pin, is dropped (a
+  warning);
 - ``Body<k>Pinned`` rods (pinned to a body) -> pinned bodies whose pin (end A, body frame
   coordinates as MoorDyn's) sits on that body (``pin_body``); on a ``CoupledPinned`` body
   they cannot be represented (a pin on a pinned body): an error naming them;
