@@ -33,7 +33,7 @@ RHO, G = 1025.0, 9.80665
 
 
 def rod_deck(path: Path, *, d: float, mpl: float, Ca: float, a: tuple, b: tuple,
-             lines: str = "", points: str = "") -> Path:
+             lines: str = "", points: str = "", segments: int = 10, options: str = "") -> Path:
     """A MoorDyn v2 deck with one ``Pinned`` rod (no drag) from ``a`` to ``b``, a dummy wire
     between two fixed points far away (a deck needs a line) and the given extra points and
     lines."""
@@ -49,7 +49,7 @@ can {d!r} {mpl!r} 0 {Ca!r} 0 0
 --- RODS ---
 ID RodType Attachment Xa Ya Za Xb Yb Zb NumSegs Outputs
 (#) (-) (-) (m) (m) (m) (m) (m) (m) (-) (-)
-1 can Pinned {a[0]!r} {a[1]!r} {a[2]!r} {b[0]!r} {b[1]!r} {b[2]!r} 10 -
+1 can Pinned {a[0]!r} {a[1]!r} {a[2]!r} {b[0]!r} {b[1]!r} {b[2]!r} {segments} -
 --- POINTS ---
 ID Type X Y Z M V CdA Ca
 (#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)
@@ -63,7 +63,7 @@ ID LineType AttachA AttachB UnstrLen NumSegs Outputs
 {RHO!r} WtrDnsty
 {G!r} g
 100 WtrDpth
---- END ---
+{options}--- END ---
 """
     path.write_text(text, encoding="utf-8")
     return path
@@ -147,6 +147,55 @@ def test_pinned_rod_held_by_a_line_balances_its_moments_about_the_pin(tmp_path):
     assert np.abs(moment).max() < 1e-6 * scale
     assert static.pin_reaction("rod1") == pytest.approx(-(rope + weight + buoyancy),
                                                         abs=1e-6 * scale / L)
+
+
+def test_pinned_rod_pendulum_against_moordyn():
+    """The pendulum deck of :func:`test_pinned_rod_pendulum_period_is_the_compound_pendulum_
+    formula` (40 rod segments, no initial-condition solve, ``dtM`` 0.5 ms) in MoorDyn-C and
+    in moorline (dt 0.05 s): periods within 3e-4. Convergence study of MoorDyn's period
+    against the formula at 10, 20, 40 rod segments: +9.13e-4, +2.81e-4, +1.25e-4 (second
+    order: its lumped transverse added mass), extrapolated +7.3e-5 (the amplitude's
+    ``theta0^2 / 16 = 7.6e-5``); moorline +1.7e-4 at dt 0.05 s (its period elongation,
+    +9.3e-5 at 0.02 s). MoorDyn's remaining discretization (5e-5) and moorline's step error
+    (1e-4) give the tolerance."""
+    moordyn = pytest.importorskip("moordyn")
+    import tempfile
+
+    from moorline.compare.moordyn_runner import silenced_fd
+
+    L, tilt = 10.0, math.radians(2.0)
+    with tempfile.TemporaryDirectory() as folder:
+        deck = rod_deck(Path(folder) / "pendulum.dat", d=0.5, mpl=400.0, Ca=1.0,
+                        a=(0.0, 0.0, -20.0),
+                        b=(L * math.sin(tilt), 0.0, -20.0 - L * math.cos(tilt)), segments=40,
+                        options="0 TmaxIC\n0.0005 dtM\n")
+        with silenced_fd(1):
+            md = moordyn.Create(str(deck))
+            moordyn.SetVerbosity(md, moordyn.LEVEL_ERR)
+            assert moordyn.Init(md, [], []) == 0
+            rod = moordyn.GetRod(md, 1)
+            last = moordyn.GetRodN(rod)
+            t, times, theirs = 0.0, [], []
+            try:
+                for _ in range(400):
+                    moordyn.Step(md, [], [], t, 0.05)
+                    t += 0.05
+                    axis = (np.array(moordyn.GetRodNodePos(rod, last))
+                            - np.array(moordyn.GetRodNodePos(rod, 0)))
+                    times.append(t)
+                    theirs.append(math.atan2(axis[0], -axis[2]))
+            finally:
+                moordyn.Close(md)
+        system = read_moordyn_deck(deck).system
+    body = system.bodies["rod1"]
+    released = solve_statics(replace(system, bodies={"rod1": replace(body, kind="fixed")}))
+    run = simulate(system, DynamicsSettings(duration=20.0, dt=0.05), initial=released)
+    assert run.success, run.message
+    axes = rotation_matrix(run.body_pose[:, 0, 3:])[:, :, 0]
+    ours = np.arctan2(axes[:, 0], -axes[:, 2])
+    assert _period(run.time, ours) == pytest.approx(_period(np.array(times),
+                                                            np.array(theirs)), rel=3e-4)
+    assert ours.max() == pytest.approx(max(theirs), rel=1e-3)
 
 
 def _accelerating_pin(accel: float, duration: float, dt: float) -> System:
