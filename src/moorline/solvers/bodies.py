@@ -178,7 +178,12 @@ class BodyDofs:
     A pinned body keeps its six unknowns, but its three translations are held (``held``):
     they follow the pin, their residual rows (the pin's reaction) are set to zero and their
     rows and columns of the tangent to the identity (:func:`hold_dofs`), so a Newton step
-    leaves them where the pin puts them."""
+    leaves them where the pin puts them. A pin on a free body (``pin_parent``, the pin at
+    ``pin_arm`` in that body's frame) moves with it: the pinned body's translation is a
+    slave of its host's six dofs (:meth:`chain_map`, the master-slave relation of Tuah 1982
+    eq. 3.3.6 applied to the pin), its translational force moves onto the host
+    (:meth:`transfer`). ``spin``: pinned rods whose spin about their own axis is a mechanism
+    (:func:`spin_projection`)."""
 
     n_free: int
     body_dof: NDArray[np.int64]
