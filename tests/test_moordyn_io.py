@@ -13,6 +13,7 @@ import pytest
 from moorline.errors import CaseError
 from moorline.io.moordyn import read_moordyn, read_moordyn_deck, write_moordyn
 from moorline.model import Environment, LineType, Motion, Point, Seabed, System
+from moorline.physics.rigid_body import rotation_matrix
 
 DATA = Path(__file__).parent / "data" / "moordyn"
 OC3 = DATA / "oc3.dat"
@@ -568,26 +569,54 @@ def test_current_profile_statics_match_moordyn_settled_in_the_current(tmp_path: 
         assert abs(np.linalg.norm(dry) / size - 1) > 1e-3  # the current matters here
 
 
-def test_pinned_rods_and_bodies_are_refused_at_once(tmp_path: Path) -> None:
-    """A deck with a pinned rod and a pinned coupled body: one error naming both (each with
-    its line), before the lines are read."""
+def _rods_deck(tmp_path: Path, rods: list[str]) -> tuple[Path, str]:
+    """The OC3 deck with a CoupledPinned body and the given RODS rows."""
     text = OC3.read_text().replace("---------------------- POINTS", "\n".join([
         "---------------------- ROD TYPES ----", "Name Diam Mass Cd Ca CdEnd CaEnd",
         "(-) (m) (kg/m) (-) (-) (-) (-)", "rod 1.0 100 1 1 1 1",
         "---------------------- BODIES ----", "ID Attachment X0 Y0 Z0 r0 p0 y0 M CG I V CdA Ca",
         "(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m2) (m3) (m2) (-)",
-        "1 CoupledPinned 0 0 0 0 0 0 1e3 0 0 1 0 0",
+        "1 CoupledPinned 0 0 -2 0 0 0 1e3 0 0 1 0 0",
         "---------------------- RODS ----", "ID RodType Attachment Xa Ya Za Xb Yb Zb NumSegs",
-        "(#) (-) (-) (m) (m) (m) (m) (m) (m) (-)", "1 rod Body1Pinned 0 0 -1 0 0 -5 4 -",
+        "(#) (-) (-) (m) (m) (m) (m) (m) (m) (-)", *rods,
         "---------------------- POINTS"]))
     path = tmp_path / "bodies.dat"
     path.write_text(text)
+    return path, text
+
+
+def test_rods_pinned_to_a_pinned_body_are_refused_at_once(tmp_path: Path) -> None:
+    """Two Body<k>Pinned rods on a CoupledPinned body (a pin on a pinned body): one error
+    naming both, each with its line, before the lines are read."""
+    path, text = _rods_deck(tmp_path, ["1 rod Body1Pinned 0 0 -1 0 0 -5 4 -",
+                                       "2 rod Body1Pin 1 0 -1 1 0 -5 4 -"])
     with pytest.raises(CaseError) as info:
         read_moordyn(path)
     reason = info.value.reason
-    assert f"body 1 (CoupledPinned, line {_line_of(text, '1 CoupledPinned')})" in reason
     assert f"rod 1 (Body1Pinned, line {_line_of(text, '1 rod Body1Pinned')})" in reason
-    assert "pinned rods" in reason and "cannot be represented" in reason
+    assert f"rod 2 (Body1Pin, line {_line_of(text, '2 rod Body1Pin')})" in reason
+    assert "rods pinned to a pinned body" in reason and "cannot be represented" in reason
+
+
+def test_pinned_rods_and_coupled_pinned_bodies_become_pinned_bodies(tmp_path: Path) -> None:
+    """``Pinned`` and ``CoupledPinned`` rods and a ``CoupledPinned`` body are pinned bodies:
+    a rod's pin at its end A with its x axis along the rod, its mass ``Mass/m L`` at its
+    middle and its submerged volume there; the body keeps its mass and volume (as MoorDyn-C
+    2.7 ``Body.cpp`` does for ``CPLDPIN``), its pin at its reference point."""
+    path, _ = _rods_deck(tmp_path, ["1 rod Pinned 0 0 -10 3 0 -14 4 -",
+                                    "2 rod CoupledPinned 5 0 -1 5 0 -6 4 -"])
+    system = read_moordyn(path)
+    body, rod, coupled = (system.bodies[n] for n in ("body1", "rod1", "rod2"))
+    assert (body.kind, rod.kind, coupled.kind) == ("pinned",) * 3
+    assert body.position == (0.0, 0.0, -2.0) and body.mass == 1e3
+    assert body.hydrostatics.volume == 1.0
+    assert rod.position == (0.0, 0.0, -10.0) and coupled.position == (5.0, 0.0, -1.0)
+    R = rotation_matrix(np.asarray(rod.rotation))
+    assert R @ np.array([1.0, 0.0, 0.0]) == pytest.approx([0.6, 0.0, -0.8], abs=1e-12)
+    assert rod.mass == pytest.approx(100 * 5.0)
+    assert rod.center_of_gravity == pytest.approx((2.5, 0.0, 0.0), abs=1e-12)
+    assert rod.hydrostatics.volume == pytest.approx(math.pi / 4 * 5.0)
+    assert rod.hydrostatics.center_of_buoyancy == pytest.approx((2.5, 0.0, 0.0), abs=1e-12)
 
 
 def test_is_moordyn_deck() -> None:

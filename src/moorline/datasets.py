@@ -50,6 +50,7 @@ _BODY = {
     "body_mooring_force": ("{force} (surge, sway, heave), {force}*{length} (roll, pitch, "
                            "yaw; about the body origin)",
                            "force and moment of the lines on the body"),
+    "body_pin_force": ("{force}", "force of the pin on a pinned body (zero for the others)"),
 }
 
 #: ``units`` (a key of :data:`moorline.io.units.DIMENSIONS`, or a unit text in which
@@ -376,7 +377,15 @@ DYNAMIC_VARIABLES: tuple[RecordVariable, ...] = (
     RecordVariable("body_velocity", ("body", "dof"), _field("body_velocity"), bodies=True),
     RecordVariable("body_mooring_force", ("body", "dof"), _field("body_mooring_force"),
                    bodies=True),
+    RecordVariable("body_pin_force", ("body", "xyz"), lambda r: _pin_force(r), bodies=True),
 )
+
+
+def _pin_force(record: Mapping[str, Any]) -> FloatArray:
+    """The pins' forces of a record (zeros when the record has none: no pinned body)."""
+    if "body_pin_force" in record:
+        return np.asarray(record["body_pin_force"], dtype=float)
+    return np.zeros(np.shape(record["body_pose"])[:-1] + (3,))
 
 
 def record_variables(mesh: Any) -> tuple[RecordVariable, ...]:

@@ -97,6 +97,14 @@ class StaticResult(PlainResult):
         """Rotation vector of a body [rad] (3,)."""
         return self.body_pose[self.mesh.body_names.index(body), 3:].copy()
 
+    def pin_reaction(self, body: str) -> FloatArray:
+        """Force of the pin on a pinned body (3,), world axes [force] (zeros for another
+        body)."""
+        reactions = self.extras.get("pin_reaction")
+        if reactions is None:
+            return np.zeros(3)
+        return np.asarray(reactions[self.mesh.body_names.index(body)], dtype=float).copy()
+
     @property
     def counters(self) -> dict[str, int]:
         """``iterations``, ``load_steps``, ``n_residual``, ``n_tangent``, ``n_factorizations``."""
@@ -270,6 +278,9 @@ class DynamicResult(PlainResult):
         What was solved, for output.
     body_pose, body_velocity, body_mooring_force
         With bodies (n_t, n_bodies, 6), dofs :data:`~moorline.datasets.BODY_DOFS`.
+    body_pin_force
+        With bodies (n_t, n_bodies, 3): the force of the pin on each pinned body (zeros for
+        the other bodies).
     status
         ``completed``, ``failed`` or ``interrupted`` (set from ``success`` when not given); a
         failed or interrupted run holds the records up to its last completed step.
@@ -294,6 +305,7 @@ class DynamicResult(PlainResult):
     body_pose: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
     body_velocity: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
     body_mooring_force: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 6)))
+    body_pin_force: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 3)))
     wave_elevation: FloatArray = field(default_factory=lambda: np.zeros(0))
     status: str = ""
     static_tension: FloatArray = field(default_factory=lambda: np.zeros(0))
@@ -320,11 +332,14 @@ class DynamicResult(PlainResult):
         n_t = len(self.time)
         elevation = (self.wave_elevation if len(self.wave_elevation) == n_t
                      else np.zeros(n_t))
-        return {"position": self.positions, "velocity": self.velocities,
-                "tension": self.tension, "end_force": self.end_force,
-                "wave_elevation": elevation, "body_pose": self.body_pose,
-                "body_velocity": self.body_velocity,
-                "body_mooring_force": self.body_mooring_force}
+        out = {"position": self.positions, "velocity": self.velocities,
+               "tension": self.tension, "end_force": self.end_force,
+               "wave_elevation": elevation, "body_pose": self.body_pose,
+               "body_velocity": self.body_velocity,
+               "body_mooring_force": self.body_mooring_force}
+        if len(self.body_pin_force) == n_t:
+            out["body_pin_force"] = self.body_pin_force
+        return out
 
     def dataset_attrs(self) -> dict[str, Any]:
         """The attributes of the dynamics group (:func:`moorline.datasets.group_attrs` plus

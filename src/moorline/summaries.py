@@ -71,8 +71,8 @@ def statics_summary(result: Any, with_stiffness: bool = True) -> dict[str, Any]:
 
 
 def _bodies_summary(result: Any, with_stiffness: bool) -> dict[str, Any]:
-    """Pose of every body and, at a converged equilibrium, its 6x6 mooring stiffness (lines
-    only) about its origin."""
+    """Pose of every body (and the force of a pinned body's pin on it) and, at a converged
+    equilibrium, its 6x6 mooring stiffness (lines only) about its origin."""
     from .solvers import stiffness
 
     mesh = result.mesh
@@ -81,6 +81,8 @@ def _bodies_summary(result: Any, with_stiffness: bool) -> dict[str, Any]:
         entry: dict[str, Any] = {
             "position": result.body_position(name).tolist(),
             "rotation_deg": np.degrees(result.body_rotation(name)).tolist()}
+        if mesh.bodies[b].kind == "pinned":
+            entry["pin_reaction"] = result.pin_reaction(name).tolist()
         attached = [mesh.point_names[int(n)] for n, k in zip(mesh.slave_node, mesh.slave_body,
                                                               strict=True) if k == b]
         if with_stiffness and result.success and attached:

@@ -345,6 +345,19 @@ def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
             fail(f"only body points take 'body'; this point is {point.kind}",
                  f"points.{name}.body")
     for name, body in bodies.items():
+        if body.pin_body is not None:
+            parent = bodies.get(body.pin_body)
+            if body.kind != "pinned" or body.motion is not None:
+                fail("only a pinned body without a motion takes a pin_body",
+                     f"bodies.{name}.pin_body")
+            if parent is None or body.pin_body == name or parent.kind == "pinned":
+                fail(f"pin_body {body.pin_body!r} must be another body, free or fixed "
+                     f"(bodies: {', '.join(bodies)})", f"bodies.{name}.pin_body")
+        if body.motion is not None:
+            if body.kind != "pinned":
+                fail(f"only pinned bodies take a motion (of their pin); this body is "
+                     f"{body.kind}", f"bodies.{name}.motion")
+            _check_history(body.motion, f"bodies.{name}.motion", fail)
         hydro = body.hydrodynamics
         if hydro is not None:
             if (hydro.database is None) == (hydro.bem is None):
@@ -452,7 +465,8 @@ def _check_resolved_periods(spec: CaseSpec, dt: float, field: str,
         histories += [(f"points.{name}.motion", point.motion),
                       (f"points.{name}.force_history", point.force_history)]
     for name, body in (spec.bodies or {}).items():
-        histories.append((f"bodies.{name}.force_history", body.force_history))
+        histories += [(f"bodies.{name}.force_history", body.force_history),
+                      (f"bodies.{name}.motion", body.motion)]
     for key, history in histories:
         if history is not None and history.kind == "harmonic" and history.period is not None \
                 and history.period < 2.0 * dt:
@@ -693,7 +707,8 @@ def _body(name: str, spec: Any, source: str | None, environment: Environment,
         force=(*spec.force, *spec.moment),
         force_history=_motion(spec.force_history, source, f"bodies.{name}.force_history"),
         drag_area=tuple(spec.drag_area), Cd=spec.Cd, wave_loads=spec.wave_loads,
-        excitation=excitation, radiation=radiation)
+        excitation=excitation, radiation=radiation,
+        motion=_motion(spec.motion, source, f"bodies.{name}.motion"), pin_body=spec.pin_body)
 
 
 def _seabed(spec: CaseSpec, file: str, source: str | None) -> Seabed:

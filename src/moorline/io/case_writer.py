@@ -167,6 +167,10 @@ def _body(b: Body) -> dict[str, Any]:
             data[key] = [list(r) for r in getattr(b, key)]
     if b.force_history is not None:
         data["force_history"] = _motion(b.force_history)
+    if b.motion is not None:
+        data["motion"] = _motion(b.motion)
+    if b.pin_body is not None:
+        data["pin_body"] = b.pin_body
     if b.wave_loads:
         data["wave_loads"] = True
     if b.excitation is not None:

@@ -270,8 +270,9 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     for name in parts.rod_points:
         if name not in used:
             del points[name]  # a rod end no line attaches to
-    for name in parts.rigid:
-        if not any(p.kind == "body" and p.body == name for p in points.values()):
+    for name, rigid in parts.rigid.items():
+        if rigid.kind != "pinned" and not any(p.kind == "body" and p.body == name
+                                               for p in points.values()):
             parts.warnings.append(f"body {name}: no line attaches to it (statics needs "
                                   "something to hold it)")
     for message in parts.warnings:

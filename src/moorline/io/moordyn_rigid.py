@@ -24,7 +24,9 @@ The mapping to moorline (:class:`moorline.model.Body`):
 - ``Free`` body -> free body; ``Fixed`` and ``Coupled``/``Vessel`` bodies -> fixed bodies (the
   pose held; their reaction and, with ``moorline stiffness`` or the statics summary, their 6x6
   mooring stiffness are reported); their own mass, volume, drag and added mass are zero, as in
-  MoorDyn. ``CoupledPinned`` bodies (translation prescribed, rotation free) are refused;
+  MoorDyn. ``CoupledPinned`` bodies -> pinned bodies (:class:`moorline.model.Body`, kind
+  ``pinned``: the reference point held at the deck's position, the rotation free) with their
+  mass, volume, drag and added mass, as MoorDyn-C 2.7 ``Body.cpp`` keeps them;
 - the body's buoyancy: ``matrix`` hydrostatics with the volume at the centre of gravity and no
   stiffness (MoorDyn's constant buoyancy), its added mass ``diag(Ca rho V)`` in translation
   (world axes at the initial pose), its translational ``CdA`` as ``drag_area`` with ``Cd = 1``
@@ -43,8 +45,18 @@ The mapping to moorline (:class:`moorline.model.Body`):
   (inertia diagonal there), the same contributions; ``Fixed`` rods -> fixed end points;
   ``Coupled`` rods -> prescribed end points; zero-length free rods (``NumSegs 0``, MoorDyn's
   point-like connectors, without mass) -> one free point for both ends;
-- ``Pinned`` rods (free rotation about a fixed or body-attached end A; ``CoupledPinned``)
-  cannot be represented (moorline has no 3-dof rigid member): an error naming them;
+- ``Pinned`` and ``CoupledPinned`` rods (MoorDyn-C 2.7 ``Rod.cpp``: end A held, the rod turning
+  freely about it) -> a pinned body ``rod<k>`` (:class:`moorline.model.Body`, kind ``pinned``)
+  with its origin, the pin, at end A and its x axis along the rod, the same contributions as a
+  free rod; a coupled pin is held at the deck's position (as ``Coupled`` rods and bodies are).
+  The rod's spin about its own axis keeps MoorDyn's inertia ``m d^2 / 8`` (a solid cylinder's;
+  with axial added mass none, as MoorDyn's nodes sit on the axis) and meets no moment and no
+  stiffness: the coupled statics project it out (:func:`moorline.solvers.bodies.
+  spin_projection`); the rod's drag, which moorline would apply at its pin, is dropped (a
+  warning);
+- ``Body<k>Pinned`` rods (pinned to a body) -> pinned bodies whose pin (end A, body frame
+  coordinates as MoorDyn's) sits on that body (``pin_body``); on a ``CoupledPinned`` body
+  they cannot be represented (a pin on a pinned body): an error naming them;
 - a deck's ``Coupled`` points and no body: ``moorline stiffness`` takes them as one rigid
   group (its default); ``moorline convert --vessel-body`` (:func:`vessel_body`) holds them by
   one fixed body at the origin instead, so that the statics summary reports its 6x6.
@@ -111,6 +123,7 @@ class _Rigid:
     drag: FloatArray = field(default_factory=lambda: np.zeros(3))
     stiffness: FloatArray = field(default_factory=lambda: np.zeros((6, 6)))
     has_rods: bool = False
+    pin_body: str | None = None
 
     def add_mass(self, mass: float, at: FloatArray, inertia: FloatArray | None = None) -> None:
         """A mass at body-frame point ``at`` with its own inertia about it (body frame)."""
@@ -146,11 +159,12 @@ class _Rigid:
         if self.volume == 0 and not self.stiffness.any():
             hydro = Hydrostatics()
         added = _mat(self.added) if self.added.any() else None
-        return Body(self.name, "free" if self.kind == "free" else "fixed",
+        return Body(self.name, self.kind if self.kind in ("free", "pinned") else "fixed",
                     position=_vec(self.position), rotation=_vec(rotation_vector(self.R)),
                     mass=self.mass, center_of_gravity=_vec(cg),
                     inertia=tuple(_vec(r) for r in inertia), added_mass=added,
-                    hydrostatics=hydro, drag_area=_vec(self.drag), Cd=1.0)
+                    hydrostatics=hydro, drag_area=_vec(self.drag), Cd=1.0,
+                    pin_body=self.pin_body)
 
 
 def _vec(v: Any) -> tuple[float, float, float]:
@@ -302,10 +316,10 @@ def parse_bodies(rows: list[Any], rho: float, fail: Fail, parts: RigidParts) -> 
         if mass < 0 or volume < 0 or min(inertia) < 0 or min(cda) < 0:
             raise fail("body Mass, I, Volume and CdA must not be negative", row)
         if word in _PINNED_COUPLED:
-            parts.errors.append(f"body {number} ({tok[1]}, line {row.lineno}): a pinned "
-                                "coupled body (translation prescribed, rotation free) cannot "
-                                "be represented")
-            kind = "fixed"
+            kind = "pinned"
+            parts.warnings.append(f"body {number} ({tok[1]}): a pinned body, its pin (the "
+                                  "reference point) held at the deck's position (as a Coupled "
+                                  "body is held), its rotation free")
         else:
             kind = "fixed" if word in _FIXED | _COUPLED else "free"
             if word not in _FIXED | _COUPLED | {"FREE", "BODY", "POINT", "CONNECT", "CON"}:
@@ -314,7 +328,7 @@ def parse_bodies(rows: list[Any], rho: float, fail: Fail, parts: RigidParts) -> 
         R = euler_rotation(*(math.radians(a) for a in pose[3:]))
         rigid = _Rigid(name, kind, np.array(pose[:3]), R)
         parts.rigid[name] = rigid
-        if kind != "free":
+        if kind == "fixed":
             if mass or volume or any(cda) or any(ca):
                 parts.warnings.append(f"body {number} is {tok[1]}: its mass, volume, drag and "
                                       "added mass are ignored, as MoorDyn does")
@@ -377,7 +391,8 @@ def _submerged(a_w: FloatArray, b_w: FloatArray) -> tuple[float, float]:
 
 def add_rod(rigid: _Rigid, rod: RodType, a: FloatArray, b: FloatArray, rho: float, g: float,
             label: str, warnings: list[str]) -> None:
-    """Add a rigid rod from body-frame ``a`` to ``b`` to ``rigid`` (module docstring)."""
+    """Add a rigid rod from body-frame ``a`` to ``b`` to ``rigid`` (module docstring); a
+    pinned body's drag is dropped (moorline's body drag acts at the origin, its pin)."""
     rigid.has_rods = True
     length, t = _rod_geometry(a, b)
     area = math.pi * rod.diameter**2 / 4.0
@@ -403,7 +418,10 @@ def add_rod(rigid: _Rigid, rod: RodType, a: FloatArray, b: FloatArray, rho: floa
         rigid.add_added_mass(end_mass * np.outer(t_w, t_w), rigid.world_arm(at))
     drag = (rod.Cd * rod.diameter * wet * np.sqrt(np.clip(1.0 - t_w**2, 0.0, None))
             + len(ends) * rod.CdEnd * area * np.abs(t_w))
-    if drag.any():
+    if drag.any() and rigid.kind == "pinned":
+        warnings.append(f"{label}: its drag is dropped (moorline's body drag acts at the body "
+                        "origin, which is the pin; MoorDyn distributes it along the rod)")
+    elif drag.any():
         rigid.drag += drag
         warnings.append(f"{label}: its drag is lumped at the body origin, per world axis "
                         "(MoorDyn distributes it along the rod)")
@@ -452,7 +470,7 @@ def parse_rods(rows: list[Any], types: Mapping[str, RodType], rho: float, g: flo
                fail: Fail, parts: RigidParts) -> None:
     """``RODS`` rows into ``parts``: rod end points (``rod<k>A``/``rod<k>B``, or ``rod<k>`` for
     a zero-length free rod), bodies of free rods, parts of bodies (module docstring)."""
-    pinned = []
+    on_bodies = []
     for number, row in enumerate(rows, start=1):
         tok = row.tokens
         if len(tok) < 10:
@@ -470,11 +488,28 @@ def parse_rods(rows: list[Any], types: Mapping[str, RodType], rho: float, g: flo
         word, digits, after = attachment_word(tok[2])
         label = f"rod {number} ({tok[2]}, line {row.lineno})"
         name = f"rod{number}"
-        if word in {"PINNED", "PIN"} | _PINNED_COUPLED or (word == "BODY" and after in
-                                                            ("PINNED", "PIN")):
-            pinned.append(label)
-            continue
-        if word == "BODY":
+        if word == "BODY" and after in ("PINNED", "PIN"):
+            host = parts.body_ids.get(int(digits)) if digits else None
+            if host is None:
+                raise fail(f"rod {number}: no body {tok[2]!r} (bodies: "
+                           f"{', '.join(map(str, parts.body_ids)) or 'none'})", row)
+            if parts.rigid[host].kind == "pinned":
+                on_bodies.append(label)
+                continue
+            length, t = _rod_geometry(a, b)
+            if length == 0:
+                raise fail(f"rod {number}: a pinned rod needs a length (Xa Ya Za and Xb Yb Zb "
+                           "coincide)", row)
+            parent = parts.rigid[host]
+            rigid = _Rigid(name, "pinned", parent.position + parent.world_arm(a),
+                           parent.R @ _align_x(t), pin_body=host)
+            tip = np.array([length, 0.0, 0.0])
+            add_rod(rigid, rod, np.zeros(3), tip, rho, g, label, parts.warnings)
+            parts.rigid[name] = rigid
+            for end, at in (("A", np.zeros(3)), ("B", tip)):
+                parts.rod_points[f"{name}{end}"] = Point(f"{name}{end}", "body", _vec(at),
+                                                         body=name)
+        elif word == "BODY":
             body = parts.body_ids.get(int(digits)) if digits else None
             if body is None:
                 raise fail(f"rod {number}: no body {tok[2]!r} (bodies: "
@@ -491,31 +526,42 @@ def parse_rods(rows: list[Any], types: Mapping[str, RodType], rho: float, g: flo
                 parts.warnings.append(f"{label}: a coupled rod becomes two prescribed points "
                                       "at its ends (the rod's own loads are not in their "
                                       "reactions)")
-        elif word in {"POINT", "CON", "FREE"}:
+        elif word in {"POINT", "CON", "FREE"} | {"PINNED", "PIN"} | _PINNED_COUPLED:
             length, t = _rod_geometry(a, b)
-            if segments == 0 or length == 0:
+            pinned = word not in {"POINT", "CON", "FREE"}
+            if (segments == 0 or length == 0) and not pinned:
                 parts.rod_points[name] = Point(name, "free", _vec(a))
                 parts.rod_ends[(number, "A")] = parts.rod_ends[(number, "B")] = name
                 if np.any(a != b):
                     parts.warnings.append(f"{label}: a zero-segment rod is a point connector; "
                                           "both ends are taken at end A")
                 continue
+            if length == 0:
+                raise fail(f"rod {number}: a pinned rod needs a length (Xa Ya Za and Xb Yb Zb "
+                           "coincide)", row)
             R = _align_x(t)
-            rigid = _Rigid(name, "free", 0.5 * (a + b), R)
             half = np.array([length / 2.0, 0.0, 0.0])
-            add_rod(rigid, rod, -half, half, rho, g, label, parts.warnings)
+            # a pinned rod's origin is its pin (end A), a free rod's its middle
+            rigid = _Rigid(name, "pinned" if pinned else "free", a if pinned else 0.5 * (a + b),
+                           R)
+            start, stop = (np.zeros(3), 2.0 * half) if pinned else (-half, half)
+            add_rod(rigid, rod, start, stop, rho, g, label, parts.warnings)
             parts.rigid[name] = rigid
-            for end, at in (("A", -half), ("B", half)):
+            for end, at in (("A", start), ("B", stop)):
                 parts.rod_points[f"{name}{end}"] = Point(f"{name}{end}", "body", _vec(at),
                                                          body=name)
+            if word in _PINNED_COUPLED:
+                parts.warnings.append(f"{label}: a coupled pinned rod, its end A held at the "
+                                      "deck's position (as a Coupled rod's ends are held), its "
+                                      "rotation free")
         else:
             raise fail(f"rod {number}: unknown attachment {tok[2]!r} (Fixed, Pinned, Body<k>, "
                        "Body<k>Pinned, Coupled, CoupledPinned or Free)", row)
         parts.rod_ends[(number, "A")] = f"{name}A"
         parts.rod_ends[(number, "B")] = f"{name}B"
-    if pinned:
-        parts.errors.append("pinned rods (rotation free about end A) cannot be represented "
-                            "(moorline has no 3-dof rigid member): " + "; ".join(pinned))
+    if on_bodies:
+        parts.errors.append("rods pinned to a pinned body (a CoupledPinned body) cannot be "
+                            "represented (a pin on a pinned body): " + "; ".join(on_bodies))
 
 
 def _align_x(t: FloatArray) -> FloatArray:

@@ -472,8 +472,10 @@ class BodySpec(_Spec):
     ``inertia`` holds the diagonal ``Ixx, Iyy, Izz`` about the centre of gravity (body frame),
     ``products_of_inertia`` the tensor's off-diagonal entries ``I[0][1], I[0][2], I[1][2]``."""
 
-    kind: Literal["free", "fixed"] = "free"
+    kind: Literal["free", "fixed", "pinned"] = "free"
     position: Vector3
+    motion: MotionSpec | None = None
+    pin_body: str | None = None
     rotation: Annotated[list[quantity("angle")], AfterValidator(_three)] = (0.0, 0.0, 0.0)
     mass: quantity("mass", ge=0.0)
     center_of_gravity: Vector3 = (0.0, 0.0, 0.0)

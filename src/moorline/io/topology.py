@@ -69,13 +69,21 @@ def geometry_problem(points: Mapping[str, Any], lines: Mapping[str, Any],
             continue
         group = root(node_of(name))
         members.setdefault(group, []).append(name)
-        if p.kind in _HOLDING or (p.kind == "body" and bodies[p.body].kind == "fixed"):
+        if p.kind in _HOLDING or (p.kind == "body" and _held(bodies, p.body)):
             held.add(group)
     for group, names in members.items():
         connected = any(node_of(n) in parent for n in names)
         if connected and group not in held:
             shown = ", ".join(repr(n) for n in names[:6]) + (", ..." if len(names) > 6 else "")
             return (f"the lines joining the points {shown} are held by no fixed or prescribed "
-                    f"point and no fixed body: statics would be singular (they can drift "
+                    f"point and no fixed or pinned body: statics would be singular (they can drift "
                     f"as a rigid body)", f"points.{names[0]}")
     return None
+
+
+def _held(bodies: Mapping[str, Any], name: str) -> bool:
+    """A fixed body, or a pinned one whose pin is held (in space or on a fixed body)."""
+    body = bodies[name]
+    parent = getattr(body, "pin_body", None)
+    return body.kind == "fixed" or (body.kind == "pinned" and (
+        parent is None or parent not in bodies or bodies[parent].kind == "fixed"))

@@ -98,9 +98,13 @@ class Body:
     name
         Identifier; points attach with ``kind: body`` and ``body: <name>``.
     kind
-        ``free`` (solved for) or ``fixed`` (held at its pose; its reaction is reported).
+        ``free`` (solved for), ``fixed`` (held at its pose; its reaction is reported) or
+        ``pinned``: its origin is a pin held at ``position`` (plus ``motion``), its rotation
+        free (MoorDyn's ``Pinned``/``CoupledPinned`` rods and ``CoupledPinned`` bodies; the
+        pin's reaction is reported).
     position
-        Position of the body frame origin [length] (the initial guess for a free body).
+        Position of the body frame origin [length] (the initial guess for a free body, the
+        pin of a pinned body).
     rotation
         Initial rotation vector [rad] (axis times angle).
     mass
@@ -128,6 +132,13 @@ class Body:
     radiation
         Frequency-dependent added mass and damping (:class:`RadiationTable`); when given,
         ``added_mass`` and ``damping`` must be ``None`` (the table replaces them).
+    motion
+        A pinned body only: a displacement history of its pin (added to ``position`` in
+        dynamics, as a prescribed point's ``motion``); ``None``: the pin stays put.
+    pin_body
+        A pinned body only: the free or fixed body its pin sits on (MoorDyn's
+        ``Body<k>Pinned`` rods); ``position`` is then where the pin is at both bodies' initial
+        poses, and the pin moves with that body. ``None``: the pin is held in space.
     additional_damping
         Constant 6x6 linear damping added to the radiation damping (viscous damping not in a
         potential-flow table, e.g. OC3-Hywind's additional linear damping, Jonkman 2010
@@ -141,7 +152,7 @@ class Body:
     """
 
     name: str
-    kind: Literal["free", "fixed"] = "free"
+    kind: Literal["free", "fixed", "pinned"] = "free"
     position: Vector3 = (0.0, 0.0, 0.0)
     rotation: Vector3 = (0.0, 0.0, 0.0)
     mass: float = 0.0
@@ -158,8 +169,16 @@ class Body:
     excitation: WaveExcitation | None = None
     radiation: RadiationTable | None = None
     additional_damping: Matrix6 | None = None
+    motion: Motion | None = None
+    pin_body: str | None = None
 
     def __post_init__(self) -> None:
+        for key in ("motion", "pin_body"):
+            if getattr(self, key) is not None and self.kind != "pinned":
+                raise ValueError(f"body {self.name!r}: only a pinned body takes a {key}, this "
+                                 f"one is {self.kind}")
+        if self.motion is not None and self.pin_body is not None:
+            raise ValueError(f"body {self.name!r}: a pin on a body moves with it: no motion")
         if self.radiation is not None and (self.added_mass is not None
                                            or self.damping is not None):
             raise ValueError(f"body {self.name!r}: give either a radiation table or "

@@ -14,7 +14,7 @@ this module unpacks the model's :class:`~moorline.model.Body` for them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -25,7 +25,7 @@ from ..model import Body
 from ..physics import rigid_body as rb
 from ..physics.rigid_body import inverse_left_jacobian, rotation_matrix, rotation_vector, skew
 
-__all__ = ["BodyDofs", "BodyState", "body_loads", "body_mass_matrix",
+__all__ = ["BodyDofs", "BodyState", "body_loads", "body_mass_matrix", "hold_dofs",
            "inverse_left_jacobian", "long_wave_geometry", "place_slaves", "rotation_vector",
            "skew", "transformation", "waterplane", "world_arms"]
 
@@ -171,9 +171,19 @@ def body_mass_matrix(body: Body, R: FloatArray) -> FloatArray:
 
 @dataclass(frozen=True)
 class BodyDofs:
-    """Layout of the coupled unknowns: the free node dofs, then six per free body; and the
-    extended node dofs (free nodes, then the attached nodes) the line tangent is assembled
-    over before the master-slave transformation."""
+    """Layout of the coupled unknowns: the free node dofs, then six per free or pinned body;
+    and the extended node dofs (free nodes, then the attached nodes) the line tangent is
+    assembled over before the master-slave transformation.
+
+    A pinned body keeps its six unknowns, but its three translations are held (``held``):
+    they follow the pin, their residual rows (the pin's reaction) are set to zero and their
+    rows and columns of the tangent to the identity (:func:`hold_dofs`), so a Newton step
+    leaves them where the pin puts them. A pin on a free body (``pin_parent``, the pin at
+    ``pin_arm`` in that body's frame) moves with it: the pinned body's translation is a
+    slave of its host's six dofs (:meth:`chain_map`, the master-slave relation of Tuah 1982
+    eq. 3.3.6 applied to the pin), its translational force moves onto the host
+    (:meth:`transfer`). ``spin``: pinned rods whose spin about their own axis is a mechanism
+    (:func:`spin_projection`)."""
 
     n_free: int
     body_dof: NDArray[np.int64]
@@ -181,6 +191,11 @@ class BodyDofs:
     ext_dofs: int
     pattern: object
     ext_map: NDArray[np.int64]  # (n_nodes, 3) extended dof of every node (-1: held)
+    held: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    pinned: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    pin_parent: NDArray[np.int64] = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    pin_arm: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
+    spin: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
 
     @classmethod
     def of(cls, mesh: Mesh, bodies: list[Body]) -> BodyDofs:
@@ -188,10 +203,167 @@ class BodyDofs:
         from .assembly import BlockPattern
 
         n_free = mesh.n_dofs
-        free = np.array([b.kind == "free" for b in bodies], dtype=bool)
+        pinned = np.array([b.kind == "pinned" for b in bodies], dtype=bool)
+        free = np.array([b.kind in ("free", "pinned") for b in bodies], dtype=bool)
         body_dof = np.where(free, n_free + 6 * (np.cumsum(free) - 1), -1).astype(np.int64)
         ext = mesh.dof_of_node.copy()
         for k, node in enumerate(mesh.slave_node):
             ext[node] = n_free + 3 * k + np.arange(3)
-        return cls(n_free, body_dof, n_free + 6 * int(free.sum()),
-                   n_free + 3 * len(mesh.slave_node), BlockPattern(mesh.pattern_pairs, ext), ext)
+        n_unknowns = n_free + 6 * int(free.sum())
+        held = np.zeros(n_unknowns, dtype=bool)
+        for d in body_dof[pinned]:
+            held[d:d + 3] = True
+        names = [b.name for b in bodies]
+        parent = np.full(len(bodies), -1, dtype=np.int64)
+        arm = np.zeros((len(bodies), 3))
+        for k, body in enumerate(bodies):
+            host = getattr(body, "pin_body", None)
+            if host is None or bodies[names.index(host)].kind != "free":
+                continue  # a pin in space or on a fixed body stays where it is
+            p = names.index(host)
+            parent[k] = p
+            R0 = rotation_matrix(np.asarray(bodies[p].rotation, dtype=float))
+            arm[k] = R0.T @ (np.asarray(body.position, float) - np.asarray(bodies[p].position,
+                                                                            float))
+        spin = np.array([k == "pinned" and _axisymmetric(mesh, bodies, i)
+                         for i, k in enumerate(b.kind for b in bodies)], dtype=bool)
+        return cls(n_free, body_dof, n_unknowns, n_free + 3 * len(mesh.slave_node),
+                   BlockPattern(mesh.pattern_pairs, ext), ext, held, pinned, parent, arm,
+                   spin)
+
+    @property
+    def chains(self) -> list[tuple[int, int]]:
+        """(pinned body, body its pin moves with) pairs."""
+        return [(int(c), int(p)) for c, p in enumerate(self.pin_parent) if p >= 0]
+
+    def pin_arms(self, poses: BodyState) -> FloatArray:
+        """World arms ``R_p a`` from each chained body's host origin to its pin (nb, 3)."""
+        out = np.zeros((len(self.pin_parent), 3))
+        for c, p in self.chains:
+            out[c] = poses.R[p] @ self.pin_arm[c]
+        return out
+
+    def place_pins(self, poses: BodyState) -> BodyState:
+        """``poses`` with every chained pinned body's origin (and its velocity and
+        acceleration) those of its pin on its host: ``r_p + R_p a``, ``v_p + w_p x R_p a``,
+        ``a_p + alpha_p x R_p a + w_p x (w_p x R_p a)``."""
+        if not self.chains:
+            return poses
+        out = poses.copy()
+        arms = self.pin_arms(poses)
+        for c, p in self.chains:
+            w, al = poses.vel[p, 3:], poses.acc[p, 3:]
+            out.r[c] = poses.r[p] + arms[c]
+            out.vel[c, :3] = poses.vel[p, :3] + np.cross(w, arms[c])
+            out.acc[c, :3] = (poses.acc[p, :3] + np.cross(al, arms[c])
+                              + np.cross(w, np.cross(w, arms[c])))
+        return out
+
+    def chain_map(self, arms: FloatArray, blocks: FloatArray | None = None) -> sp.csr_matrix:
+        """``Q`` (n_unknowns square): the unknowns with every chained pinned body's
+        translation following its host, ``du = Q du~``: the identity, but a chained body's
+        translation columns replaced by ``T = [I, -[R_p a x]]`` (or its (3, 6) block of
+        ``blocks``, per body) in its host's columns."""
+        n = self.n_unknowns
+        diag = np.ones(n)
+        rows, cols, vals = [np.arange(n)], [np.arange(n)], [diag]
+        for c, p in self.chains:
+            dc, dp = self.body_dof[c], self.body_dof[p]
+            diag[dc:dc + 3] = 0.0
+            T = np.hstack((np.eye(3), -skew(arms[c]))) if blocks is None else blocks[c]
+            rows.append(dc + np.repeat(np.arange(3), 6))
+            cols.append(dp + np.tile(np.arange(6), 3))
+            vals.append(np.asarray(T).ravel())
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                     np.concatenate(cols))), shape=(n, n))
+
+    def transfer(self, r: FloatArray, arms: FloatArray) -> FloatArray:
+        """Residual ``Q^T r``: a chained body's translational force moves onto its host
+        (force, and moment ``R_p a x F`` about the host's origin); its own rows then held
+        at zero by the caller."""
+        for c, p in self.chains:
+            dc, dp = self.body_dof[c], self.body_dof[p]
+            F = r[dc:dc + 3].copy()
+            r[dp:dp + 3] += F
+            r[dp + 3:dp + 6] += np.cross(arms[c], F)
+        return r
+
+    def arm_turning(self, r: FloatArray, arms: FloatArray) -> sp.csr_matrix:
+        """The host's tangent from its pin arm turning under the chained body's force ``F``
+        (its translational residual in ``r``, before the transfer): ``-[F x][R_p a x]`` on
+        the host's rotation block (for ``R <- exp([e x]) R``)."""
+        n = self.n_unknowns
+        out = sp.lil_matrix((n, n))
+        for c, p in self.chains:
+            dc, dp = self.body_dof[c], self.body_dof[p]
+            out[dp + 3:dp + 6, dp + 3:dp + 6] = -skew(r[dc:dc + 3]) @ skew(arms[c])
+        return out.tocsr()
+
+
+def _axisymmetric(mesh: Mesh, bodies: list[Body], b: int) -> bool:
+    """Whether every load of body ``b`` acts on its x axis (a rod: its attached points, centres
+    of gravity and buoyancy there, no hydrostatic stiffness, moment, drag or wave loads), so
+    that its spin about that axis meets no moment and no stiffness."""
+    body = bodies[b]
+    hs = body.hydrostatics
+    if hs.kind not in ("none", "matrix") or (hs.stiffness is not None
+                                             and np.any(np.asarray(hs.stiffness, float))):
+        return False
+    if any(body.force[3:]) or any(body.drag_area) or body.wave_loads or \
+            body.excitation is not None or body.radiation is not None:
+        return False
+    spots = [np.asarray(body.center_of_gravity, float), np.asarray(hs.center_of_buoyancy, float),
+             *np.asarray(mesh.slave_arm, float).reshape(-1, 3)[mesh.slave_body == b]]
+    scale = 1.0 + max(float(np.abs(p).max()) for p in spots)
+    return all(abs(p[1]) <= 1e-9 * scale and abs(p[2]) <= 1e-9 * scale for p in spots)
+
+
+def spin_projection(layout: BodyDofs, poses: BodyState) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """For the statics of rods pinned at one end (:attr:`BodyDofs.spin`), whose spin about
+    their own axis ``n = R e_x`` meets no moment and no stiffness (a mechanism; MoorDyn's rods
+    carry every load on their axis): ``S``, the identity with each such body's rotation block
+    ``I - n n^T`` (the spin projected out of residual, tangent and step), and ``N``, its
+    ``n n^T`` (scaled by the caller into the tangent so that it stays regular)."""
+    n_u = layout.n_unknowns
+    rows, cols, vals = [np.arange(n_u)], [np.arange(n_u)], [np.ones(n_u)]
+    n_rows, n_cols, n_vals = [], [], []
+    for b in np.flatnonzero(layout.spin):
+        d = layout.body_dof[b] + 3
+        axis = poses.R[b][:, 0]
+        block = np.eye(3) - np.outer(axis, axis)
+        i, j = np.meshgrid(np.arange(3) + d, np.arange(3) + d, indexing="ij")
+        rows.append(i.ravel())
+        cols.append(j.ravel())
+        vals.append((block - np.eye(3)).ravel())
+        n_rows.append(i.ravel())
+        n_cols.append(j.ravel())
+        n_vals.append(np.outer(axis, axis).ravel())
+    S = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                      shape=(n_u, n_u))
+    if not n_rows:
+        return S, sp.csr_matrix((n_u, n_u))
+    N = sp.csr_matrix((np.concatenate(n_vals), (np.concatenate(n_rows),
+                                                np.concatenate(n_cols))), shape=(n_u, n_u))
+    return S, N
+
+
+def refuse_pinned(mesh: Mesh, analysis: str) -> None:
+    """A :class:`~moorline.errors.CaseError` naming the pinned bodies of ``mesh`` for an
+    ``analysis`` that has no held body dofs (modal, stochastic, strumming, harmonic)."""
+    from ..errors import CaseError
+
+    pinned = [b.name for b in mesh.bodies if b.kind == "pinned"]
+    if pinned:
+        raise CaseError(f"{analysis} analyses do not support pinned bodies ("
+                        f"{', '.join(pinned)}): use statics or dynamics",
+                        field=f"bodies.{pinned[0]}.kind")
+
+
+def hold_dofs(K: sp.spmatrix, held: NDArray[np.bool_], scale: float = 1.0) -> sp.csc_matrix:
+    """``K`` with the ``held`` unknowns' rows and columns replaced by ``scale`` times the
+    identity (a pinned body's translations): with a zero residual there, a solve leaves
+    them unchanged and the other unknowns see the constrained system."""
+    if not held.any():
+        return sp.csc_matrix(K)
+    keep = sp.diags((~held).astype(float))
+    return (keep @ sp.csr_matrix(K) @ keep + sp.diags(scale * held.astype(float))).tocsc()

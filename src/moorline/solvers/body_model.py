@@ -22,6 +22,12 @@ physics are the kernels of :mod:`moorline.physics.rigid_body`; the body blocks o
 matrix are exact, the gyroscopic and centripetal terms and the rotation of the inertia
 included (the long-wave loads' dependence on the draft aside).
 
+A pinned body moves like a free one but for its origin, which follows its pin
+(:meth:`BodyModel.pin_state`): its translational equations are the pin's reaction, held out of
+the Newton system by the stepper (:func:`~moorline.solvers.bodies.hold_dofs`), while the
+inertia of its prescribed translation enters its rotational equations (``c x m a_pin``; as
+MoorDyn-C 2.7 ``Rod::getStateDeriv`` for a pinned rod).
+
 A system without bodies has an empty :class:`BodyModel`: every method is then a no-op, so the
 time stepper has one code path.
 """
@@ -38,7 +44,7 @@ from ..mesh import Mesh
 from ..physics import radiation as rad
 from ..physics import rigid_body as rb
 from .bodies import BodyDofs, BodyState, body_loads, body_mass_matrix, long_wave_geometry, skew
-from .excitation import history_value, ramp
+from .excitation import history_value, motion_value, ramp
 
 logger = logging.getLogger(__name__)
 FloatArray = NDArray[np.float64]
@@ -61,6 +67,7 @@ class BodyModel:
         self.bodies = list(mesh.bodies)
         self.layout = BodyDofs.of(mesh, self.bodies)
         self.body_dof = self.layout.body_dof
+        self.pinned = self.layout.pinned
         self.memory = [memory_model(b) if radiation_memory else None for b in self.bodies]
         self.added = [_matrix(b.added_mass) if mem is None else mem.added_mass_infinite
                       for b, mem in zip(self.bodies, self.memory, strict=True)]
@@ -85,14 +92,27 @@ class BodyModel:
 
     # ------------------------------------------------------------------ kinematics
     def advance(self, b0: BodyState, dq: FloatArray, h: float, beta: float,
-                gamma: float) -> BodyState:
-        """Body state after the motion ``dq`` (nb, 6) over a step ``h`` (Newmark)."""
+                gamma: float, t1: float = 0.0) -> BodyState:
+        """Body state after the motion ``dq`` (nb, 6) over a step ``h`` (Newmark) ending at
+        ``t1``; a pinned body's origin where its pin is at ``t1`` (whatever ``dq`` says)."""
+        pinned = self.pinned
+        if pinned.any():
+            r, v, a = self.pin_state(t1)
+            dq = dq.copy()
+            dq[pinned, :3] = r[pinned] - b0.r[pinned]
         acc = (dq - h * b0.vel - h * h * (0.5 - beta) * b0.acc) / (beta * h * h)
         vel = b0.vel + h * ((1 - gamma) * b0.acc + gamma * acc)
         held = self.body_dof < 0
         acc[held], vel[held] = 0.0, 0.0
+        if pinned.any():
+            vel[pinned, :3], acc[pinned, :3] = v[pinned], a[pinned]
         moved = b0.moved(dq[:, :3], dq[:, 3:])
-        return BodyState(moved.r, moved.R, vel, acc)
+        return self.layout.place_pins(BodyState(moved.r, moved.R, vel, acc))
+
+    def pin_state(self, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Position, velocity and acceleration of every pinned body's pin at ``t``
+        (:func:`pin_state`)."""
+        return pin_state(self.bodies, t)
 
     def place(self, x: FloatArray, v: FloatArray, a: FloatArray, bs: BodyState) -> FloatArray:
         """Put the attached nodes on their bodies (in place); returns their world arms."""
@@ -119,21 +139,24 @@ class BodyModel:
             da = ca dr + ca d alpha x arm + alpha x d arm + d omega x (omega x arm)
                  + omega x (d omega x arm) + omega x (omega x d arm)
         """
-        m = self.mesh
-        n = len(m.slave_node)
-        bx, bv, ba = (np.zeros((n, 3, 6)) for _ in range(3))
-        eye = np.eye(3)
-        for k in range(n):
-            b = m.slave_body[k]
-            A = skew(arms[k])
-            W, Al = skew(bs.vel[b, 3:]), skew(bs.acc[b, 3:])
-            d_arm = -A @ rb.left_jacobian(dq[b, 3:])
-            bx[k] = np.hstack((eye, d_arm))
-            bv[k] = np.hstack((cv * eye, -cv * A + W @ d_arm))
-            wa = skew(np.cross(bs.vel[b, 3:], arms[k]))
-            ba[k] = np.hstack((ca * eye, -ca * A + Al @ d_arm - cv * (wa + W @ A)
-                               + W @ W @ d_arm))
-        return bx, bv, ba
+        return _kinematic_blocks(bs, self.mesh.slave_body, arms, dq, ca, cv)
+
+    def pin_blocks(self, bs: BodyState, dq: FloatArray, ca: float, cv: float
+                   ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """:meth:`kinematic_blocks` of every chained pinned body's pin on its host (nb, 3, 6)
+        each, zeros for the other bodies: how the pinned body's origin moves with its
+        host's step."""
+        nb = len(self.bodies)
+        out = [np.zeros((nb, 3, 6)) for _ in range(3)]
+        chains = self.layout.chains
+        if chains:
+            child = np.array([c for c, _ in chains])
+            host = np.array([p for _, p in chains])
+            arms = self.layout.pin_arms(bs)[child]
+            for whole, part in zip(out, _kinematic_blocks(bs, host, arms, dq, ca, cv),
+                                   strict=True):
+                whole[child] = part
+        return out[0], out[1], out[2]
 
     # ------------------------------------------------------------------ radiation memory
     def advance_memory(self, memory: tuple | None, b0: BodyState, b1: BodyState,
@@ -190,19 +213,29 @@ class BodyModel:
     def blocks(self, bs: BodyState, node_forces: FloatArray, arms: FloatArray, t: float,
                ca: float, cv: float, ck: float, dq: FloatArray | None = None,
                h: float | None = None) -> list[FloatArray]:
-        """Body blocks (6, 6) of the effective tangent ``ca M + cv C + ck K`` of the free
-        bodies: rigid mass and added mass, damping (with the radiation memory's ``d mu /
-        d v1`` over the step ``h``) and drag, hydrostatics, the rotation of the
-        attached nodes' moment arms under their forces ``node_forces`` (as weighted in the
-        residual), and the exact derivative of the rigid-body inertia (never HHT-weighted):
-        ``ca d_acc + (cv / ck) d_vel + d_rot``. Derivatives with respect to a rotation are
+        """The body blocks (6, 6) of the effective tangent (:meth:`block_parts` combined:
+        ``ca J_a + (cv / ck) J_v + J_x``)."""
+        return [ca * a + (cv / ck) * v + x for x, v, a in
+                self.block_parts(bs, node_forces, arms, t, ck, dq, h)]
+
+    def block_parts(self, bs: BodyState, node_forces: FloatArray, arms: FloatArray,
+                    t: float, ck: float, dq: FloatArray | None = None,
+                    h: float | None = None) -> list[tuple[FloatArray, FloatArray, FloatArray]]:
+        """Per body, the parts ``(J_x, J_v, J_a)`` of its block (6, 6) of the effective
+        tangent ``ca M + cv C + ck K`` by what they multiply (the step's change of position,
+        of velocity over ``d vel / d dq``, of acceleration over ``d acc / d dq``): rigid mass
+        and added mass, damping (with the radiation memory's ``d mu / d v1`` over the step
+        ``h``) and drag, hydrostatics, the rotation of the attached nodes' moment arms under
+        their forces ``node_forces`` (as weighted in the residual), and the exact derivative
+        of the rigid-body inertia (never HHT-weighted): ``ca d_acc + (cv / ck) d_vel +
+        d_rot``. Derivatives with respect to a rotation are
         taken for ``R <- exp([e x]) R`` and chained to the step's rotation vector ``dq`` by the
         left Jacobian ``J(dq)``."""
         out = []
         m = self.mesh
         for b, body in enumerate(self.bodies):
             if self.body_dof[b] < 0:
-                out.append(np.zeros((6, 6)))
+                out.append((np.zeros((6, 6)),) * 3)
                 continue
             stiff = body_loads(body, bs.r[b], bs.R[b], m.gravity, m.water_density)[1]
             mine = m.slave_body == b
@@ -219,7 +252,7 @@ class BodyModel:
             turned = ck * stiff + arm_terms + d_rot  # derivatives for R <- exp([e x]) R
             if dq is not None:
                 turned[:, 3:] = turned[:, 3:] @ rb.left_jacobian(dq[b, 3:])
-            out.append(ca * (d_acc + self.added[b]) + cv * damp + (cv / ck) * d_vel + turned)
+            out.append((turned, ck * damp + d_vel, d_acc + self.added[b]))
         return out
 
     def mass_and_stiffness(self, bs: BodyState) -> list[tuple[FloatArray, FloatArray]]:
@@ -270,6 +303,55 @@ class BodyModel:
             return np.zeros(6)
         a, w, shift, amp, phase, ramp_time = terms
         return rb.wave_excitation(t, a, w, shift, amp, phase, ramp(t, ramp_time)[0])
+
+
+def _kinematic_blocks(bs: BodyState, body: NDArray[np.int64], arms: FloatArray,
+                      dq: FloatArray, ca: float, cv: float
+                      ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Position, velocity and acceleration blocks (n, 3, 6) of points at world ``arms`` on
+    the bodies ``body`` (:meth:`BodyModel.kinematic_blocks`)."""
+    n = len(body)
+    bx, bv, ba = (np.zeros((n, 3, 6)) for _ in range(3))
+    eye = np.eye(3)
+    for k in range(n):
+        b = body[k]
+        A = skew(arms[k])
+        W, Al = skew(bs.vel[b, 3:]), skew(bs.acc[b, 3:])
+        d_arm = -A @ rb.left_jacobian(dq[b, 3:])
+        bx[k] = np.hstack((eye, d_arm))
+        bv[k] = np.hstack((cv * eye, -cv * A + W @ d_arm))
+        wa = skew(np.cross(bs.vel[b, 3:], arms[k]))
+        ba[k] = np.hstack((ca * eye, -ca * A + Al @ d_arm - cv * (wa + W @ A)
+                           + W @ W @ d_arm))
+    return bx, bv, ba
+
+
+def pin_state(bodies, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Position, velocity and acceleration of every pinned body's pin at ``t`` (nb, 3)
+    each: its ``position`` plus its ``motion`` (zeros for the other bodies)."""
+    nb = len(bodies)
+    r, v, a = np.zeros((nb, 3)), np.zeros((nb, 3)), np.zeros((nb, 3))
+    for b, body in enumerate(bodies):
+        if body.kind != "pinned":
+            continue
+        r[b] = body.position
+        if body.motion is not None:
+            d, dv, da = motion_value(body.motion, t)
+            r[b] += d
+            v[b], a[b] = dv, da
+    return r, v, a
+
+
+def with_pins(bodies, state: BodyState, t: float) -> BodyState:
+    """``state`` with every pinned body's origin, velocity and acceleration those of its
+    pin at ``t`` (the start of a run)."""
+    pinned = np.array([b.kind == "pinned" for b in bodies], dtype=bool)
+    if not pinned.any():
+        return state
+    r, v, a = pin_state(bodies, t)
+    out = state.copy()
+    out.r[pinned], out.vel[pinned, :3], out.acc[pinned, :3] = r[pinned], v[pinned], a[pinned]
+    return out
 
 
 def memory_model(body) -> rad.MemoryModel | None:

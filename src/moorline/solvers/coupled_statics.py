@@ -1,6 +1,9 @@
 """Static equilibrium of lines and rigid bodies solved together (Tuah 1982 sec. 3.3; Wang, Er
 and Iu eq. 31-34): one Newton system in the free node dofs and the six dofs of every free
-body, through the master-slave transformation of :mod:`moorline.solvers.bodies`."""
+body, through the master-slave transformation of :mod:`moorline.solvers.bodies`. A pinned
+body's three rotations are solved for (its rotational balance about the pin) and its
+translations held at the pin (:func:`~moorline.solvers.bodies.hold_dofs`); its reduced
+stiffness is the Schur complement with those rows and columns eliminated."""
 
 from __future__ import annotations
 
@@ -18,8 +21,10 @@ from .bodies import (
     BodyDofs,
     BodyState,
     body_loads,
+    hold_dofs,
     place_slaves,
     skew,
+    spin_projection,
     transformation,
     world_arms,
 )
@@ -42,25 +47,39 @@ class CoupledStatics:
         self.n_free, self.body_dof, self.n_unknowns = (layout.n_free, layout.body_dof,
                                                        layout.n_unknowns)
         self.ext_dofs, self.pattern, self.ext_map = layout.ext_dofs, layout.pattern, layout.ext_map
+        self.held = layout.held
+        self.layout = layout
 
     def residual(self, x: FloatArray, poses: BodyState) -> tuple[FloatArray, ForceState]:
         """Out-of-balance forces at the free node dofs, then force and moment on every free
-        body (about its origin)."""
+        or pinned body (about its origin; zero on a pinned body's held translations)."""
         state = self.model.forces(x)
         out = np.zeros(self.n_unknowns)
         out[: self.n_free] = gather_free(state.nodal, self.mesh.dof_of_node)
+        for b, generalized in enumerate(self.body_forces(state, poses)):
+            if self.body_dof[b] >= 0:
+                out[self.body_dof[b]: self.body_dof[b] + 6] = generalized
+        self.layout.transfer(out, self.layout.pin_arms(poses))
+        out[self.held] = 0.0
+        if self.layout.spin.any():
+            out = spin_projection(self.layout, poses)[0] @ out
+        return out, state
+
+    def body_forces(self, state: ForceState, poses: BodyState) -> FloatArray:
+        """Force and moment about its origin (world axes) of the loads and the attached
+        lines on every body (n_bodies, 6): the out-of-balance force of a free body; minus the
+        reaction of a pinned body's pin (translation) or of a fixed body's support."""
         arms = world_arms(self.mesh, poses)
+        out = np.zeros((len(self.bodies), 6))
         for b, body in enumerate(self.bodies):
-            if self.body_dof[b] < 0:
-                continue
             mine = self.mesh.slave_body == b
             f = state.nodal[self.mesh.slave_node[mine]]
             generalized, _ = body_loads(body, poses.r[b], poses.R[b], self.mesh.gravity,
                                         self.mesh.water_density)
             generalized[:3] += f.sum(axis=0)
             generalized[3:] += np.cross(arms[mine], f).sum(axis=0)
-            out[self.body_dof[b]: self.body_dof[b] + 6] = generalized
-        return out, state
+            out[b] = generalized
+        return out
 
     def tangent(self, x: FloatArray, poses: BodyState, state: ForceState,
                 taut_axial: bool = False):
@@ -80,18 +99,35 @@ class CoupledStatics:
                 block[3:, 3:] -= skew(f) @ skew(arm)
             K[d:d + 6, d:d + 6] = K[d:d + 6, d:d + 6].toarray() + block
         K = K.tocsc()
+        if self.layout.chains:  # pins on free bodies: their translations follow the hosts
+            full = np.zeros(self.n_unknowns)
+            for b, generalized in enumerate(self.body_forces(state, poses)):
+                if self.body_dof[b] >= 0:
+                    full[self.body_dof[b]: self.body_dof[b] + 6] = generalized
+            pins = self.layout.pin_arms(poses)
+            Q = self.layout.chain_map(pins)
+            K = (Q.T @ K @ Q + self.layout.arm_turning(full, pins)).tocsc()
         # a body free to turn about an axis with nothing resisting it (yaw of a buoy on one
         # line) is a mechanism of the statics: a vanishing regularization of the body
         # diagonal keeps the Newton matrix solvable without changing the equilibrium
+        # (the spin of a slender pinned rod about its axis, too)
         body = np.flatnonzero(np.arange(self.n_unknowns) >= self.n_free)
         if body.size:
-            scale = 1e-9 * float(np.abs(K.diagonal()).max(initial=1.0))
-            K = K + sp.csc_matrix((np.full(body.size, scale), (body, body)), shape=K.shape)
+            largest = float(np.abs(K.diagonal()).max(initial=1.0))
+            K = K + sp.csc_matrix((np.full(body.size, 1e-9 * largest), (body, body)),
+                                  shape=K.shape)
+            K = hold_dofs(K, self.held, largest)  # a pinned body's translations
+            if self.layout.spin.any():  # a pinned rod's spin about its axis
+                S, N = spin_projection(self.layout, poses)
+                K = (S @ K @ S + largest * N).tocsc()
         return K
 
     def update(self, x: FloatArray, poses: BodyState,
                du: FloatArray) -> tuple[FloatArray, BodyState]:
-        """Apply a step of the unknowns."""
+        """Apply a step of the unknowns (a pinned body's translations stay)."""
+        du = np.where(self.held, 0.0, du)
+        if self.layout.spin.any():
+            du = spin_projection(self.layout, poses)[0] @ du
         x = x + scatter_free(du[: self.n_free], self.mesh.dof_of_node)
         nb = len(self.bodies)
         dr, dtheta = np.zeros((nb, 3)), np.zeros((nb, 3))
@@ -99,7 +135,7 @@ class CoupledStatics:
             d = self.body_dof[b]
             if d >= 0:
                 dr[b], dtheta[b] = du[d:d + 3], du[d + 3:d + 6]
-        poses = poses.moved(dr, dtheta)
+        poses = self.layout.place_pins(poses.moved(dr, dtheta))
         return place_slaves(self.mesh, poses, x), poses
 
 

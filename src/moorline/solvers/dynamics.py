@@ -24,7 +24,7 @@ from ..mesh import Mesh, discretize, dynamic_mesh, with_loads_of
 from ..model import DynamicsSettings, StaticsSettings, System
 from ..results import DynamicResult, StaticResult
 from .bodies import BodyState
-from .body_model import BodyModel
+from .body_model import BodyModel, with_pins
 from .dynamic_model import DynamicModel, MaterialState
 from .equilibrium import StaticModel
 from .excitation import Excitation
@@ -213,7 +213,7 @@ def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
         material = MaterialState(material.strain, np.asarray(maxwell, dtype=float).copy())
     forces = excitation.point_forces(0.0, mesh.n_nodes)
     ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
-    bodies = _static_poses(initial) if mesh.body_names else None
+    bodies = with_pins(mesh.bodies, _static_poses(initial), 0.0) if mesh.body_names else None
     state = StepState(0.0, x, v, a, ev.material, ev, bodies)
     return accelerated(model, state, material, forces, dt)
 
@@ -289,7 +289,8 @@ class _Recorder:
         self.records: dict[str, list] = {k: [] for k in
                                          ("time", "position", "velocity", "tension",
                                           "end_force", "body_pose", "body_velocity",
-                                          "body_mooring_force", "wave_elevation")}
+                                          "body_mooring_force", "body_pin_force",
+                                          "wave_elevation")}
 
     def add(self, state: StepState) -> None:
         record = {"position": state.x.copy(), "velocity": state.v.copy(),
@@ -300,6 +301,8 @@ class _Recorder:
                   "body_velocity": (state.bodies.vel.copy() if state.bodies is not None
                                     else np.zeros((0, 6))),
                   "body_mooring_force": _mooring_forces(self.mesh, state),
+                  "body_pin_force": (state.pin_force.copy() if state.pin_force is not None
+                                     else np.zeros((len(self.mesh.body_names), 3))),
                   "wave_elevation": self._elevation(state.t)}
         self.records["time"].append(state.t)
         for key, value in record.items():
@@ -322,6 +325,7 @@ class _Recorder:
                              body_pose=arrays["body_pose"],
                              body_velocity=arrays["body_velocity"],
                              body_mooring_force=arrays["body_mooring_force"],
+                             body_pin_force=arrays["body_pin_force"],
                              wave_elevation=arrays["wave_elevation"],
                              static_tension=self.static_tension)
 

@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 
 from ..physics.rigid_body import rotation_matrix, rotation_vector, skew
 from .assembly import gather_free
-from .bodies import BodyState, transformation
+from .bodies import BodyState, refuse_pinned, transformation
 from .body_model import BodyModel
 
 FloatArray = NDArray[np.float64]
@@ -173,6 +173,7 @@ class BodyTerms:
                  omega: float, node_mass: FloatArray) -> None:
         self.mesh, self.basis, self.node_mass = mesh, basis, node_mass
         self.n_t, self.n_terms = basis[0].shape
+        refuse_pinned(mesh, "harmonic")
         self.static = BodyState.from_pose(pose)
         self.model = BodyModel(mesh, fluid, self.static, radiation_memory=False)
         self.n_u = self.model.layout.n_unknowns

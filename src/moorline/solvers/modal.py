@@ -367,9 +367,17 @@ def system_matrices(mesh: Mesh, positions: FloatArray, body_pose: FloatArray,
     (see :func:`body_modal_matrices` for the arguments): the one place modal, strumming and
     stochastic analyses get their matrices. ``tabulated_added_mass=False`` leaves out the
     added mass of bodies with a radiation table (a frequency-domain caller adds ``A(w)``)."""
-    from .bodies import BodyState, body_mass_matrix, rotation_matrix, transformation, world_arms
+    from .bodies import (
+        BodyState,
+        body_mass_matrix,
+        refuse_pinned,
+        rotation_matrix,
+        transformation,
+        world_arms,
+    )
     from .coupled_statics import CoupledStatics
 
+    refuse_pinned(mesh, "modal, strumming and stochastic")
     problem = problem or CoupledStatics(mesh)
     poses = BodyState(body_pose[:, :3].copy(), rotation_matrix(body_pose[:, 3:]))
     _, state = problem.residual(positions, poses)

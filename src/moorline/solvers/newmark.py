@@ -17,7 +17,8 @@ forces) and whose tangent is the effective stiffness of eq. 4.2.9a, assembled ex
 
     K_eff = (M_s + M_a) / (beta h^2) + (1 + alpha) (gamma C / (beta h) + K).
 
-The unknowns are the free node dofs and the six dofs of every free body (none without bodies);
+The unknowns are the free node dofs and the six dofs of every free or pinned body (none without
+bodies; a pinned body's three translations held at its pin, :func:`.bodies.hold_dofs`);
 nodes on bodies are slaves through the master-slave transformation (Tuah eq. 3.3.6-3.3.10),
 ``P``, and the line tangent is ``P^T K P`` plus the body blocks (:mod:`.body_model`). Rayleigh
 damping ``a0 M + a1 K0`` (``M`` and ``K0`` at the start) applies to all unknowns.
@@ -36,8 +37,9 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ..physics.rigid_body import left_jacobian as rb_left_jacobian
 from .assembly import BlockPattern, SparseFactor, factorize, gather_free, scatter_free, solve_sparse
-from .bodies import BodyState, transformation
+from .bodies import BodyState, hold_dofs, transformation
 from .body_model import BodyModel
 from .dynamic_model import DynamicModel, Evaluation, MaterialState
 from .newton import Counters, NewtonPolicy, TangentCache, max_norm, solve
@@ -52,7 +54,9 @@ class StepState:
     ``body_other`` holds the bodies' non-inertial generalized forces (nb, 6) at this state
     (HHT weights them with the next step's); ``memory`` the radiation memory states of the
     bodies with a radiation table (:meth:`BodyModel.advance_memory`; None: at rest), so a
-    repeated or cut step starts from them.
+    repeated or cut step starts from them; ``pin_force`` the force of the pin on every pinned
+    body (nb, 3; zeros for the others; None without pinned bodies): minus the translational
+    residual of its body equation, inertia included (with HHT, of the weighted equation).
     """
 
     t: float
@@ -64,6 +68,7 @@ class StepState:
     bodies: BodyState | None = None
     body_other: FloatArray | None = None
     memory: tuple | None = None
+    pin_force: FloatArray | None = None
 
 
 @dataclass(frozen=True)
@@ -98,6 +103,7 @@ class _Trial:
     #                                 which attached nodes pass to their bodies (with bodies
     #                                 or HHT; else None)
     memory: tuple | None = None  # the bodies' radiation memory states at the trial
+    pin_force: FloatArray | None = None  # (nb, 3) force of the pins on pinned bodies
 
     @property
     def has_tangent(self) -> bool:
@@ -195,7 +201,7 @@ class Stepper:
         v1[fixed], a1[fixed] = st.constrained[1], st.constrained[2]
         bs, arms, memory = None, np.zeros((0, 3)), None
         if s0.bodies is not None:
-            bs = self.bodies.advance(s0.bodies, dq, h, b, g)
+            bs = self.bodies.advance(s0.bodies, dq, h, b, g, s0.t + h)
             memory = self.bodies.advance_memory(s0.memory, s0.bodies, bs, h)
             x1 = x1.copy()
             arms = self.bodies.place(x1, v1, a1, bs)
@@ -223,13 +229,22 @@ class Stepper:
             for k, d in enumerate(self.bodies.body_dof):
                 if d >= 0:
                     r[d:d + 6] = weighted[k] + body_inertial[k]
+        pin_force = None
+        if self.layout.held.any():  # a pinned body's translational rows: the pin's reaction
+            pin_force = np.zeros((len(self.bodies.bodies), 3))
+            for k in np.flatnonzero(self.layout.pinned):
+                d = self.bodies.body_dof[k]
+                pin_force[k] = -r[d:d + 3]
+            self.layout.transfer(r, self.layout.pin_arms(bs))  # a pin on a host: onto it
         if self.C_rayleigh is not None:
             damping = self.C_rayleigh @ self._velocity(v1, bs)
             if alpha:
                 damping = (1 + alpha) * damping - alpha * (self.C_rayleigh
                                                            @ self._velocity(s0.v, s0.bodies))
             r -= damping
-        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other, node_forces, memory)
+        r[self.layout.held] = 0.0
+        return _Trial(r, x1, v1, a1, bs, arms, ev, body_other, node_forces, memory,
+                      pin_force)
 
     def factorize(self, u, trial: _Trial):
         """Factorization of the effective tangent (eq. 4.2.9a) at the trial."""
@@ -256,13 +271,51 @@ class Stepper:
         Px, Pv, Pa = (self._map(arms, blocks, scale)
                       for blocks, scale in ((bx, 1.0), (bv, cv1), (ba, ca)))
         T = self._map(arms)
-        lines = T.T @ (ck * (K @ Px + C @ Pv) + M @ Pa)
-        body = self.bodies.blocks(trial.bodies, trial.node_forces, arms,
-                                  self._current.s0.t + h, ca, cv, ck, u[1], h)
-        out = lines + self._body_matrix(body)
+        parts = self.bodies.block_parts(trial.bodies, trial.node_forces, arms,
+                                        self._current.s0.t + h, ck, u[1], h)
+        by_rate = [T.T @ (ck * K @ Px) + self._body_matrix([p[0] for p in parts]),
+                   T.T @ (ck * C @ Pv) + self._body_matrix([cv1 * p[1] for p in parts]),
+                   T.T @ (M @ Pa) + self._body_matrix([ca * p[2] for p in parts])]
+        if self.layout.chains:
+            out = self._chained(by_rate, trial, u[1], ca, cv1)
+        else:
+            out = by_rate[0] + by_rate[1] + by_rate[2]
         if self.C_rayleigh is not None:
             out = out + cv * self.C_rayleigh
+        if self.layout.held.any():
+            out = hold_dofs(out, self.layout.held, float(np.abs(out.diagonal()).max()))
         return out.tocsr()
+
+    def _chained(self, by_rate: list, trial: _Trial, dq: FloatArray, ca: float,
+                 cv1: float) -> sp.csr_matrix:
+        """The tangent with every chained pinned body's translation following its host's
+        pin (Newmark: its position, velocity and acceleration by the pin's kinematic blocks
+        on the host's step, columns of ``by_rate`` for position, velocity and acceleration),
+        its translational force moved onto the host (``T^T``) and the host's pin arm turning
+        under it (``-[F x][R_p a x] J(dq_p)``)."""
+        lay = self.layout
+        bs = trial.bodies
+        pins = lay.pin_arms(bs)
+        bx, bv, ba = self.bodies.pin_blocks(bs, dq, ca, cv1)
+        maps = (lay.chain_map(pins, bx), lay.chain_map(pins, bv / cv1),
+                lay.chain_map(pins, ba / ca))
+        full = self._untransferred(trial)
+        turning = lay.arm_turning(full, pins).tolil()
+        for _, p in lay.chains:
+            d = lay.body_dof[p] + 3
+            block = turning[d:d + 3, d:d + 3].toarray() @ rb_left_jacobian(dq[p, 3:])
+            turning[d:d + 3, d:d + 3] = block
+        out = by_rate[0] @ maps[0] + by_rate[1] @ maps[1] + by_rate[2] @ maps[2]
+        return (lay.chain_map(pins).T @ out + turning.tocsr()).tocsr()
+
+    def _untransferred(self, trial: _Trial) -> FloatArray:
+        """The trial's residual with the chained pinned bodies' translational forces back in
+        their own rows (minus their pin forces)."""
+        r = np.zeros(self.layout.n_unknowns)
+        for c, _ in self.layout.chains:
+            d = self.layout.body_dof[c]
+            r[d:d + 3] = -trial.pin_force[c]
+        return r
 
     def _factors(self, h: float) -> tuple[float, float, float]:
         """``(1 / (beta h^2), (1 + alpha) gamma / (beta h), 1 + alpha)``."""
@@ -289,6 +342,7 @@ class Stepper:
     def update(self, u, du: FloatArray):
         """Unknowns after the step ``du``."""
         x1, dq = u
+        du = np.where(self.layout.held, 0.0, du)  # a pinned body's translations follow its pin
         x1 = x1 + scatter_free(du[: self.layout.n_free], self.dof)
         if len(dq):
             dq = dq.copy()
@@ -316,7 +370,8 @@ class Stepper:
     def _state(self, trial: _Trial) -> StepState:
         st = self._current
         return StepState(st.s0.t + st.h, trial.x, trial.v, trial.a, trial.ev.material,
-                         trial.ev, trial.bodies, trial.body_other, trial.memory)
+                         trial.ev, trial.bodies, trial.body_other, trial.memory,
+                         trial.pin_force)
 
     def _one_shot(self, u, h: float) -> tuple[StepState, bool, float]:
         """Residual feedback / purely incremental: one solve per step, no iteration."""
@@ -414,7 +469,8 @@ class Stepper:
         pairs = self.bodies.mass_and_stiffness(bs)
         M = M + self._body_matrix([p[0] for p in pairs])
         K = K + self._body_matrix([p[1] for p in pairs])
-        self.C_rayleigh = (a0 * M + a1 * K).tocsr()
+        keep = sp.diags((~self.layout.held).astype(float))  # a pin's translations: none
+        self.C_rayleigh = (keep @ (a0 * M + a1 * K) @ keep).tocsr()
 
     def worst_dof(self, state: StepState, h: float, constrained, forces) -> int:
         """The unknown with the largest residual at the predicted state (for messages)."""

@@ -27,7 +27,7 @@ from ..mesh import Mesh, discretize, with_loads_of
 from ..model import StaticsSettings, System
 from ..results import StaticResult
 from .assembly import BlockPattern, SparseFactor, factorize, gather_free, scatter_free, solve_sparse
-from .coupled_statics import solve_coupled
+from .coupled_statics import CoupledStatics, solve_coupled
 from .equilibrium import ForceState, StaticModel
 from .initial_shape import initial_positions
 from .newton import Counters, NewtonPolicy, TangentCache
@@ -177,14 +177,17 @@ def _solve(system: System, settings: StaticsSettings, initial: FloatArray | None
     ok, message, iterations, state, x, poses = solve_coupled(mesh, x, settings, counters, hold,
                                                              model.current)
     pose = poses.as_array()
+    extras: dict = {"seabed_friction": model.friction} if model.friction > 0 else {}
+    if any(b.kind == "pinned" for b in mesh.bodies):
+        problem = CoupledStatics(mesh, exact_cable=True, current=model.current)
+        extras["pin_reaction"] = -problem.body_forces(state, poses)[:, :3]
     return StaticResult(
         success=ok, message=message, method=settings.method, iterations=iterations,
         load_steps=settings.load_steps, residual_history=np.array(counters.history),
         n_residual=counters.residuals, n_tangent=counters.tangents,
         n_factorizations=counters.factorizations, positions=x, tension=state.tension,
         element_forces=state.element_forces, mesh=mesh, case=system.name, units=system.units,
-        body_pose=pose, current_drag=current is not None,
-        extras={"seabed_friction": model.friction} if model.friction > 0 else {})
+        body_pose=pose, current_drag=current is not None, extras=extras)
 
 
 def _current_field(system: System):
