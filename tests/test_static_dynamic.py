@@ -308,3 +308,26 @@ def test_taut_line_with_mass_against_moordyn(tmp_path):
     ours = np.interp(t_theirs - 0.5e-4, run.time, run.tension[:, -1])
     keep = t_theirs >= 5.0
     np.testing.assert_allclose(ours[keep], np.array(theirs)[keep], rtol=5e-4)
+
+
+@pytest.mark.parametrize("analysis", ["modal", "stochastic", "strumming", "harmonic"])
+def test_linearized_analyses_refuse_the_law_through_the_api(analysis):
+    """The Python API refuses a linearized analysis of a static_dynamic rope as the case file
+    does (it used to linearize with the static stiffness without a word)."""
+    from moorline.io import load_case_text
+    from moorline.model import HarmonicSettings, ModalSettings, StrummingSettings
+    from moorline.solvers.harmonic import solve_harmonic
+    from moorline.solvers.modal import solve_modes
+    from moorline.solvers.stochastic import solve_stochastic
+    from moorline.solvers.strumming import solve_strumming
+
+    system = load_case_text(CASE.format(extra="EAd: 1.586e8, EAd_Lm: 0.4, BA: 4.0e9",
+                                        kind="statics"))
+    call = {"modal": lambda: solve_modes(system, ModalSettings()),
+            "stochastic": lambda: solve_stochastic(system),
+            "strumming": lambda: solve_strumming(system, StrummingSettings(), None),
+            "harmonic": lambda: solve_harmonic(system, HarmonicSettings(period=10.0))}
+    with pytest.raises(CaseError) as info:
+        call[analysis]()
+    assert info.value.field == "line_types.rope.material"
+    assert f"no {analysis} analysis" in info.value.reason
