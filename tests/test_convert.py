@@ -202,7 +202,8 @@ PUBLIC_BODY_DECKS = [
 
 
 RTEST = "OpenFAST-r-test/"
-_PINNED = pytest.mark.xfail(strict=True, reason="pinned rods (issue 14)")
+_PINNED = pytest.mark.xfail(strict=True, reason="a pinned rod on a free body: singular "
+                             "coupled statics (issue 14)")
 
 
 def _no_equilibrium(why: str):
@@ -246,12 +247,12 @@ RTEST_DECKS = [RTEST + deck for deck in (
     "modules/moordyn/md_case2/moordyn.dat",
     "modules/moordyn/md_case5/moordyn.dat",
     "modules/moordyn/md_lineFail/moordyn.dat",
+    "modules/moordyn/md_no_line/moordyn.dat",  # pinned rods
     "modules/moordyn/md_viscoelastic/moordyn.dat",  # EA_s|EA_Dc|EA_D_Lm, BA_s|BA_d
     "modules/moordyn/md_waterkin3/moordyn.dat",
     "modules/moordyn/py_md_5MW_OC4Semi/md_primary.inp",
 )] + [
     pytest.param(RTEST + "modules/moordyn/md_BodiesAndRods/moordyn.dat", marks=_PINNED),
-    pytest.param(RTEST + "modules/moordyn/md_no_line/moordyn.dat", marks=_PINNED),
     pytest.param(RTEST + "modules/moordyn/md_float/moordyn.dat", marks=_no_equilibrium(
         "a free-floating buoy (no mooring) decaying from 45 deg of pitch; surge, sway and yaw "
         "have no restoring and the surface-piercing rod's buoyancy is linearized at the "
