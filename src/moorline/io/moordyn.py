@@ -76,6 +76,7 @@ from ..model import Environment, Line, LineType, Point, Seabed, System
 from ..physics.load_strain import StrainTable
 from .files import MAX_CASE_BYTES, file_problem
 from .moordyn_bodies import body_attachment, body_problems, body_section
+from .moordyn_external import apply_external_loads, parse_external_loads
 from .moordyn_kinematics import deck_waves, water_kinematics
 from .moordyn_outputs import deck_channels, output_channels, time_options, time_settings
 from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
@@ -278,6 +279,15 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     for message in parts.warnings:
         reader.warn(message)
     bodies = parts.bodies()
+    if "external" in sections:
+        sec = sections["external"]
+        loads = parse_external_loads(sec.rows, lambda why, r: reader.fail(why, r, sec.title))
+        errors = apply_external_loads(
+            loads, bodies, points, parts.body_ids, parts.collapsed,
+            {n: parts.merged.get(name, name) for n, name in ids.items()}, rho, reader.warn)
+        if errors:
+            raise reader.fail("cannot be represented: " + "; ".join(errors),
+                              section=sec.title)
     environment = _environment(env_values, points, reader)
     waves = deck_waves(raw, path, reader.warn)
     if waves is not None:
@@ -354,7 +364,7 @@ def _section_kind(title: str) -> str:
         ("POINT", "points"), ("CONNECTION", "points"), ("NODE", "points"),
         ("LINE", "lines"), ("OPTION", "options"), ("SOLVER OPTION", "options"),
         ("OUTPUT", "outputs"),
-        ("FAIL", "ignored"), ("CONTROL", "ignored"), ("EXTERNAL", "ignored"),
+        ("FAIL", "ignored"), ("CONTROL", "ignored"), ("EXTERNAL", "external"),
     )
     for key, kind in checks:
         if title.startswith(key):

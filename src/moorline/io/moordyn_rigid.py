@@ -203,6 +203,7 @@ class RigidParts:
     rod_points: dict[str, Point] = field(default_factory=dict)
     rod_ends: dict[tuple[int, str], str] = field(default_factory=dict)
     merged: dict[str, str] = field(default_factory=dict)
+    collapsed: dict[str, str] = field(default_factory=dict)  # body -> the free point it became
     errors: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
 
@@ -237,6 +238,7 @@ class RigidParts:
             for other in others:
                 del points[other]
             self.merged.update({other: first for other in others})
+            self.collapsed[name] = first
             del self.rigid[name]
             self.warnings.append(
                 f"body {name}: its lines all attach at one point at its centres of gravity "
