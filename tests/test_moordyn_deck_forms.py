@@ -212,3 +212,56 @@ def test_rtest_body_external_load_deck_force_balance(tmp_path):
     expected = -np.array([1.0417e5, 0.5e5, -1.0e4 - 2.1244e4 * g])
     end = np.array(summary["lines"]["line1"]["end_b"]["force"])
     assert end == pytest.approx(expected, rel=1e-6)
+
+
+VIV = RTEST / "modules/moordyn/md_VIV/moordyn.dat"
+
+
+def _viv_variant(tmp_path: Path, options: str) -> Path:
+    text = VIV.read_text()
+    start, end = text.index("0.5      MU_KT"), text.index("1.0      CdScaleIC")
+    path = tmp_path / "viv.dat"
+    path.write_text(text[:start] + options + text[end:])
+    return path
+
+
+def test_moordyn_f_friction_options_of_the_rtest_viv_deck():
+    """OpenFAST r-test ``md_VIV``: ``MU_KT 0.5``, ``MU_KA 0.5``, ``FricDamp 20000`` (MoorDyn-F's
+    ``CV``). MoorDyn-F's law ``min(mu CV |v|, mu N)`` has the slope ``mu CV`` at rest,
+    moorline's ``mu N tanh(|v| / v_s)`` has ``mu N / v_s``: the slip velocity is a resting
+    node's contact force over CV, ``w l_seg / CV`` (the cable: 0.69 kg/m, d 0.024 m,
+    23.71 m in 100 segments)."""
+    deck = read_moordyn_deck(VIV)
+    seabed = deck.system.environment.seabed
+    assert (seabed.friction, seabed.friction_axial, seabed.friction_transverse) == (0.5,) * 3
+    w = (0.69 - 1025.0 * np.pi * 0.024**2 / 4.0) * 9.80665
+    assert seabed.slip_velocity == pytest.approx(w * 23.71 / 100 / 20000.0, rel=1e-12)
+    assert not any("MU_K" in note for note in deck.notes)  # read, not "unknown option"
+
+
+def test_friction_options_axial_transverse_and_static_ratio(tmp_path):
+    """Different axial and transverse coefficients land on their own axes (the statics'
+    ``friction`` is the axial one); without CV moorline's slip velocity stays; MoorDyn-F's
+    static/kinetic ratio ``MC`` has no counterpart: a note."""
+    deck = read_moordyn_deck(_viv_variant(tmp_path, "0.8 MU_KT\n0.4 MU_KA\n1.5 MC\n"))
+    seabed = deck.system.environment.seabed
+    assert (seabed.friction, seabed.friction_axial, seabed.friction_transverse) == \
+        (0.4, 0.4, 0.8)
+    assert seabed.slip_velocity == 0.01
+    assert any("MC (StatDynFricScale) = 1.5 has no counterpart" in n for n in deck.notes)
+
+
+def test_moordyn_c_friction_damping_sets_the_slip_velocity(tmp_path):
+    """MoorDyn-C's ``FrictionCoefficient`` with ``FricDamp`` (the same law, both directions):
+    the coefficient and the slip velocity ``w l_seg / FricDamp``."""
+    deck = read_moordyn_deck(_viv_variant(tmp_path, "0.3 FrictionCoefficient\n"
+                                                     "4000 FricDamp\n"))
+    seabed = deck.system.environment.seabed
+    assert seabed.friction == 0.3 and seabed.friction_axial is None
+    w = (0.69 - 1025.0 * np.pi * 0.024**2 / 4.0) * 9.80665
+    assert seabed.slip_velocity == pytest.approx(w * 23.71 / 100 / 4000.0, rel=1e-12)
+
+
+def test_bad_friction_option_is_refused(tmp_path):
+    with pytest.raises(CaseError, match="option MU_KT must be a number, got 'high'"):
+        read_moordyn_deck(_viv_variant(tmp_path, "high MU_KT\n"))

@@ -77,6 +77,7 @@ from ..physics.load_strain import StrainTable
 from .files import MAX_CASE_BYTES, file_problem
 from .moordyn_bodies import body_attachment, body_problems, body_section
 from .moordyn_external import apply_external_loads, parse_external_loads
+from .moordyn_friction import FRICTION_OPTIONS, deck_friction
 from .moordyn_kinematics import deck_waves, water_kinematics
 from .moordyn_outputs import deck_channels, output_channels, time_options, time_settings
 from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
@@ -112,7 +113,7 @@ _NUMERICAL_OPTIONS = {
     "threshic", "icgendynamic",
     "writelog", "dtout", "writeunits", "disableoutput", "disableouttime", "fileic", "fricdamp",
     "statdynfricscale", "echo", "icdfac", "icthresh", "ictmax", "dtwave", "wavekin_rampt",
-    "unifycurrentgrid", "seafloorfile",
+    "unifycurrentgrid", "seafloorfile", *FRICTION_OPTIONS,
 }
 _UNSUPPORTED_OPTIONS: dict[str, str] = {}
 _DROPPED_OPTIONS = {"waterkin": "MoorDyn v1 water kinematics files (waves and current)"}
@@ -296,6 +297,9 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     current = water_kinematics(raw, path, reader.warn)
     if current is not None:
         environment = replace(environment, current=current)
+    environment = replace(environment, seabed=deck_friction(
+        raw, environment.seabed, lines, types, environment.water_density, environment.gravity,
+        str(path), reader.warn))
     versions = {v_types, v_points, v_lines}
     problem = geometry_problem(points, lines, bodies)
     if problem is not None:
