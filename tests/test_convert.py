@@ -386,9 +386,10 @@ def test_public_coupled_pinned_body_deck_converts_solves_and_runs(tmp_path):
     # a rod of a type the deck never defines (MoorDyn-C 2.7.2 refuses it too: "Unrecognized
     # rod type Can")
     ("modules/moordyn/md_waterkin2/moordyn.dat", "RODS: unknown rod type 'Can'"),
-    # FAST.Farm's farm-level mooring: points on turbines placed by the farm input file
+    # FAST.Farm's farm-level mooring without the turbines' positions (`convert --turbine`)
     ("glue-codes/fast-farm/MD_Shared/SharedMooring2.dat",
-     "unknown point attachment 'Turbine1': points attached to turbines are not supported"),
+     "unknown point attachment 'Turbine1': a FAST.Farm turbine: give its reference position "
+     "(WT_X WT_Y WT_Z of the farm's .fstf) with `moorline convert --turbine 1 X Y Z`"),
 ], ids=lambda value: value.rpartition("/")[0].rpartition("/")[2] if "/" in value else "")
 def test_rtest_decks_with_unsupported_input_are_refused(deck, named, tmp_path):
     """OpenFAST r-test decks using what moorline does not model: exit 2, an error naming the

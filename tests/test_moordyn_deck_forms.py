@@ -265,3 +265,46 @@ def test_moordyn_c_friction_damping_sets_the_slip_velocity(tmp_path):
 def test_bad_friction_option_is_refused(tmp_path):
     with pytest.raises(CaseError, match="option MU_KT must be a number, got 'high'"):
         read_moordyn_deck(_viv_variant(tmp_path, "high MU_KT\n"))
+
+
+SHARED = RTEST / "glue-codes/fast-farm/MD_Shared/SharedMooring2.dat"
+#: WT_X WT_Y WT_Z of OpenFAST r-test glue-codes/fast-farm/MD_Shared/FAST.Farm.fstf (commit
+#: 71a5adcc1246d48ef65f2341e1f894a64d47b459), the FAST.Farm case that uses SharedMooring2.dat.
+FARM_TURBINES = {1: (0.0, 0.0, 0.0), 2: (1600.0, 0.0, 0.0)}
+
+
+def test_fast_farm_turbine_points_from_convert_turbine(tmp_path):
+    """FAST.Farm's shared mooring (r-test ``MD_Shared``): points on ``Turbine<k>`` become
+    prescribed points at the deck position plus turbine k's reference position (MoorDyn-F:
+    ``r = Position + TranslationDisp + TurbineRefPos``); the two turbines' lines and the
+    shared line with its two clump weights solve and run 2 s. Without ``--turbine`` the deck is
+    refused naming the option; a turbine given twice is refused too."""
+    from moorline.io import load_case
+    from moorline.model import DynamicsSettings
+    from moorline.solvers.dynamics import simulate
+    from moorline.solvers.statics import solve_statics
+
+    out = tmp_path / "farm.yaml"
+    flags = [arg for k, xyz in FARM_TURBINES.items()
+             for arg in ("--turbine", str(k), *map(str, xyz))]
+    runner = CliRunner()
+    result = runner.invoke(cli, ["convert", str(SHARED), "--out", str(out), "--quiet", *flags])
+    assert result.exit_code == 0, result.output
+    system = load_case(out)
+    for name, expected in (("point1", (-58.0, 0.0, -14.0)), ("point6", (29.0, -50.229, -14.0)),
+                           ("point4", (1542.0, 0.0, -14.0)),
+                           ("point12", (1629.0, -50.229, -14.0))):
+        point = system.points[name]
+        assert point.kind == "prescribed" and point.position == pytest.approx(expected)
+    assert system.points["point9"].position == (2400.0, 800.0, -600.0)  # anchors unchanged
+    static = solve_statics(system)
+    assert static.success, static.message
+    run = simulate(system, DynamicsSettings(duration=2.0, dt=0.05), initial=static)
+    assert run.success, run.message
+    twice = runner.invoke(cli, ["convert", str(SHARED), "--out", str(tmp_path / "t.yaml"),
+                                *flags, "--turbine", "1", "5", "0", "0"])
+    assert twice.exit_code == 2 and "--turbine 1 is given twice" in twice.output
+    missing = runner.invoke(cli, ["convert", str(SHARED), "--out", str(tmp_path / "m.yaml"),
+                                  "--turbine", "1", "0", "0", "0"])
+    assert missing.exit_code == 2
+    assert "--turbine 2 X Y Z` (turbines given: 1)" in missing.output

@@ -227,13 +227,21 @@ def read_moordyn(path: str | Path) -> System:
     return read_moordyn_deck(path).system
 
 
-def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
+def read_moordyn_deck(path: str | Path,
+                      turbines: Mapping[int, tuple[float, float, float]] | None = None
+                      ) -> MoorDynDeck:
     """Read a MoorDyn input file, keeping its options, IDs and reading notes.
 
     Parameters
     ----------
     path
         The MoorDyn input file.
+    turbines
+        FAST.Farm turbine reference positions [m] by turbine number (the ``WT_X WT_Y WT_Z``
+        of the farm's ``.fstf``): a point attached to ``Turbine<k>`` (``T<k>``) becomes a
+        prescribed point at its deck position plus turbine ``k``'s (as MoorDyn-F adds
+        ``TurbineRefPos`` to the coupled point's position, OpenFAST ``MoorDyn.f90``); without
+        the turbine's position the deck is refused.
 
     Returns
     -------
@@ -261,7 +269,7 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     rho = env_values.get("rho", MOORDYN_DEFAULTS["rho"])
     parts = _rigid_parts(sections, rho, env_values.get("g", MOORDYN_DEFAULTS["g"]), reader)
     types, v_types = _parse_line_types(sections["types"], reader)
-    points, ids, v_points = _parse_points(sections["points"], reader, parts, rho)
+    points, ids, v_points = _parse_points(sections["points"], reader, parts, rho, turbines)
     points.update(parts.rod_points)
     parts.collapse_point_bodies(points, rho)
     if parts.errors:
@@ -524,7 +532,8 @@ def point_word(attachment: str) -> str:
 
 
 def _parse_points(sec: _Section, reader: _Reader, parts: RigidParts | None = None,
-                  rho: float = MOORDYN_DEFAULTS["rho"]
+                  rho: float = MOORDYN_DEFAULTS["rho"],
+                  turbines: Mapping[int, tuple[float, float, float]] | None = None
                   ) -> tuple[dict[str, Point], dict[int, str], Version]:
     version: Version = "v1" if len(sec.rows[0].tokens) == 12 else "v2"
     layout = ("v2: ID Attachment X Y Z Mass Volume CdA Ca" if version == "v2"
@@ -539,10 +548,16 @@ def _parse_points(sec: _Section, reader: _Reader, parts: RigidParts | None = Non
         body = _point_body(attachment, parts)
         if body is not None:
             kind = "body"
+        turbine = re.match(r"(?i)^(?:turbine|t)(\d+)$", attachment)
+        offset = (0.0, 0.0, 0.0)
+        if turbine is not None and int(turbine.group(1)) in (turbines or {}):
+            kind, offset = "prescribed", (turbines or {})[int(turbine.group(1))]
         if kind is None:
+            given = ", ".join(map(str, sorted(turbines or {}))) or "none"
             what = ("no such body" if point_word(attachment) == "BODY" else
-                    "points attached to turbines are not supported"
-                    if re.match(r"(?i)turbine\d*", attachment) else
+                    f"a FAST.Farm turbine: give its reference position (WT_X WT_Y WT_Z of the "
+                    f"farm's .fstf) with `moorline convert --turbine {turbine.group(1)} X Y Z` "
+                    f"(turbines given: {given})" if turbine is not None else
                     "expected Fixed (Fix, Anchor), Coupled (Vessel, Ves, Cpld, Fairlead) "
                     "or Free (Connect, Con, Point)")
             raise reader.fail(f"unknown point attachment {attachment!r}: {what}", row, sec.title)
@@ -553,7 +568,8 @@ def _parse_points(sec: _Section, reader: _Reader, parts: RigidParts | None = Non
         if v[3] < 0:
             raise reader.fail(f"Mass must not be negative, got {v[3]:g}", row, sec.title)
         name = _row_name(row, f"point{number}", points, sec.title, reader)
-        points[name] = Point(name=name, kind=kind, position=(v[0], v[1], v[2]), mass=v[3],
+        position = (v[0] + offset[0], v[1] + offset[1], v[2] + offset[2])
+        points[name] = Point(name=name, kind=kind, position=position, mass=v[3],
                              volume=v[4], force=force, Cd=1.0 if cda else 0.0, drag_area=cda,
                              Ca=ca)
         if body is not None and parts is not None:
