@@ -58,7 +58,13 @@ their wave file next to the deck become a sea of explicit components, ``Currents
 a ``current_profile.txt`` the case's current (:mod:`moorline.io.moordyn_kinematics`); other
 kinematics options are warnings naming what is dropped. ``TMax``, ``dtOut`` and the
 ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and ``output.channels``
-(:mod:`moorline.io.moordyn_outputs`).
+(:mod:`moorline.io.moordyn_outputs`). MoorDyn-F's ``EXTERNAL LOADS`` section becomes body and
+point forces, body damping and drag (:mod:`moorline.io.moordyn_external`), its seabed-friction
+options (``MU_KT``, ``MU_KA``, ``MC``, ``CV``; MoorDyn-C's ``FricDamp``,
+``StatDynFricScale``) the seabed's friction (:mod:`moorline.io.moordyn_friction`), early
+MoorDyn-F v2 17-column body rows are read (:func:`moorline.io.moordyn_rigid.legacy_body_row`),
+and FAST.Farm's ``Turbine<k>`` points become prescribed points given the turbines' positions
+(:func:`read_moordyn_deck`).
 """
 
 from __future__ import annotations
