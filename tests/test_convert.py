@@ -253,7 +253,7 @@ RTEST_DECKS = [RTEST + deck for deck in (
     "modules/moordyn/py_md_5MW_OC4Semi/md_primary.inp",
 )] + [
     pytest.param(RTEST + "modules/moordyn/md_BodiesAndRods/moordyn.dat", marks=_PINNED),
-    pytest.param(RTEST + "modules/moordyn/md_no_line/moordyn.dat", marks=_PINNED),
+    RTEST + "modules/moordyn/md_no_line/moordyn.dat",  # a pinned rod, no line
     pytest.param(RTEST + "modules/moordyn/md_float/moordyn.dat", marks=_no_equilibrium(
         "a free-floating buoy (no mooring) decaying from 45 deg of pitch; surge, sway and yaw "
         "have no restoring and the surface-piercing rod's buoyancy is linearized at the "
