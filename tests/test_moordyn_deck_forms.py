@@ -187,6 +187,7 @@ def test_external_force_on_a_body_point_and_in_body_axes(tmp_path):
     (" 2  Body1  0  0  0  G", "IDs must run 1, 2, 3"),
     (" 1  Body3  0  0  0  G", "no body 3"),
     (" 1  Point9  1|0|0  0  0  -", "no point 9"),
+    (" 1  Rod1  1|0|0  0  0  -", "a force on rod 1"),
 ])
 def test_bad_external_loads_are_refused(tmp_path, rows, message):
     deck = _deck(tmp_path, "bad", rows)
