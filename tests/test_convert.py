@@ -232,6 +232,8 @@ RTEST_DECKS = [RTEST + deck for deck in (
     "glue-codes/openfast/MHK_RM1_Floating_wNacDrag/MHK_RM1_Floating_wNacDrag_MoorDyn.dat",
     "glue-codes/openfast/StC_test_OC4Semi/NRELOffshrBsline5MW_OC4DeepCwindSemi_MoorDyn.dat",
     "glue-codes/openfast/StC_test_OC4Semi_blade2/NRELOffshrBsline5MW_OC4DeepCwindSemi_MoorDyn.dat",
+    "modules/moordyn/5MW_OC4/moordyn.dat",  # an early MoorDyn-F v2 body row (1coupled)
+    "modules/moordyn/5MW_OC4_simple/moordyn.dat",
     "modules/moordyn/Node_Check_(N=20)/test.dat",
     "modules/moordyn/Node_Check_(N=40)/test1.dat",  # v1 points, v2 lines with CtrlChan
     "modules/moordyn/Single_Line_Quasi_Static_Test/test.dat",
@@ -385,12 +387,10 @@ def test_public_coupled_pinned_body_deck_converts_solves_and_runs(tmp_path):
     # a rod of a type the deck never defines (MoorDyn-C 2.7.2 refuses it too: "Unrecognized
     # rod type Can")
     ("modules/moordyn/md_waterkin2/moordyn.dat", "RODS: unknown rod type 'Can'"),
-    # FAST.Farm's farm-level mooring: points on turbines placed by the farm input file
+    # FAST.Farm's farm-level mooring without the turbines' positions (`convert --turbine`)
     ("glue-codes/fast-farm/MD_Shared/SharedMooring2.dat",
-     "unknown point attachment 'Turbine1': points attached to turbines are not supported"),
-    # an early MoorDyn-F v2 body row (type in the ID, 17 columns)
-    ("modules/moordyn/5MW_OC4/moordyn.dat", "BODIES: ID must be numbers, got '1coupled'"),
-    ("modules/moordyn/5MW_OC4_simple/moordyn.dat", "BODIES: ID must be numbers, got '1coupled'"),
+     "unknown point attachment 'Turbine1': a FAST.Farm turbine: give its reference position "
+     "(WT_X WT_Y WT_Z of the farm's .fstf) with `moorline convert --turbine 1 X Y Z`"),
 ], ids=lambda value: value.rpartition("/")[0].rpartition("/")[2] if "/" in value else "")
 def test_rtest_decks_with_unsupported_input_are_refused(deck, named, tmp_path):
     """OpenFAST r-test decks using what moorline does not model: exit 2, an error naming the

@@ -695,8 +695,15 @@ if __name__ == "__main__":  # pragma: no cover
 @click.option("--vessel-body", "vessel", is_flag=True,
               help="Hold the Coupled/Vessel points by one fixed body 'vessel' at the origin "
                    "(the statics summary then reports its reaction and 6x6 stiffness).")
+@click.option("--turbine", "turbines", type=(int, float, float, float), multiple=True,
+              metavar="K X Y Z",
+              help="Reference position [m] of turbine K of a FAST.Farm farm-level deck "
+                   "(WT_X WT_Y WT_Z of the .fstf): its Turbine<K> points become prescribed "
+                   "points at the deck position plus X Y Z. Repeatable.")
 @_common_options
-def convert(deck: Path, out: Path | None, vessel: bool, quiet: bool, verbose: bool) -> None:
+def convert(deck: Path, out: Path | None, vessel: bool,
+            turbines: tuple[tuple[int, float, float, float], ...], quiet: bool,
+            verbose: bool) -> None:
     """Convert a MoorDyn input file DECK into a moorline case file (YAML).
 
     The case is validated before it is written: a deck whose values a case may not hold
@@ -707,12 +714,19 @@ def convert(deck: Path, out: Path | None, vessel: bool, quiet: bool, verbose: bo
     `run` also take a deck directly and convert it on the fly (with a note). Bodies and rods
     become moorline bodies and points (moorline.io.moordyn_rigid). Without --vessel-body,
     `moorline stiffness` takes every Coupled point as one rigid group (about their centroid).
+    FAST.Farm's farm-level decks attach points to turbines (Turbine<K>): give each turbine's
+    reference position with --turbine K X Y Z (MoorDyn-F adds it to the point's deck position).
     """
     _configure_logging(verbose)
     from .io.case_writer import write_case
     from .io.moordyn import read_moordyn_deck
 
-    read = read_moordyn_deck(deck)
+    positions: dict[int, tuple[float, float, float]] = {}
+    for k, *xyz in turbines:
+        if k in positions:
+            raise CaseError(f"--turbine {k} is given twice", str(deck))
+        positions[k] = (xyz[0], xyz[1], xyz[2])
+    read = read_moordyn_deck(deck, turbines=positions)
     system = read.system
     if vessel:
         from .io.moordyn_rigid import vessel_body

@@ -58,7 +58,13 @@ their wave file next to the deck become a sea of explicit components, ``Currents
 a ``current_profile.txt`` the case's current (:mod:`moorline.io.moordyn_kinematics`); other
 kinematics options are warnings naming what is dropped. ``TMax``, ``dtOut`` and the
 ``OUTPUTS`` channels become a dynamics analysis, ``output.every`` and ``output.channels``
-(:mod:`moorline.io.moordyn_outputs`).
+(:mod:`moorline.io.moordyn_outputs`). MoorDyn-F's ``EXTERNAL LOADS`` section becomes body and
+point forces, body damping and drag (:mod:`moorline.io.moordyn_external`), its seabed-friction
+options (``MU_KT``, ``MU_KA``, ``MC``, ``CV``; MoorDyn-C's ``FricDamp``,
+``StatDynFricScale``) the seabed's friction (:mod:`moorline.io.moordyn_friction`), early
+MoorDyn-F v2 17-column body rows are read (:func:`moorline.io.moordyn_rigid.legacy_body_row`),
+and FAST.Farm's ``Turbine<k>`` points become prescribed points given the turbines' positions
+(:func:`read_moordyn_deck`).
 """
 
 from __future__ import annotations
@@ -76,6 +82,8 @@ from ..model import Environment, Line, LineType, Point, Seabed, System
 from ..physics.load_strain import StrainTable
 from .files import MAX_CASE_BYTES, file_problem
 from .moordyn_bodies import body_attachment, body_problems, body_section
+from .moordyn_external import apply_external_loads, parse_external_loads
+from .moordyn_friction import FRICTION_OPTIONS, deck_friction
 from .moordyn_kinematics import deck_waves, water_kinematics
 from .moordyn_outputs import deck_channels, output_channels, time_options, time_settings
 from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
@@ -111,7 +119,7 @@ _NUMERICAL_OPTIONS = {
     "threshic", "icgendynamic",
     "writelog", "dtout", "writeunits", "disableoutput", "disableouttime", "fileic", "fricdamp",
     "statdynfricscale", "echo", "icdfac", "icthresh", "ictmax", "dtwave", "wavekin_rampt",
-    "unifycurrentgrid", "seafloorfile",
+    "unifycurrentgrid", "seafloorfile", *FRICTION_OPTIONS,
 }
 _UNSUPPORTED_OPTIONS: dict[str, str] = {}
 _DROPPED_OPTIONS = {"waterkin": "MoorDyn v1 water kinematics files (waves and current)"}
@@ -225,13 +233,21 @@ def read_moordyn(path: str | Path) -> System:
     return read_moordyn_deck(path).system
 
 
-def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
+def read_moordyn_deck(path: str | Path,
+                      turbines: Mapping[int, tuple[float, float, float]] | None = None
+                      ) -> MoorDynDeck:
     """Read a MoorDyn input file, keeping its options, IDs and reading notes.
 
     Parameters
     ----------
     path
         The MoorDyn input file.
+    turbines
+        FAST.Farm turbine reference positions [m] by turbine number (the ``WT_X WT_Y WT_Z``
+        of the farm's ``.fstf``): a point attached to ``Turbine<k>`` (``T<k>``) becomes a
+        prescribed point at its deck position plus turbine ``k``'s (as MoorDyn-F adds
+        ``TurbineRefPos`` to the coupled point's position, OpenFAST ``MoorDyn.f90``); without
+        the turbine's position the deck is refused.
 
     Returns
     -------
@@ -259,7 +275,7 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     rho = env_values.get("rho", MOORDYN_DEFAULTS["rho"])
     parts = _rigid_parts(sections, rho, env_values.get("g", MOORDYN_DEFAULTS["g"]), reader)
     types, v_types = _parse_line_types(sections["types"], reader)
-    points, ids, v_points = _parse_points(sections["points"], reader, parts, rho)
+    points, ids, v_points = _parse_points(sections["points"], reader, parts, rho, turbines)
     points.update(parts.rod_points)
     parts.collapse_point_bodies(points, rho)
     if parts.errors:
@@ -278,6 +294,15 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     for message in parts.warnings:
         reader.warn(message)
     bodies = parts.bodies()
+    if "external" in sections:
+        sec = sections["external"]
+        loads = parse_external_loads(sec.rows, lambda why, r: reader.fail(why, r, sec.title))
+        errors = apply_external_loads(
+            loads, bodies, points, parts.body_ids, parts.collapsed,
+            {n: parts.merged.get(name, name) for n, name in ids.items()}, rho, reader.warn)
+        if errors:
+            raise reader.fail("cannot be represented: " + "; ".join(errors),
+                              section=sec.title)
     environment = _environment(env_values, points, reader)
     waves = deck_waves(raw, path, reader.warn)
     if waves is not None:
@@ -286,6 +311,9 @@ def read_moordyn_deck(path: str | Path) -> MoorDynDeck:
     current = water_kinematics(raw, path, reader.warn)
     if current is not None:
         environment = replace(environment, current=current)
+    environment = replace(environment, seabed=deck_friction(
+        raw, environment.seabed, lines, types, environment.water_density, environment.gravity,
+        str(path), reader.warn))
     versions = {v_types, v_points, v_lines}
     problem = geometry_problem(points, lines, bodies)
     if problem is not None:
@@ -354,7 +382,7 @@ def _section_kind(title: str) -> str:
         ("POINT", "points"), ("CONNECTION", "points"), ("NODE", "points"),
         ("LINE", "lines"), ("OPTION", "options"), ("SOLVER OPTION", "options"),
         ("OUTPUT", "outputs"),
-        ("FAIL", "ignored"), ("CONTROL", "ignored"), ("EXTERNAL", "ignored"),
+        ("FAIL", "ignored"), ("CONTROL", "ignored"), ("EXTERNAL", "external"),
     )
     for key, kind in checks:
         if title.startswith(key):
@@ -510,7 +538,8 @@ def point_word(attachment: str) -> str:
 
 
 def _parse_points(sec: _Section, reader: _Reader, parts: RigidParts | None = None,
-                  rho: float = MOORDYN_DEFAULTS["rho"]
+                  rho: float = MOORDYN_DEFAULTS["rho"],
+                  turbines: Mapping[int, tuple[float, float, float]] | None = None
                   ) -> tuple[dict[str, Point], dict[int, str], Version]:
     version: Version = "v1" if len(sec.rows[0].tokens) == 12 else "v2"
     layout = ("v2: ID Attachment X Y Z Mass Volume CdA Ca" if version == "v2"
@@ -525,10 +554,16 @@ def _parse_points(sec: _Section, reader: _Reader, parts: RigidParts | None = Non
         body = _point_body(attachment, parts)
         if body is not None:
             kind = "body"
+        turbine = re.match(r"(?i)^(?:turbine|t)(\d+)$", attachment)
+        offset = (0.0, 0.0, 0.0)
+        if turbine is not None and int(turbine.group(1)) in (turbines or {}):
+            kind, offset = "prescribed", (turbines or {})[int(turbine.group(1))]
         if kind is None:
+            given = ", ".join(map(str, sorted(turbines or {}))) or "none"
             what = ("no such body" if point_word(attachment) == "BODY" else
-                    "points attached to turbines are not supported"
-                    if re.match(r"(?i)turbine\d*", attachment) else
+                    f"a FAST.Farm turbine: give its reference position (WT_X WT_Y WT_Z of the "
+                    f"farm's .fstf) with `moorline convert --turbine {turbine.group(1)} X Y Z` "
+                    f"(turbines given: {given})" if turbine is not None else
                     "expected Fixed (Fix, Anchor), Coupled (Vessel, Ves, Cpld, Fairlead) "
                     "or Free (Connect, Con, Point)")
             raise reader.fail(f"unknown point attachment {attachment!r}: {what}", row, sec.title)
@@ -539,7 +574,8 @@ def _parse_points(sec: _Section, reader: _Reader, parts: RigidParts | None = Non
         if v[3] < 0:
             raise reader.fail(f"Mass must not be negative, got {v[3]:g}", row, sec.title)
         name = _row_name(row, f"point{number}", points, sec.title, reader)
-        points[name] = Point(name=name, kind=kind, position=(v[0], v[1], v[2]), mass=v[3],
+        position = (v[0] + offset[0], v[1] + offset[1], v[2] + offset[2])
+        points[name] = Point(name=name, kind=kind, position=position, mass=v[3],
                              volume=v[4], force=force, Cd=1.0 if cda else 0.0, drag_area=cda,
                              Ca=ca)
         if body is not None and parts is not None:

@@ -203,6 +203,7 @@ class RigidParts:
     rod_points: dict[str, Point] = field(default_factory=dict)
     rod_ends: dict[tuple[int, str], str] = field(default_factory=dict)
     merged: dict[str, str] = field(default_factory=dict)
+    collapsed: dict[str, str] = field(default_factory=dict)  # body -> the free point it became
     errors: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
 
@@ -237,6 +238,7 @@ class RigidParts:
             for other in others:
                 del points[other]
             self.merged.update({other: first for other in others})
+            self.collapsed[name] = first
             del self.rigid[name]
             self.warnings.append(
                 f"body {name}: its lines all attach at one point at its centres of gravity "
@@ -288,10 +290,41 @@ def parse_rod_types(rows: list[Any], fail: Fail) -> dict[str, RodType]:
     return types
 
 
+def legacy_body_row(tokens: list[str], row: Any, fail: Fail) -> list[str]:
+    """An early MoorDyn-F v2 body row as today's 14 columns (other rows unchanged).
+
+    The early row (OpenFAST ``modules/moordyn/src/MoorDyn.f90`` of 2020-2021, its "BODY
+    LIST" reader of 17 values; OpenFAST r-test ``modules/moordyn/5MW_OC4/moordyn.dat``) is
+    ``<ID><type> X0 Y0 Z0 r0 p0 y0 Xcg Ycg Zcg M V IX IY IZ CdA Ca``: the body type follows the
+    number in the first word (``1coupled``; ``Coupled`` or ``Vessel``, else ``Free`` or
+    nothing for a free body), the centre of gravity and the inertia are three columns each,
+    the mass comes before the volume. It becomes ``ID Attachment X0 Y0 Z0 r0 p0 y0 M
+    Xcg|Ycg|Zcg IX|IY|IZ V CdA Ca`` as :func:`parse_bodies` reads it.
+    """
+    match = re.match(r"^(\d+)([A-Za-z]*)$", tokens[0]) if tokens else None
+    legacy = match is not None and (bool(match.group(2)) or (
+        len(tokens) == 17 and re.match(r"^[-+.\d]", tokens[1]) is not None))
+    if not legacy:
+        return tokens
+    assert match is not None
+    if len(tokens) != 17:
+        raise fail(f"body ID {tokens[0]!r} (an early MoorDyn-F v2 row, the type after the "
+                   "number) needs 17 columns (ID+type X0 Y0 Z0 r0 p0 y0 Xcg Ycg Zcg M V IX IY "
+                   f"IZ CdA Ca), found {len(tokens)}", row)
+    word = match.group(2).upper()
+    if word not in {"COUPLED", "VESSEL", "FREE", ""}:
+        raise fail(f"body ID {tokens[0]!r}: an early MoorDyn-F v2 body type must be Coupled, "
+                   "Vessel or Free (or none: free)", row)
+    v = tokens[1:]
+    kind = "Coupled" if word in {"COUPLED", "VESSEL"} else "Free"
+    return [match.group(1), kind, *v[:6], v[9], "|".join(v[6:9]), "|".join(v[11:14]), v[10],
+            v[14], v[15]]
+
+
 def parse_bodies(rows: list[Any], rho: float, fail: Fail, parts: RigidParts) -> None:
     """``BODIES`` rows into ``parts`` (names from a one-word comment, else ``body<ID>``)."""
     for number, row in enumerate(rows, start=1):
-        tok = row.tokens
+        tok = row.tokens = legacy_body_row(row.tokens, row, fail)
         if len(tok) < 14:
             raise fail("a body needs 14 columns (ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG I "
                        f"Volume CdA Ca), found {len(tok)}", row)
