@@ -148,3 +148,19 @@ def test_case6_free_points_presolve_equals_moorpy() -> None:
             assert np.linalg.norm(solved[mesh.point_node[k]] - ref) < 0.01, name
     result = solve_statics(system)
     assert result.success and result.iterations <= 10, result.message
+
+
+@pytest.mark.parametrize("H", [0.0, 1.0e-3, 50.0, 2.0e3, 1.0e5, 1.0e9])
+def test_hanging_length_is_the_root_of_the_closed_form_height(H: float) -> None:
+    """The length hanging from a touchdown to a height h (Newton from the inextensible root)
+    gives back h through the closed-form elastic catenary (Irvine 1981 eq. 1.22, written
+    here): z(s) = (H/w)(sqrt(1 + (w s/H)^2) - 1) + w s^2/(2 EA), z = s + w s^2/(2 EA) at H = 0."""
+    from moorline.catenary_touching import _hanging_length
+
+    w, EA = 700.0, 3.0e6  # a soft line: the elastic term matters
+    for h in (0.5, 30.0, 300.0):
+        s = _hanging_length(h, H, w, EA)
+        b = w * s / H if H else 0.0  # (H/w)(sqrt(1 + b^2) - 1) without the cancellation:
+        z = (s if H == 0.0 else H / w * b * b / (1.0 + math.sqrt(1.0 + b * b))) \
+            + w * s * s / (2.0 * EA)
+        assert z == pytest.approx(h, rel=1e-12), (h, H)

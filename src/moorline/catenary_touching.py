@@ -40,13 +40,26 @@ def _rise(H: float, w: float, EA: float, s: ArrayLike) -> tuple[FloatArray, Floa
 
 
 def _hanging_length(h: float, H: float, w: float, EA: float) -> float:
-    """Unstretched length hanging from a touchdown up to height ``h`` under ``H``."""
+    """Unstretched length hanging from a touchdown up to height ``h`` under ``H``.
+
+    Newton on ``z(s) - h`` (the module docstring's ``z``), from the inextensible root
+    ``sqrt(h^2 + 2 h H / w)``: ``z`` is increasing and convex in ``s``, and the elastic term
+    puts ``z`` above ``h`` there, so the iterates decrease monotonically to the root (no
+    bracketing search: this is called thousands of times by the free points' presolve)."""
     if h <= 0.0:
         return 0.0
-    from scipy.optimize import brentq  # imported on use (0.2 s)
-
-    return float(brentq(lambda s: float(_rise(H, w, EA, s)[0]) - h, 0.0, h + H / w + 1.0,
-                        xtol=1e-13 * (h + 1.0), rtol=1e-14))
+    inv_ea = 1.0 / EA
+    if H <= 0.0:  # hanging straight down: s + w s^2 / (2 EA) = h
+        return 2.0 * h / (1.0 + math.sqrt(1.0 + 2.0 * w * h * inv_ea))
+    s = math.sqrt(h * h + 2.0 * h * H / w)
+    for _ in range(100):
+        b = w * s / H
+        r = math.hypot(1.0, b)
+        step = (s * b / (1.0 + r) + 0.5 * w * s * s * inv_ea - h) / (b / r + w * s * inv_ea)
+        s -= step
+        if abs(step) <= 1e-15 * (s + h):
+            break
+    return s
 
 
 @dataclass(frozen=True)
