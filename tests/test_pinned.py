@@ -355,7 +355,7 @@ def test_modal_analysis_refuses_pinned_bodies():
         solve_modes(system)
 
 
-def test_accelerating_pin_against_moordyn_on_pinned_body_deck():
+def test_accelerating_pin_against_moordyn_on_pinned_body_deck(tmp_path):
     """MoorDyn-C (``moordyn`` module) runs tests/Mooring/body_tests/pinnedBody.txt itself
     (the CoupledPinned body, its pin driven at 0.5 m/s^2 along y, dt 0.01 s, 12 s, as
     MoorDyn's ``tests/bodies.cpp``); moorline its equivalent (:func:`_accelerating_pin`, dt
@@ -367,7 +367,9 @@ def test_accelerating_pin_against_moordyn_on_pinned_body_deck():
     moordyn = pytest.importorskip("moordyn")
     from moorline.compare.moordyn_runner import silenced_fd
 
-    deck = Path(__file__).parent / "data/moordyn/public/MoorDyn/body_tests/pinnedBody.txt"
+    source = Path(__file__).parent / "data/moordyn/public/MoorDyn/body_tests/pinnedBody.txt"
+    deck = tmp_path / source.name  # MoorDyn writes its .log and .out files next to the deck
+    deck.write_bytes(source.read_bytes())
     a, duration = 0.5, 12.0
     x, xd = [0.0, 0.0, -5.0, 0.0, 0.0, 0.0], [0.0] * 6
     with silenced_fd(1):
