@@ -30,12 +30,12 @@ from .plot_configuration import (
     figure_configuration_3d,
     figure_configuration_plan,
     figure_configuration_xz,
-    seabed_z,
     tension_norm,
     units_of,
 )
 from .plot_envelope import plot_tension_envelope
-from .plot_style import curve_styles, draw_water_levels, force_scale, literal_text
+from .plot_seabed import draw_levels_xz, seabed_extent, seabed_under
+from .plot_style import curve_styles, force_scale, literal_text
 
 __all__ = ["figure_configuration_3d", "figure_configuration_plan", "figure_configuration_xz",
            "figure_mode_shapes", "figure_motion_history", "figure_tension_history",
@@ -58,7 +58,8 @@ def plot_configuration(dataset: xr.Dataset, path_xz: str | Path, path_3d: str | 
         ``element_nodes(element, pair)``, ``tension(element)``, optionally
         ``point_position(point, xyz)`` and the coordinates ``element_line`` and
         ``point_kind``; attributes ``units`` (``SI`` or ``US``), ``case`` and
-        optionally ``seabed_z`` (drawn when finite).
+        optionally ``seabed_z`` (drawn when finite) and the attributes of a sloped or
+        gridded seabed (:mod:`moorline.seabed_attrs`).
     path_xz, path_3d, path_plan
         PNG files to write (parent directories are created).
 
@@ -230,7 +231,8 @@ plot_motion_history = _writer(figure_motion_history, "motion_history")
 
 
 def display_scale(position: NDArray[np.float64], shape: NDArray[np.float64], target: float,
-                  seabed: float | None, tolerance: float = 0.0) -> tuple[float, bool]:
+                  seabed: float | NDArray[np.float64] | None, tolerance: float = 0.0
+                  ) -> tuple[float, bool]:
     """The signed factor a mode shape is drawn with, and whether the drawing must still be
     clipped at the seabed.
 
@@ -238,6 +240,7 @@ def display_scale(position: NDArray[np.float64], shape: NDArray[np.float64], tar
     farthest before one goes ``tolerance`` below the seabed (nodes resting on it count from
     it), and the factor ``target`` is reduced to keep every node above that, unless that
     would shrink it under a quarter (then the drawing is clipped at the seabed instead).
+    ``seabed``: its height, or its height under each node (n,) for a sloped or gridded one.
     """
     if seabed is None:
         return target, False
@@ -284,7 +287,7 @@ def figure_mode_shapes(dataset: xr.Dataset, max_modes: int = 6,
     position = np.asarray(dataset["position"].values, dtype=float)
     connectivity = np.asarray(dataset["element_nodes"].values, dtype=int)
     shapes = np.asarray(dataset["mode_shape"].values, dtype=float)[:max_modes]
-    seabed = seabed_z(dataset)
+    seabed = seabed_under(dataset, position)
     n = len(shapes)
     columns = 1 if n <= 1 else 2
     rows = max(1, math.ceil(n / columns))
@@ -308,7 +311,7 @@ def figure_mode_shapes(dataset: xr.Dataset, max_modes: int = 6,
         ax.add_collection(LineCollection(moved[connectivity][:, :, plane], colors="tab:blue",
                                          linewidths=1.6, gid="mode shape"))
         if plane[1] == 2:
-            draw_water_levels(ax, seabed)
+            draw_levels_xz(ax, dataset, position[connectivity])
         ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel(f"x [{units['length']}]")
@@ -452,10 +455,10 @@ def animate_run(dataset: xr.Dataset, path: str | Path, frames: int = 120,
     FigureCanvasAgg(fig)
     ax = fig.add_subplot(1, 1, 1)
     lo, hi = pos[..., [a, b]].min(axis=(0, 1)), pos[..., [a, b]].max(axis=(0, 1))
-    seabed = seabed_z(dataset)
+    seabed = seabed_under(dataset, pos.reshape(-1, 3))
     if b == 2:
-        draw_water_levels(ax, seabed)
-        lo[1] = min(lo[1], seabed if seabed is not None else lo[1])
+        draw_levels_xz(ax, dataset, pos[0][el])
+        lo[1] = min(lo[1], float(seabed.min()) if seabed is not None else lo[1])
         hi[1] = max(hi[1], 0.0)
     pad = 0.05 * float(np.max(hi - lo))
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
@@ -500,11 +503,9 @@ def figure_snapshots(dataset: xr.Dataset, times: list[float] | None = None) -> F
     tension = np.asarray(dataset["tension"].values, dtype=float)
     picks = times if times is not None else list(np.linspace(time[0], time[-1], 4))
     fig = Figure(figsize=(12, 3.8), layout="constrained")
-    seabed = seabed_z(dataset)
     extent = pos.reshape(-1, 3)
-    if seabed is not None:
-        extent = np.vstack([extent, [[extent[0, 0], extent[0, 1], seabed]]])
     low, high = bounds(extent)
+    low, high = bounds(np.vstack([extent, seabed_extent(dataset, low, high)]))
     owners = (np.asarray(dataset["element_line"].values).astype(str)
               if "element_line" in dataset.coords else None)
     azimuth = best_azimuth(pos[0][el], owners)

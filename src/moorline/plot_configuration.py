@@ -19,11 +19,10 @@ from mpl_toolkits.mplot3d import proj3d
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from numpy.typing import NDArray
 
+from .plot_seabed import draw_levels_xz, draw_seabed_3d, seabed_extent
 from .plot_style import (
-    SEABED_COLOUR,
     SURFACE_COLOUR,
     UNITS,
-    draw_water_levels,
     force_scale,
     literal_text,
     place_labels,
@@ -59,15 +58,6 @@ def tension_norm(tension: NDArray[np.float64]) -> Normalize:
         pad = max(abs(high) * 0.01, 1.0)
         low, high = low - pad, high + pad
     return Normalize(vmin=low, vmax=high)
-
-
-def seabed_z(dataset: xr.Dataset) -> float | None:
-    """The dataset's ``seabed_z`` attribute, ``None`` when absent or not finite."""
-    value = dataset.attrs.get("seabed_z")
-    if value is None:
-        return None
-    z = float(np.asarray(value).ravel()[0])
-    return z if math.isfinite(z) else None
 
 
 def points(dataset: xr.Dataset) -> list[tuple[str, str, NDArray[np.float64]]]:
@@ -120,7 +110,7 @@ def _figure_2d(dataset: xr.Dataset, plane: tuple[int, int], view: str) -> Figure
     collection.set_array(tension)
     ax.add_collection(collection)
     if plane[1] == 2:
-        draw_water_levels(ax, seabed_z(dataset))
+        draw_levels_xz(ax, dataset, seg)
     labels = []
     for name, kind, xyz in points(dataset):
         marker, colour = MARKERS.get(kind, ("o", "tab:gray"))
@@ -229,13 +219,11 @@ def figure_configuration_3d(dataset: xr.Dataset, elevation: float = 20.0) -> Fig
     xyz = seg.reshape(-1, 3)
     if named:
         xyz = np.vstack([xyz, [p for _, _, p in named]])
-    seabed = seabed_z(dataset)
-    extra = [0.0] + ([seabed] if seabed is not None else [])
-    xyz = np.vstack([xyz, [[xyz[0, 0], xyz[0, 1], z] for z in extra]])
+    xyz = np.vstack([xyz, [[xyz[0, 0], xyz[0, 1], 0.0]]])
     low, high = bounds(xyz)
+    low, high = bounds(np.vstack([xyz, seabed_extent(dataset, low, high)]))
     xx, yy = np.meshgrid([low[0], high[0]], [low[1], high[1]])
-    if seabed is not None:
-        ax.plot_surface(xx, yy, np.full_like(xx, seabed), color=SEABED_COLOUR, alpha=0.15)
+    draw_seabed_3d(ax, dataset, low, high)
     ax.plot_surface(xx, yy, np.zeros_like(xx), color=SURFACE_COLOUR, alpha=0.08)
     ax.set_xlim(low[0], high[0])
     ax.set_ylim(low[1], high[1])

@@ -15,6 +15,7 @@ from .envelope import line_coords, line_profile
 from .mesh import Mesh
 from .physics import seabed as seabed_physics
 from .plain_dataset import PlainDataset, PlainResult
+from .seabed_attrs import seabed_attrs
 from .status import Status
 
 FloatArray = NDArray[np.float64]
@@ -251,7 +252,7 @@ class StaticResult(PlainResult):
                             status=self.status, message=self.message, counters=self.counters,
                             settings=self.settings,
                             extra={"converged": int(self.success), "method": self.method,
-                                   "seabed_z": float(m.seabed_z)})
+                                   **seabed_attrs(m)})
         return build_plain("statics", data, coords, attrs)
 
 
@@ -348,7 +349,7 @@ class DynamicResult(PlainResult):
                            status=self.status, message=self.message, counters=self.counters,
                            settings=self.settings,
                            extra={"complete": int(self.success),
-                                  "seabed_z": float(self.mesh.seabed_z)})
+                                  **seabed_attrs(self.mesh)})
 
     def to_plain(self) -> PlainDataset:
         """The histories as a dataset (dims time, node, element, xyz, line, end, point; body,
@@ -477,7 +478,7 @@ class ModalResult(PlainResult):
                             counters={"n_dofs": int(self.n_dofs), **self.counters},
                             settings=self.settings,
                             extra={"converged": int(self.success), "solver": self.solver,
-                                   "seabed_z": float(m.seabed_z)})
+                                   **seabed_attrs(m)})
         ds = build_plain("modal", data, coords, attrs)
         ds["mode_shape"].attrs["normalization"] = "phi^T M phi = 1"
         return ds

@@ -239,11 +239,12 @@ def _history_writer(context: RunContext, mesh: Any, settings: Any, label: str,
     from .design import line_attrs
     from .io.stream import HistoryWriter
     from .io.writers import add_analysis
+    from .seabed_attrs import seabed_attrs
 
     system = context.system
     attrs = group_attrs("dynamics", case=system.name, units=system.units, success=False,
                         status=Status.RUNNING, message="", settings=settings,
-                        extra={"complete": 0, "seabed_z": float(mesh.seabed_z),
+                        extra={"complete": 0, **seabed_attrs(mesh),
                                "output_every": float(max(system.output.every, settings.dt)),
                                **line_attrs(system)})
     add_analysis(context.results, label)

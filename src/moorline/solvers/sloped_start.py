@@ -65,7 +65,10 @@ def sloped_catenary_shape(surface: SeabedSurface, anchor: FloatArray, end: Float
             fa, _, _ = catenary_3d(point, end, length - lying, EA, w, seabed_contact=False)
         except CatenaryError:
             return np.inf  # too short to reach: taut
-        return float(fa[2] / max(np.hypot(fa[0], fa[1]), 1e-300)) - slope
+        horizontal = float(np.hypot(fa[0], fa[1]))
+        if horizontal <= 1e-12 * abs(fa[2]):  # hanging vertically from P
+            return float(np.copysign(np.inf, fa[2]))
+        return float(fa[2]) / horizontal - slope
 
     if mismatch(0.0) >= 0.0:
         return None
