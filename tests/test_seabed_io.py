@@ -35,7 +35,11 @@ def test_moordyns_seafloor_deck_reads_its_grid() -> None:
     mesh = discretize(deck.system)
     # the seabed under the free point (10, -1, -28): -30 + 0.2 * 10
     assert mesh.seabed_height(np.array([[10.0, -1.0, 0.0]]))[0] == pytest.approx(-28.0)
-    assert deck.system.environment.depth == 500.0  # WtrDpth stays the waves' depth
+    # the waves' depth is the grid's mean depth, as MoorDyn-C sets it (MoorDyn2.cpp), not
+    # WtrDpth 500: 30 - 0.2 mean(x) from the file's z = -30 + 0.2 x
+    assert deck.system.environment.depth == pytest.approx(30.0 - 0.2 * np.mean(grid.x),
+                                                          rel=1e-12)
+    assert any("mean depth" in note for note in deck.notes)
 
 
 GOOD = "2 2\n0 10\n-5 5\n0 -5 -100\n0 5 -101\n10 -5 -102\n10 5 -103\n"

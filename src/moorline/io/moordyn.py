@@ -732,7 +732,19 @@ def _seafloor(raw: Mapping[str, str], path: Path, environment: Environment,
     reader.warn(f"SeafloorFile {value}: the seabed is the bilinear grid of {found}; moorline's "
                 "seabed pushes along its normal (a lying line slides down a slope), MoorDyn-C's "
                 "vertically")
-    return replace(environment, seabed=replace(environment.seabed, bathymetry=grid))
+    # MoorDyn-C v2.7 MoorDyn2.cpp (setup of the runtime water kinematics) and Seafloor.cpp:
+    # the waves see the mean of the grid's heights as the water depth, not WtrDpth
+    heights = [h for row in grid.z for h in row]
+    mean_depth = -math.fsum(heights) / len(heights)
+    if not mean_depth > 0.0:
+        raise reader.fail(f"option SeafloorFile = {value}: the grid's mean height "
+                          f"{-mean_depth:g} is not below the free surface (MoorDyn-C takes "
+                          "the mean as the water depth of the waves)", section="OPTIONS")
+    if not math.isclose(mean_depth, environment.depth, rel_tol=1e-12):
+        reader.warn(f"SeafloorFile {value}: the water depth of the waves is the grid's mean "
+                    f"depth {mean_depth:g}, not WtrDpth {environment.depth:g} (as MoorDyn-C)")
+    return replace(environment, depth=mean_depth,
+                   seabed=replace(environment.seabed, bathymetry=grid))
 
 
 # --------------------------------------------------------------------------- writing
