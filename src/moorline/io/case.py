@@ -799,6 +799,7 @@ def _line(name: str, line: LineSpec) -> Line:
         initial_shape=shape,
         clamp_a=None if line.clamp_a is None else tuple(line.clamp_a),
         clamp_b=None if line.clamp_b is None else tuple(line.clamp_b),
+        element=line.element,
     )
 
 
