@@ -443,6 +443,9 @@ def dynamic_mesh(mesh: Mesh, positions: FloatArray) -> Mesh:
     if mesh.EAd is None:
         return mesh
     fibre = np.isfinite(mesh.EAd)
+    if mesh.sag_corrected is not None and np.any(fibre & mesh.sag_corrected):
+        raise ValueError("sag-corrected elements (element: sag_corrected) take no fibre-rope "
+                         "dynamic stiffness (EAd): use straight elements for that line")
     length, _ = element.element_geometry(positions, mesh.elements)
     tension, _ = element.axial_tension(length, mesh.length0, mesh.EA, mesh.slack_ratio,
                                        mesh.slack_smoothing, **mesh.axial_law)
