@@ -237,21 +237,11 @@ def _touching_state(mesh, model):
 
 
 def _fused_system() -> System:
-    from moorline.model import Current, Motion, Seabed
+    """tests/test_fast_newmark.py's two chains (seabed contact, friction 0.5, a 0.8 m/s
+    current, a surging fairlead), sag-corrected."""
+    from test_fast_newmark import _system
 
-    lt = LineType("chain", diameter=0.09, mass_per_length=77.7, EA=3.8e8, Cd=1.6, Ct=0.05,
-                  Ca=1.0, Cat=0.1, BA=-0.8)
-    motion = Motion("harmonic", amplitude=(2.0, 1.0, 0.5), period=8.0, ramp_time=4.0)
-    points = {
-        "a1": Point("a1", "fixed", (-450.0, 0.0, -150.0)),
-        "a2": Point("a2", "fixed", (300.0, 300.0, -150.0)),
-        "f": Point("f", "prescribed", (0.0, 0.0, -20.0), motion=motion),
-    }
-    lines = {"l1": Line("l1", "chain", 500.0, 12, "a1", "f", element="sag_corrected"),
-             "l2": Line("l2", "chain", 470.0, 10, "a2", "f", element="sag_corrected")}
-    env = Environment(depth=150.0, seabed=Seabed(friction=0.5, slip_velocity=0.05),
-                      current=Current(speed=0.8, heading_deg=30.0))
-    return System("fast", environment=env, line_types={"chain": lt}, points=points, lines=lines)
+    return _sagging(_system(0.5, 0.8))
 
 
 def test_compiled_element_loads_equal_numpy_with_the_sag_correction() -> None:
@@ -278,21 +268,9 @@ def test_compiled_element_loads_equal_numpy_with_the_sag_correction() -> None:
 def test_compiled_step_equals_the_general_stepper_with_the_sag_correction() -> None:
     """The compiled Newmark step (fast_newmark) against the general stepper on sag-corrected
     lines with seabed contact, friction and a current (as tests/test_fast_newmark.py)."""
-    from moorline.model import DynamicsSettings
-    from moorline.solvers.dynamics import simulate
+    from test_fast_newmark import assert_fast_equals_slow
 
-    system = _fused_system()
-    start = solve_statics(system)
-    assert start.success, start.message
-    settings = dict(duration=8.0, dt=0.05, ramp_time=4.0)
-    slow = simulate(system, DynamicsSettings(**settings, fast_path=False), initial=start,
-                    output_every=0.5)
-    fast = simulate(system, DynamicsSettings(**settings, fast_path=True), initial=start,
-                    output_every=0.5)
-    scale = np.abs(slow.positions).max()
-    assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
-    assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
-    assert fast.counters["steps"] == slow.counters["steps"]
+    assert_fast_equals_slow(_fused_system(), duration=8.0)
 
 
 def test_straight_lines_in_a_mixed_system_keep_the_straight_law() -> None:
@@ -323,3 +301,62 @@ def test_strain_table_mesh_is_accepted() -> None:
     assert strain_laws([StrainTable(lt.EA_table)], np.zeros(1, dtype=np.int64)) is not None
     result = solve_statics(system)
     assert result.success, result.message
+
+
+# ---- case files ----------------------------------------------------------------------------
+
+CASE = """
+name: sag
+units: SI
+environment: {depth: 320}
+line_types:
+  chain: {diameter: 0.09, mass_per_length: 77.7066, EA: 384.243e6%s}
+points:
+  anchor: {kind: fixed, position: [-853.87, 0, -320]}
+  fairlead: {kind: prescribed, position: [-5.2, 0, -70]}
+lines:
+  line1: {type: chain, length: 902.2, segments: 20, end_a: anchor, end_b: fairlead,
+          element: sag_corrected}
+analyses:
+  - {kind: statics}%s
+"""
+
+
+def test_case_file_option_round_trips(tmp_path) -> None:
+    """``element: sag_corrected`` is read into the model and written back by the case
+    writer; the default is ``straight``."""
+    from moorline.io.case import load_case, load_case_text
+    from moorline.io.case_writer import write_case
+
+    system = load_case_text(CASE % ("", ""))
+    assert system.lines["line1"].element == "sag_corrected"
+    again = load_case(write_case(system, tmp_path / "sag.yaml"))
+    assert again.lines["line1"].element == "sag_corrected"
+    assert load_case_text((CASE % ("", "")).replace("element: sag_corrected", "")
+                          ).lines["line1"].element == "straight"
+
+
+@pytest.mark.parametrize(("extra_type", "analysis", "field"), [
+    ("", "\n  - {kind: modal}", "analyses[1].kind"),
+    ("", "\n  - {kind: harmonic, period: 10}", "analyses[1].kind"),
+    (", material: viscoelastic, EA1: 1.0e8, tau: 5.0", "", "lines.line1.element"),
+    (", EAd: 5.0e8", "", "lines.line1.element"),
+])
+def test_case_file_refuses_what_the_option_cannot_take(extra_type, analysis, field) -> None:
+    """Linearized analyses and non-elastic line types are refused naming the key."""
+    from moorline.errors import CaseError
+    from moorline.io.case import load_case_text
+
+    with pytest.raises(CaseError) as info:
+        load_case_text(CASE % (extra_type, analysis))
+    assert field in str(info.value)
+
+
+def test_api_refuses_a_modal_analysis_of_sag_corrected_lines() -> None:
+    """The same refusal through the Python API (moorline.solvers.modal)."""
+    from moorline.errors import CaseError
+    from moorline.model import ModalSettings
+    from moorline.solvers.modal import solve_modes
+
+    with pytest.raises(CaseError, match="sag_corrected"):
+        solve_modes(_sagging(oc3_system(20)), ModalSettings())

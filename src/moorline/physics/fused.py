@@ -61,7 +61,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .load_strain import StrainLaws
-from .sag import MAX_ITERATIONS, SATURATION, SagCorrection
+from .sag import MAX_ITERATIONS, NOISE, SATURATION, SagCorrection
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -195,7 +195,8 @@ def _chord_factor(T, weight2, perp2, phi):
 def _sag_law(length, L0, EA, s_band, sr, offset, w, nz, phi, k, start, breaks, coef,
              end_slope):
     """:func:`moorline.physics.sag.sag_tension` for one element: the same safeguarded Newton
-    iteration, stopped when this element's step is below ``1e-15 |T|``. Returns ``T``,
+    iteration, stopped when this element's residual is at its round-off or its step below
+    ``1e-15 |T|``. Returns ``T``,
     ``dT/dc``, ``dT/dq`` (``q = W_p^2``), ``dT/dphi`` and ``W^2``."""
     weight2 = (w * L0) ** 2
     perp2 = weight2 * (1.0 - nz * nz)
@@ -205,9 +206,11 @@ def _sag_law(length, L0, EA, s_band, sr, offset, w, nz, phi, k, start, breaks, c
     hi = _axial_law(length / g_min / L0 - 1.0 - offset, s_band, sr, EA, k, start, breaks,
                     coef, end_slope)[0]
     s0 = L0 * (1.0 + offset)
-    short = max(1.0 - length / s0, 1e-300)
-    tp2 = (phi * perp2 / short - weight2 / SATURATION) / 24.0
-    T = min(max(math.sqrt(max(tp2, 0.0)), lo), hi)
+    short = 1.0 - length / s0
+    first = 0.0
+    if short > 0:
+        first = math.sqrt(max((phi * perp2 / short - weight2 / SATURATION) / 24.0, 0.0))
+    T = min(max(first, lo), hi)
     step_old = step = hi - lo
     for _ in range(MAX_ITERATIONS):
         g, g_T, _g_q, _g_phi = _chord_factor(T, weight2, perp2, phi)
@@ -224,7 +227,7 @@ def _sag_law(length, L0, EA, s_band, sr, offset, w, nz, phi, k, start, breaks, c
             or (abs(2.0 * F) > abs(step_old * dF))
         step_old = step
         step = T - 0.5 * (lo + hi) if bisect else F / dF
-        if F == 0:
+        if abs(F) <= NOISE * (abs(T) + dA * length / g):
             step = 0.0
         T = T - step
         if abs(step) <= 1e-15 * abs(T):

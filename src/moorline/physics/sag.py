@@ -36,7 +36,8 @@ The law. Given the chord ``c``, the tension solves ``T = A(c / g(T))`` with ``A(
 straight element's law (:func:`moorline.physics.element.axial_tension` at the length ``l``).
 ``F(T) = T - A(c / g(T))`` has ``F' = 1 + A' c g_T / g^2 >= 1`` (``A' >= 0``, ``g_T >= 0``),
 so the root is unique; it lies in ``[A(c), A(c / g_min)]`` and is found by Newton's method
-safeguarded by bisection. The exact derivatives follow from the implicit function theorem,
+safeguarded by bisection (Press et al., Numerical Recipes, "rtsafe"), until the residual is
+at its round-off. The exact derivatives follow from the implicit function theorem,
 
     dT/dc = A' / (g D),   dT/dq = -A' c g_q / (g^2 D)   (q = W_p^2, phi),   D = F'(T),
 
@@ -66,6 +67,10 @@ SATURATION = 10.0 / 27.0
 
 #: Newton iterations of the tension at most (bisection steps included).
 MAX_ITERATIONS = 100
+
+#: The tension's residual ``T - A(c / g)`` counts as zero below this times ``|T| + A' c / g``
+#: (the round-off of the strain ``l / L0 - 1`` times the stiffness, and of ``T``).
+NOISE = 16 * np.finfo(float).eps
 
 
 class SagTension(NamedTuple):
@@ -160,7 +165,9 @@ def sag_tension(
             | (np.abs(2.0 * F) > np.abs(step_old * dF))
         step_old = step
         step = np.where(bisect, T - 0.5 * (lo + hi), F / dF)
-        step = np.where(F == 0, 0.0, step)
+        # converged: F at its round-off (the strain l / L0 - 1 is known to ~eps), or no step
+        settled = np.abs(F) <= NOISE * (np.abs(T) + dA * length / g)
+        step = np.where(settled, 0.0, step)
         T = T - step
         if np.all(np.abs(step) <= 1e-15 * np.abs(T)):
             break
@@ -178,12 +185,13 @@ def sag_tension(
 def _sag_start(length: FloatArray, length0: FloatArray, weight2: FloatArray,
                perp2: FloatArray, phi: FloatArray, offset: FloatArray | None) -> FloatArray:
     """A start for the tension: the inextensible sag law ``c = s_0 g(T)`` solved for ``T``
-    (``s_0`` the length at zero strain); 0 where the chord is not shorter than ``s_0``."""
+    (``s_0`` the length at zero strain); 0 where the chord is not shorter than ``s_0`` (the
+    caller's lower bound, the straight element's tension, is then the start)."""
     s0 = length0 if offset is None else length0 * (1.0 + offset)
-    short = np.maximum(1.0 - length / s0, 1e-300)
-    with np.errstate(over="ignore"):
-        tp2 = (phi * perp2 / short - weight2 / SATURATION) / 24.0
-    return np.sqrt(np.maximum(tp2, 0.0))
+    short = 1.0 - length / s0
+    safe = np.where(short > 0, short, 1.0)
+    tp2 = (phi * perp2 / safe - weight2 / SATURATION) / 24.0
+    return np.where(short > 0, np.sqrt(np.maximum(tp2, 0.0)), 0.0)
 
 
 def sag_blocks(length: FloatArray, unit: FloatArray, sag: SagTension,
