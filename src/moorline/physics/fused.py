@@ -19,7 +19,10 @@ slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
   forces
   (:func:`moorline.physics.element.nodal_forces`); with ``tangent`` the blocks ``K``
   (geometric + material + the non-symmetric rotation term of the dashpot) and ``C`` (the
-  dashpot, ``BA / L0 n n^T``);
+  dashpot, ``BA / L0 n n^T``); elements with the sag correction (``phi != 0``) take the
+  tension of :func:`moorline.physics.sag.sag_tension` (the same safeguarded Newton iteration
+  per element) and the extra blocks of :func:`~moorline.physics.sag.sag_blocks`, ``phi`` and
+  its node derivatives given by the caller;
 * Morison drag on the relative velocity at the midpoint, normal and tangential, with its
   exact derivatives (:func:`moorline.physics.hydro.drag_forces`);
 * added mass ``M_a``, the added-mass force ``-M_a a`` and its position derivative, and the

@@ -32,6 +32,11 @@ element's weight (it then lies straight): ``phi = 1 - s_1 s_2`` with ``s_k`` the
 ``k``'s own load carried by the seabed spring (:func:`moorline.physics.seabed.carried_share`,
 a C1 function of the node's height); 1 in the water, 0 when both nodes lie.
 
+Dynamics. The same law acts in the time domain: the sag is that of the element's weight, as
+if it hung at rest; its own inertia, drag and added mass (lumped at the nodes like its weight)
+do not enter it. A chain falling slack in a snap trough therefore keeps the tension of a
+hanging segment (see the README for the measured effect on the OC3 surge).
+
 The law. Given the chord ``c``, the tension solves ``T = A(c / g(T))`` with ``A(l)`` the
 straight element's law (:func:`moorline.physics.element.axial_tension` at the length ``l``).
 ``F(T) = T - A(c / g(T))`` has ``F' = 1 + A' c g_T / g^2 >= 1`` (``A' >= 0``, ``g_T >= 0``),

@@ -77,8 +77,9 @@ class DynamicModel:
     kernel
         ``numba``: the element loads of a system without viscoelastic elements are computed by
         the compiled kernel :class:`moorline.physics.fused.FusedLoads` (same results to
-        round-off, much faster; tension-strain tables and the strain offsets of the fibre-rope
-        dynamic stiffness included); systems with viscoelastic elements, and ``numpy``, use
+        round-off, much faster; tension-strain tables, the strain offsets of the fibre-rope
+        dynamic stiffness and sag-corrected elements included); systems with viscoelastic
+        elements, and ``numpy``, use
         the numpy path (the reference). ``self.kernel`` is the one in use. Bending stiffness
         is added by numpy on either path.
     slack_damping

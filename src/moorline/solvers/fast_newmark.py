@@ -1,5 +1,6 @@
 """Compiled implicit step for the common case: elastic lines (constant ``EA``, tension-strain
-tables, the fibre-rope dynamic stiffness) in still water or a uniform current, on a seabed
+tables, the fibre-rope dynamic stiffness, sag-corrected elements, whose ``phi`` on the flat
+seabed is computed here) in still water or a uniform current, on a seabed
 with contact, damping and (isotropic) friction, Newmark beta = 1/4, gamma = 1/2 with
 equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
 
