@@ -102,6 +102,9 @@ class Mesh:
     clamp_elements, clamp_direction, clamp_stiffness
         Clamped line ends: the end element (n_c,), the held unit tangent (n_c, 3) and
         ``EI / (L_e / 2)`` (n_c,); empty when every end is pinned.
+    sag_corrected
+        Elements of lines with ``element: sag_corrected`` (:mod:`moorline.physics.sag`)
+        (n_elements,); ``None`` when every element is straight.
     """
 
     node_position: FloatArray
@@ -161,6 +164,7 @@ class Mesh:
     clamp_elements: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     clamp_direction: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
     clamp_stiffness: FloatArray = field(default_factory=lambda: np.zeros(0))
+    sag_corrected: BoolArray | None = None
 
     @property
     def seabed_surface(self) -> SeabedSurface | None:
@@ -367,7 +371,15 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         gravity=env.gravity, water_density=env.water_density, **props,
         bend_nodes=bend[0], bend_elements=bend[1], bend_stiffness=bend[2],
         **_clamps(system, line_elements, L0, EI),
-        **_body_arrays(system, points), bathymetry=sloped_seabed(env))
+        **_body_arrays(system, points), bathymetry=sloped_seabed(env),
+        sag_corrected=_sag_mask(system, el_line))
+
+
+def _sag_mask(system: System, line_of_element: IntArray) -> BoolArray | None:
+    """:attr:`Mesh.sag_corrected` (``None`` when no line asks for it)."""
+    sag = np.array([line.element == "sag_corrected" for line in system.lines.values()],
+                   dtype=bool)
+    return sag[line_of_element] if sag.any() else None
 
 
 def sloped_seabed(env) -> SeabedSurface | None:
@@ -431,6 +443,9 @@ def dynamic_mesh(mesh: Mesh, positions: FloatArray) -> Mesh:
     if mesh.EAd is None:
         return mesh
     fibre = np.isfinite(mesh.EAd)
+    if mesh.sag_corrected is not None and np.any(fibre & mesh.sag_corrected):
+        raise ValueError("sag-corrected elements (element: sag_corrected) take no fibre-rope "
+                         "dynamic stiffness (EAd): use straight elements for that line")
     length, _ = element.element_geometry(positions, mesh.elements)
     tension, _ = element.axial_tension(length, mesh.length0, mesh.EA, mesh.slack_ratio,
                                        mesh.slack_smoothing, **mesh.axial_law)

@@ -39,6 +39,7 @@ from moorline.model import (
     WaveExcitation,
     Waves,
 )
+from moorline.solvers.linearized_laws import sag_refusal
 
 from .files import MAX_CASE_BYTES, MAX_TABLE_BYTES, file_problem
 from .limits import (
@@ -331,6 +332,7 @@ def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
                          f"dependent viscoelastic model), modelled in statics and the time "
                          f"domain only: no {analysis.kind} analysis (not linearized)",
                          f"analyses[{k}].kind")
+    _check_sag(spec, fail)
     depth = env.depth if env.depth is not None else math.inf
     bodies = spec.bodies or {}
     surface = _surface(depth, seabed)
@@ -472,6 +474,22 @@ def _check_resolved_periods(spec: CaseSpec, dt: float, field: str,
                 and history.period < 2.0 * dt:
             fail(f"period {history.period:g} is shorter than two time steps of the dynamics "
                  f"({field} = {dt:g}): the step cannot resolve it", f"{key}.period")
+
+
+def _check_sag(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
+    """Sag-corrected lines (:mod:`moorline.physics.sag`): elastic line types without a
+    fibre-rope dynamic stiffness, and no linearized analysis."""
+    for name, line in spec.lines.items():
+        if line.element != "sag_corrected":
+            continue
+        lt = spec.line_types.get(line.type)
+        if lt is not None and (lt.material != "elastic" or lt.EAd is not None):
+            what = f"material {lt.material!r}" if lt.material != "elastic" else "EAd"
+            fail(f"sag-corrected elements need an elastic line type without EAd; line type "
+                 f"{line.type!r} has {what}", f"lines.{name}.element")
+        for k, analysis in enumerate(spec.analyses or ()):
+            if analysis.kind in ("modal", "strumming", "stochastic", "harmonic"):
+                fail(sag_refusal(name, analysis.kind), f"analyses[{k}].kind")
 
 
 def _check_static_dynamic(name: str, lt, fail) -> None:
@@ -799,6 +817,7 @@ def _line(name: str, line: LineSpec) -> Line:
         initial_shape=shape,
         clamp_a=None if line.clamp_a is None else tuple(line.clamp_a),
         clamp_b=None if line.clamp_b is None else tuple(line.clamp_b),
+        element=line.element,
     )
 
 

@@ -146,6 +146,8 @@ def _line(line: Line) -> dict[str, Any]:
     for key in ("clamp_a", "clamp_b"):
         if getattr(line, key) is not None:
             data[key] = list(getattr(line, key))
+    if line.element != "straight":
+        data["element"] = line.element
     return data
 
 

@@ -521,7 +521,9 @@ class PointSpec(_Spec):
 class LineSpec(_Spec):
     """``lines.<name>``: a cable between two points. ``clamp_a``/``clamp_b``: a clamped end
     (line type with ``EI > 0``, a fixed or prescribed point), the direction its tangent is
-    held along (from end A towards end B); omitted: pinned."""
+    held along (from end A towards end B); omitted: pinned. ``element``: ``straight`` (default)
+    or ``sag_corrected`` (the chord shortened by the element's sag,
+    :mod:`moorline.physics.sag`)."""
 
     type: str
     length: quantity("length", gt=0.0)
@@ -531,6 +533,7 @@ class LineSpec(_Spec):
     initial_shape: list[Vector3] | None = None
     clamp_a: Annotated[list[float], AfterValidator(_three)] | None = None
     clamp_b: Annotated[list[float], AfterValidator(_three)] | None = None
+    element: Literal["straight", "sag_corrected"] = "straight"
 
 
 class StaticsSpec(_Spec):

@@ -206,6 +206,10 @@ class Line:
         A clamped end (its line type needs ``EI > 0``; the end point fixed or prescribed): the
         direction the line's tangent is held along there, pointing from end A towards end B
         (normalized; :mod:`moorline.physics.bending`). ``None``: a pinned end.
+    element
+        ``straight``: the chord carries the stretched length (the classical element);
+        ``sag_corrected``: the chord is shortened by the element's own sag
+        (:mod:`moorline.physics.sag`).
     """
 
     name: str
@@ -217,3 +221,4 @@ class Line:
     initial_shape: tuple[Vector3, ...] | None = None
     clamp_a: Vector3 | None = None
     clamp_b: Vector3 | None = None
+    element: Literal["straight", "sag_corrected"] = "straight"

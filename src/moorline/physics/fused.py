@@ -19,7 +19,10 @@ slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
   forces
   (:func:`moorline.physics.element.nodal_forces`); with ``tangent`` the blocks ``K``
   (geometric + material + the non-symmetric rotation term of the dashpot) and ``C`` (the
-  dashpot, ``BA / L0 n n^T``);
+  dashpot, ``BA / L0 n n^T``); elements with the sag correction (``phi != 0``) take the
+  tension of :func:`moorline.physics.sag.sag_tension` (the same safeguarded Newton iteration
+  per element) and the extra blocks of :func:`~moorline.physics.sag.sag_blocks`, ``phi`` and
+  its node derivatives given by the caller;
 * Morison drag on the relative velocity at the midpoint, normal and tangential, with its
   exact derivatives (:func:`moorline.physics.hydro.drag_forces`);
 * added mass ``M_a``, the added-mass force ``-M_a a`` and its position derivative, and the
@@ -61,6 +64,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .load_strain import StrainLaws
+from .sag import MAX_ITERATIONS, NOISE, SATURATION, SagCorrection
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -69,8 +73,8 @@ BoolArray = NDArray[np.bool_]
 _TINY = float(np.finfo(float).tiny)
 
 # rows of the packed per-element property array
-_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET = range(12)
-_N_PROPS = 12
+_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET, _W = range(13)
+_N_PROPS = 13
 
 
 class ElementLoads(NamedTuple):
@@ -154,12 +158,100 @@ def _table_law(k, g, EA, start, breaks, coef, end_slope):
     return f + end_slope[k] * beyond, df
 
 
+@numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _axial_law(strain, s_band, sr, EA, k, start, breaks, coef, end_slope):
+    """Tension and ``dT/deps`` of the law of :func:`moorline.physics.element.axial_tension` at
+    ``strain`` (less the offset): linear (``k < 0``) or table ``k``, with the slack band."""
+    safe_s = s_band if s_band > 0 else 1.0
+    shifted = strain + s_band
+    if k < 0:
+        if strain >= s_band:
+            return EA * strain, EA
+        if strain > -s_band:
+            return EA * (shifted * shifted) / (4 * safe_s), EA * shifted / (2 * safe_s)
+        return sr * EA * shifted, sr * EA
+    # the table at the regularized strain g: T = f(g), dT/deps = f'(g) g'
+    if strain >= s_band:
+        g = strain
+        dg = 1.0
+    elif strain > -s_band:
+        g = (shifted * shifted) / (4 * safe_s)
+        dg = shifted / (2 * safe_s)
+    else:
+        dg = sr
+        g = dg * shifted
+    T, df = _table_law(k, g, EA, start, breaks, coef, end_slope)
+    return T, df * dg
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _chord_factor(T, weight2, perp2, phi):
+    """:func:`moorline.physics.sag.chord_factor` for one element."""
+    tp = max(T, 0.0)
+    q = 24.0 * tp * tp + weight2 / SATURATION
+    if not q > 0:
+        return 1.0, 0.0, 0.0, 0.0
+    return 1.0 - phi * perp2 / q, phi * perp2 * 48.0 * tp / (q * q), -phi / q, -perp2 / q
+
+
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
-def _kernel(x, v, a, uf, af, elements, props, laws, tangent, with_drag, with_added_mass,
-            el_forces, total, f_am, tension, strain_out, taut_out, K, C, Ma, nodal, nodal_am):
+def _sag_law(length, L0, EA, s_band, sr, offset, w, nz, phi, k, start, breaks, coef,
+             end_slope):
+    """:func:`moorline.physics.sag.sag_tension` for one element: the same safeguarded Newton
+    iteration, stopped when this element's residual is at its round-off or its step below
+    ``1e-15 |T|``. Returns ``T``,
+    ``dT/dc``, ``dT/dq`` (``q = W_p^2``), ``dT/dphi`` and ``W^2``."""
+    weight2 = (w * L0) ** 2
+    perp2 = weight2 * (1.0 - nz * nz)
+    g_min = _chord_factor(0.0, weight2, perp2, phi)[0]
+    lo = _axial_law(length / 1.0 / L0 - 1.0 - offset, s_band, sr, EA, k, start, breaks, coef,
+                    end_slope)[0]
+    hi = _axial_law(length / g_min / L0 - 1.0 - offset, s_band, sr, EA, k, start, breaks,
+                    coef, end_slope)[0]
+    s0 = L0 * (1.0 + offset)
+    short = 1.0 - length / s0
+    first = 0.0
+    if short > 0:
+        first = math.sqrt(max((phi * perp2 / short - weight2 / SATURATION) / 24.0, 0.0))
+    T = min(max(first, lo), hi)
+    step_old = step = hi - lo
+    for _ in range(MAX_ITERATIONS):
+        g, g_T, _g_q, _g_phi = _chord_factor(T, weight2, perp2, phi)
+        A, slope = _axial_law(length / g / L0 - 1.0 - offset, s_band, sr, EA, k, start,
+                              breaks, coef, end_slope)
+        dA = slope / L0
+        F = T - A
+        dF = 1.0 + dA * length * g_T / (g * g)
+        if F < 0:
+            lo = T
+        if F > 0:
+            hi = T
+        bisect = (((T - hi) * dF - F) * ((T - lo) * dF - F) > 0) \
+            or (abs(2.0 * F) > abs(step_old * dF))
+        step_old = step
+        step = T - 0.5 * (lo + hi) if bisect else F / dF
+        if abs(F) <= NOISE * (abs(T) + dA * length / g):
+            step = 0.0
+        T = T - step
+        if abs(step) <= 1e-15 * abs(T):
+            break
+    g, g_T, g_q, g_phi = _chord_factor(T, weight2, perp2, phi)
+    slope = _axial_law(length / g / L0 - 1.0 - offset, s_band, sr, EA, k, start, breaks,
+                       coef, end_slope)[1]
+    dA = slope / L0
+    scale = dA / (g * (1.0 + dA * length * g_T / (g * g)))
+    return T, scale, -scale * length * g_q / g, -scale * length * g_phi / g, weight2
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
+def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, with_drag,
+            with_added_mass, el_forces, total, f_am, tension, strain_out, taut_out, K, C, Ma,
+            nodal, nodal_am):
     """The fused loop; see :func:`element_loads`. Every operation is written in the order the
     numpy path evaluates it, so that both agree to round-off. Small vectors are tuples so that
-    the unrolled 3x3 loops keep them in registers."""
+    the unrolled 3x3 loops keep them in registers. ``sag_on``: elements with ``phi != 0``
+    follow the sag-corrected law (:mod:`moorline.physics.sag`), ``dphi`` (n_el, 2, 3) the
+    derivatives of their ``phi`` with respect to their nodes."""
     law, start, breaks, coef, end_slope = laws
     nodal[:, :] = 0.0
     nodal_am[:, :] = 0.0
@@ -183,33 +275,18 @@ def _kernel(x, v, a, uf, af, elements, props, laws, tangent, with_drag, with_add
         # ---- axial tension with the smooth slack band (element.axial_tension) ----
         strain_total = length / L0 - 1.0
         strain = strain_total - props[_OFFSET, e]
-        safe_s = s_band if s_band > 0 else 1.0
-        shifted = strain + s_band
-        if law[e] < 0:
-            if strain >= s_band:
-                T = EA * strain
-                slope = EA
-            elif strain > -s_band:
-                T = EA * (shifted * shifted) / (4 * safe_s)
-                slope = EA * shifted / (2 * safe_s)
-            else:
-                sr = props[_SLACK, e]
-                T = sr * EA * shifted
-                slope = sr * EA
-        else:  # the table at the regularized strain g: T = f(g), dT/deps = f'(g) g'
-            if strain >= s_band:
-                g = strain
-                dg = 1.0
-            elif strain > -s_band:
-                g = (shifted * shifted) / (4 * safe_s)
-                dg = shifted / (2 * safe_s)
-            else:
-                dg = props[_SLACK, e]
-                g = dg * shifted
-            T, df = _table_law(law[e], g, EA, start, breaks, coef, end_slope)
-            slope = df * dg
-        # the model converts dT/dl to dT/deps and back (DynamicModel._axial_tension)
-        dT_dl = ((slope / L0) * L0) / L0
+        sag = sag_on and phi[e] != 0.0
+        dq = dTq = dTphi = 0.0
+        if sag:  # the sag-corrected chord (sag.sag_tension)
+            T, dT_dl, dTq, dTphi, weight2 = _sag_law(
+                length, L0, EA, s_band, props[_SLACK, e], props[_OFFSET, e], props[_W, e],
+                t[2], phi[e], law[e], start, breaks, coef, end_slope)
+            dq = -2.0 * weight2 * t[2] / length  # dq/dx2 = dq (e_z - n_z n)
+        else:
+            T, slope = _axial_law(strain, s_band, props[_SLACK, e], EA, law[e], start, breaks,
+                                  coef, end_slope)
+            # the model converts dT/dl to dT/deps and back (DynamicModel._axial_tension)
+            dT_dl = ((slope / L0) * L0) / L0
         # Kelvin-Voigt dashpot, blended in over the slack band (element.dashpot_share)
         if s_band > 0:
             share = min(max((strain + s_band) / (2 * s_band), 0.0), 1.0)
@@ -339,6 +416,14 @@ def _kernel(x, v, a, uf, af, elements, props, laws, tangent, with_drag, with_add
                 k01 = -k
                 k10 = -k
                 k11 = k
+                if sag:  # sag.sag_blocks: through the direction and the node heights
+                    kd = t[r] * (dTq * (dq * ((1.0 if c == 2 else 0.0) - t[2] * t[c])))
+                    a1 = t[r] * (dTphi * dphi[e, 0, c])
+                    a2 = t[r] * (dTphi * dphi[e, 1, c])
+                    k00 = k00 + kd - a1
+                    k01 = k01 - kd - a2
+                    k10 = k10 - kd + a1
+                    k11 = k11 + kd + a2
                 cc = cdash * t[r] * t[c]
                 c00 = cc
                 c01 = -cc
@@ -413,12 +498,15 @@ def pack_properties(
     n_el: int, length0: ArrayLike, EA: ArrayLike, slack_ratio: ArrayLike,
     smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike, Cd: ArrayLike, Ct: ArrayLike,
     Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike, offset: ArrayLike | None = None,
+    weight_per_length: ArrayLike | None = None,
 ) -> FloatArray:
-    """Per-element properties (scalars broadcast) packed into one (12, n_el) array, in the
-    row order the kernel reads them (the last row: the strain offset, ``None``: 0)."""
+    """Per-element properties (scalars broadcast) packed into one (13, n_el) array, in the
+    row order the kernel reads them (the last rows: the strain offset and the submerged weight
+    per length of the sag correction, ``None``: 0)."""
     props = np.empty((_N_PROPS, n_el))
     for row, value in enumerate((length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct,
-                                 Ca, Cat, rho, 0.0 if offset is None else offset)):
+                                 Ca, Cat, rho, 0.0 if offset is None else offset,
+                                 0.0 if weight_per_length is None else weight_per_length)):
         props[row] = _per_element(value, n_el)
     return props
 
@@ -498,6 +586,10 @@ class FusedLoads:
         Write every call's outputs into the same arrays (a little faster); the arrays of one
         call are then overwritten by the next, copy what you keep. Default ``False``: fresh
         arrays every call, safe to store (e.g. in an accepted time step's evaluation).
+    sag, weight_per_length
+        The sag correction (:class:`moorline.physics.sag.SagCorrection`, its ``phi`` taken
+        at every call's positions) and the elements' submerged weight per length; ``None``:
+        straight elements.
     """
 
     def __init__(
@@ -506,14 +598,17 @@ class FusedLoads:
         Cd: ArrayLike, Ct: ArrayLike, Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike,
         laws: StrainLaws | None = None, offset: ArrayLike | None = None,
         with_drag: bool | None = None, with_added_mass: bool | None = None,
-        reuse_buffers: bool = False,
+        reuse_buffers: bool = False, sag: SagCorrection | None = None,
+        weight_per_length: ArrayLike | None = None,
     ) -> None:
         self.elements = np.ascontiguousarray(elements, dtype=np.int64)
         n_el = self.elements.shape[0]
         self.n_el = n_el
         self.n_nodes = int(n_nodes)
         self.props = pack_properties(n_el, length0, EA, slack_ratio, smoothing, BA, diameter,
-                                     Cd, Ct, Ca, Cat, rho, offset)
+                                     Cd, Ct, Ca, Cat, rho, offset, weight_per_length)
+        self.sag = sag
+        self._no_sag = (np.zeros(n_el), np.zeros((n_el, 2, 3)))
         self.laws = TableLaws.of(laws, n_el)
         wet = bool(np.any(self.props[_RHO] > 0))
         if with_drag is None:
@@ -566,12 +661,13 @@ class FusedLoads:
             out = self._buffers[0 if tangent else 1]
         else:
             out = self._allocate(tangent)
-        _kernel(np.ascontiguousarray(x, dtype=np.float64),
-                np.ascontiguousarray(v, dtype=np.float64),
+        x = np.ascontiguousarray(x, dtype=np.float64)
+        phi, dphi = self._no_sag if self.sag is None else self.sag.share(x)
+        _kernel(x, np.ascontiguousarray(v, dtype=np.float64),
                 np.ascontiguousarray(a, dtype=np.float64),
                 self._fluid(fluid_velocity_mid), self._fluid(fluid_acceleration_mid),
-                self.elements, self.props, self.laws, tangent, self.with_drag,
-                self.with_added_mass, *out)
+                self.elements, self.props, self.laws, self.sag is not None, phi, dphi,
+                tangent, self.with_drag, self.with_added_mass, *out)
         if not tangent:
             return ElementLoads(*out[:6], None, None, None, *out[9:])
         if not self.with_added_mass:
@@ -586,7 +682,8 @@ def element_loads(
     Cd: ArrayLike, Ct: ArrayLike, Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike,
     tangent: bool, with_added_mass: bool, with_drag: bool = True,
     laws: StrainLaws | None = None,
-    offset: ArrayLike | None = None,
+    offset: ArrayLike | None = None, sag: SagCorrection | None = None,
+    weight_per_length: ArrayLike | None = None,
 ) -> ElementLoads:
     """All loads of elastic elements and their derivatives in one compiled pass.
 
@@ -614,6 +711,8 @@ def element_loads(
         Compute the Morison drag.
     laws, offset
         Tabulated tension-strain laws and strain offsets (see :class:`FusedLoads`).
+    sag, weight_per_length
+        The sag correction and the submerged weight per length (see :class:`FusedLoads`).
 
     Returns
     -------
@@ -624,5 +723,6 @@ def element_loads(
     x = np.asarray(x, dtype=np.float64)
     loads = FusedLoads(elements, x.shape[0], length0, EA, slack_ratio, smoothing, BA,
                        diameter, Cd, Ct, Ca, Cat, rho, laws, offset, with_drag=with_drag,
-                       with_added_mass=with_added_mass)
+                       with_added_mass=with_added_mass, sag=sag,
+                       weight_per_length=weight_per_length)
     return loads(x, v, a, fluid_velocity_mid, fluid_acceleration_mid, tangent)

@@ -218,6 +218,28 @@ def resting_penetration(load: FloatArray, k: FloatArray, ramp: FloatArray) -> Fl
     return np.where((k > 0) & (load > 0), p, 0.0)
 
 
+def carried_share(height: FloatArray, k: FloatArray, ramp: FloatArray, load: FloatArray
+                  ) -> tuple[FloatArray, FloatArray]:
+    """How fully the seabed carries each node, (n,), and its derivative with respect to the
+    height, for the sag correction (:mod:`moorline.physics.sag`).
+
+    ``u = S(height) / (load / 2)``, ``S`` the spring of :func:`contact_force` (``c = 0``), and
+    the share ``3 u^2 - 2 u^3`` of ``u`` clipped to [0, 1]: 0 above the contact band, 1 once
+    the spring carries half the node's own load or more (a lying node carries all of it, so
+    it sits well inside), C1 in the height. 0 where ``load <= 0`` (a buoyant node).
+    """
+    spring, d_spring, _ = contact_force(height, np.zeros_like(height), k,
+                                        np.zeros_like(height), ramp)
+    half = 0.5 * np.asarray(load, dtype=float)
+    safe = np.where(half > 0, half, 1.0)
+    u = np.where(half > 0, spring / safe, 0.0)
+    inside = (u > 0) & (u < 1)
+    uc = np.clip(u, 0.0, 1.0)
+    share = uc * uc * (3.0 - 2.0 * uc)
+    slope = np.where(inside, 6.0 * uc * (1.0 - uc) * d_spring / safe, 0.0)
+    return share, slope
+
+
 def contact_ramp(weight_per_node: FloatArray, k: FloatArray, diameter: float) -> FloatArray:
     """Blend-in penetration per node: the static penetration of a lying line (its weight over
     its contact stiffness), at least a thousandth of the diameter."""
@@ -324,7 +346,7 @@ def static_friction(
     normal: FloatArray, dnormal_dx: FloatArray, tension: FloatArray, dtension_dl: FloatArray,
     direction: FloatArray, length: FloatArray, mu: float,
     unit_normal: FloatArray | None = None, dunit_dx: FloatArray | None = None,
-    load: FloatArray | None = None,
+    load: FloatArray | None = None, dtension_dx: FloatArray | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """Coulomb friction of a lying line in statics, fully mobilized towards its anchor.
 
@@ -359,6 +381,10 @@ def static_friction(
     load
         The constant load on each node (n, 3) (its weight); ``None``: left out (on a flat
         seabed it has no part along the seabed).
+    dtension_dx
+        The tension's whole derivative with respect to the node (columns 0-2) and the far
+        node (3-5), (n, 6), where it is not ``dtension_dl`` along the element (the
+        sag-corrected element); ``None``: ``dtension_dl`` along ``direction``.
 
     Returns
     -------
@@ -383,6 +409,8 @@ def static_friction(
     dpull = np.zeros((n, 6))
     dT = dtension_dl[:, None] * direction  # dT/d(far node)
     dpull[:, 3:], dpull[:, :3] = dT, -dT
+    if dtension_dx is not None:
+        dpull[:] = dtension_dx
     if load is not None:  # the node's own load down the slope, towards the fairlead
         pull = pull + np.einsum("ij,ij->i", load, flat)
         dg = np.einsum("ni,nij->nj", load, dflat)

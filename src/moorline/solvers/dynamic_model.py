@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..physics import element, hydro, material, seabed, static_dynamic
+from ..physics import element, hydro, material, sag, seabed, static_dynamic
 from .equilibrium import StaticModel, bending_loads
 
 FloatArray = NDArray[np.float64]
@@ -77,8 +77,9 @@ class DynamicModel:
     kernel
         ``numba``: the element loads of a system without viscoelastic elements are computed by
         the compiled kernel :class:`moorline.physics.fused.FusedLoads` (same results to
-        round-off, much faster; tension-strain tables and the strain offsets of the fibre-rope
-        dynamic stiffness included); systems with viscoelastic elements, and ``numpy``, use
+        round-off, much faster; tension-strain tables, the strain offsets of the fibre-rope
+        dynamic stiffness and sag-corrected elements included); systems with viscoelastic
+        elements, and ``numpy``, use
         the numpy path (the reference). ``self.kernel`` is the one in use. Bending stiffness
         is added by numpy on either path.
     slack_damping
@@ -99,6 +100,8 @@ class DynamicModel:
         self.mesh = mesh
         self.fluid = fluid
         static = StaticModel(mesh)
+        self._static = static
+        self.sag = static.sag
         self.external = static.external
         self.k_seabed = static.node_seabed_stiffness
         m = mesh
@@ -113,6 +116,10 @@ class DynamicModel:
         self.series = (None if m.static_dynamic is None
                        else np.flatnonzero(np.isfinite(m.static_dynamic[:, 0])))
         self.any_viscoelastic = bool(np.any(m.viscoelastic)) or self.series is not None
+        if self.sag is not None and (np.any(m.viscoelastic & m.sag_corrected) or (
+                self.series is not None and np.any(m.sag_corrected[self.series]))):
+            raise ValueError("sag-corrected elements (element: sag_corrected) must be elastic: "
+                             "a viscoelastic or static_dynamic line type has straight elements")
         self.viscoelastic_update = viscoelastic_update
         self.seabed_ramp = static.seabed_ramp
         self.surface = m.seabed_surface
@@ -132,7 +139,8 @@ class DynamicModel:
             self._fused = fused.FusedLoads(
                 m.elements, m.n_nodes, m.length0, m.EA, m.slack_ratio, m.slack_smoothing, m.BA,
                 m.diameter, m.Cd, m.Ct, m.Ca, m.Cat, self.rho, laws, m.strain_offset,
-                with_drag=self.has_drag, with_added_mass=self.has_added_mass)
+                with_drag=self.has_drag, with_added_mass=self.has_added_mass, sag=self.sag,
+                weight_per_length=m.weight_per_length)
             self._midpoints = fused.midpoints
         self.kernel = "numba" if self._fused is not None else "numpy"
 
@@ -180,12 +188,13 @@ class DynamicModel:
                               previous.maxwell), el_forces, **out)
         length, unit = element.element_geometry(x, el)
         dv = v[el[:, 1]] - v[el[:, 0]]
-        T, dT_dl, state, share = self._axial_tension(length, unit, dv, previous, dt, maxwell)
+        T, dT_dl, state, share, sag_law = self._axial_tension(x, length, unit, dv, previous, dt,
+                                                              maxwell)
         el_forces = element.nodal_forces(T, unit)
         forces = el_forces.copy()
         out = {}
         if tangent:
-            out["K"] = self._axial_tangent(length, unit, dv, T, dT_dl, share)
+            out["K"] = self._axial_tangent(length, unit, dv, T, dT_dl, share, sag_law)
             out["C"] = _axial_damping_blocks(unit, m.BA * share / m.length0)
         mid = 0.5 * (x[el[:, 0]] + x[el[:, 1]])
         if self.has_drag or self.has_added_mass:
@@ -216,11 +225,19 @@ class DynamicModel:
         return (nodal + hydro.sum_to_nodes(shear, m.elements, m.n_nodes), el_forces + shear,
                 out)
 
-    def _axial_tension(self, length, unit, dv, previous, dt, given=None):
+    def _axial_tension(self, x, length, unit, dv, previous, dt, given=None):
+        """Axial force with damping, ``dT/dl``, the material state, the dashpot share and
+        (sag-corrected elements) the sag law and ``dphi/dx`` (else ``None``)."""
         m = self.mesh
         strain = length / m.length0 - 1.0
-        T, dT_deps = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
-                                           m.slack_smoothing, **m.axial_law)
+        sag_law = None
+        if self.sag is None:
+            T, dT_deps = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
+                                               m.slack_smoothing, **m.axial_law)
+        else:
+            sag_law = self._static.sag_tension(x, length, unit, m.slack_ratio,
+                                               m.slack_smoothing)
+            T, dT_deps = sag_law[0].tension, sag_law[0].dT_dl
         dT_deps = dT_deps * m.length0
         maxwell = previous.maxwell
         if self.any_viscoelastic and given is not None:
@@ -247,7 +264,7 @@ class DynamicModel:
         strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0
         T = T + m.BA * share * strain_rate
         dT_deps = dT_deps + m.BA * dshare * strain_rate
-        return T, dT_deps / m.length0, MaterialState(strain, maxwell), share
+        return T, dT_deps / m.length0, MaterialState(strain, maxwell), share, sag_law
 
     def _viscoelastic(self, strain, strain_old, maxwell_old, dt, EA, EA1, tau, slack_ratio):
         """Standard linear solid update: exact exponential integration of the Maxwell branch
@@ -260,9 +277,13 @@ class DynamicModel:
                                                tau)
         return T, T - EA * strain, k
 
-    def _axial_tangent(self, length, unit, dv, T, dT_dl, share):
+    def _axial_tangent(self, length, unit, dv, T, dT_dl, share, sag_law=None):
         m = self.mesh
-        blocks = element.tangent_blocks(length, unit, T, dT_dl)
+        if sag_law is None:
+            blocks = element.tangent_blocks(length, unit, T, dT_dl)
+        else:
+            blocks = sag.sag_blocks(length, unit, sag_law[0]._replace(tension=T, dT_dl=dT_dl),
+                                    sag_law[1])
         damping = m.BA * share / (m.length0 * length)
         if np.any(damping):
             transverse = dv - np.einsum("ij,ij->i", dv, unit)[:, None] * unit

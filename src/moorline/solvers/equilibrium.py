@@ -27,7 +27,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..physics import bending, element, hydro, seabed
+from ..physics import bending, element, hydro, sag, seabed
 from .assembly import BlockPattern, gather_free
 
 FloatArray = NDArray[np.float64]
@@ -76,13 +76,31 @@ class StaticModel:
         self.node_seabed_stiffness = mesh.seabed_stiffness_per_area * mesh.node_contact_area
         self.seabed_ramp = seabed.contact_ramp(-ext[:, 2], self.node_seabed_stiffness,
                                                float(np.max(mesh.diameter, initial=0.0)))
+        self.sag = None if mesh.sag_corrected is None else sag.SagCorrection(
+            mesh.sag_corrected.astype(float), mesh.elements, -self.external[:, 2],
+            self.node_seabed_stiffness, self.seabed_ramp, self.surface)
+
+    def sag_tension(self, x: FloatArray, length: FloatArray, unit: FloatArray,
+                    slack_ratio: FloatArray, smoothing: FloatArray | float
+                    ) -> tuple[sag.SagTension, FloatArray]:
+        """Chord force of every element with the sag correction (straight elements: ``phi =
+        0``, their own law) and ``dphi/dx`` of each element's nodes (n_el, 2, 3)."""
+        m = self.mesh
+        phi, dphi = self.sag.share(x)
+        return sag.sag_tension(length, unit, m.length0, m.EA, slack_ratio, smoothing,
+                               m.weight_per_length, phi, **m.axial_law), dphi
 
     def forces(self, x: FloatArray, lam: float = 1.0) -> ForceState:
         """All nodal forces at positions ``x`` (n_nodes, 3) with the loads scaled by ``lam``."""
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
-        tension, _ = element.axial_tension(length, m.length0, m.EA, *self._law(),
-                                           **m.axial_law)
+        law = None
+        if self.sag is None:
+            tension, _ = element.axial_tension(length, m.length0, m.EA, *self._law(),
+                                               **m.axial_law)
+        else:
+            law = self.sag_tension(x, length, unit, *self._law())
+            tension = law[0].tension
         el_forces = element.nodal_forces(tension, unit)
         if m.has_bending:
             el_forces = el_forces + bending_loads(m, x)[0]
@@ -93,24 +111,32 @@ class StaticModel:
         if self.current is not None:
             nodal = nodal + lam * self._current_drag(x)[0]
         if self._friction_map is not None:
-            nodal = nodal + self._friction(x, length, unit)[0]
+            nodal = nodal + self._friction(x, length, unit, law)[0]
         return ForceState(tension, el_forces, nodal, length)
 
-    def _friction(self, x: FloatArray, length: FloatArray, unit: FloatArray
+    def _friction(self, x: FloatArray, length: FloatArray, unit: FloatArray,
+                  law: tuple[sag.SagTension, FloatArray] | None = None
                   ) -> tuple[FloatArray, FloatArray]:
         """Seabed friction of the lying lines (:func:`moorline.physics.seabed.static_friction`)
-        as node forces (n_nodes, 3), and the element blocks of its derivative (n_el, 6, 6)."""
+        as node forces (n_nodes, 3), and the element blocks of its derivative (n_el, 6, 6).
+        ``law``: the sag-corrected tension of the residual's law (:meth:`sag_tension`)."""
         m = self.mesh
         nodes, elems, first = self._friction_map
         contact = self._seabed(x)
-        tension, dT = element.axial_tension(length[elems], m.length0[elems], m.EA[elems],
-                                            *[a[elems] for a in self._law()],
-                                            **m.axial_law_of(elems))
+        dT_dx = None
+        if self.sag is not None:
+            law = law or self.sag_tension(x, length, unit, *self._law())
+            tension, dT = law[0].tension[elems], law[0].dT_dl[elems]
+            dT_dx = _own_far(law[0], law[1], unit, elems, first)
+        else:
+            tension, dT = element.axial_tension(length[elems], m.length0[elems], m.EA[elems],
+                                                *[a[elems] for a in self._law()],
+                                                **m.axial_law_of(elems))
         sign = np.where(first, 1.0, -1.0)[:, None]
         f, df = seabed.static_friction(contact.normal[nodes], contact.dnormal_dx[nodes],
                                        tension, dT, sign * unit[elems], length[elems],
                                        self.friction, contact.unit_normal[nodes],
-                                       contact.dunit_dx[nodes], self.external[nodes])
+                                       contact.dunit_dx[nodes], self.external[nodes], dT_dx)
         nodal = np.zeros((m.n_nodes, 3))
         nodal[nodes] = f
         blocks = np.zeros((m.n_elements, 6, 6))
@@ -164,14 +190,17 @@ class StaticModel:
         """
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
-        tension, dT = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
-                                            0.0 if self.exact_cable else m.slack_smoothing,
-                                            **m.axial_law)
-        if self.exact_cable:
-            tension = np.maximum(tension, 0.0)
-        if taut_axial:
-            tension, dT = np.maximum(tension, 0.0), self._taut_stiffness(length)
-        blocks = element.tangent_blocks(length, unit, tension, dT)
+        if self.sag is not None:
+            blocks = self._sag_blocks(x, length, unit, taut_axial)
+        else:
+            tension, dT = element.axial_tension(length, m.length0, m.EA, m.slack_ratio,
+                                                0.0 if self.exact_cable else m.slack_smoothing,
+                                                **m.axial_law)
+            if self.exact_cable:
+                tension = np.maximum(tension, 0.0)
+            if taut_axial:
+                tension, dT = np.maximum(tension, 0.0), self._taut_stiffness(length)
+            blocks = element.tangent_blocks(length, unit, tension, dT)
         if self.current is not None:
             blocks = blocks - self._current_drag(x)[1]
         if self._friction_map is not None:
@@ -184,6 +213,20 @@ class StaticModel:
         pattern = pattern or self.pattern
         diagonal = np.full(pattern.n, shift) if shift else None
         return pattern.assemble(blocks, node_blocks, diagonal)
+
+    def _sag_blocks(self, x: FloatArray, length: FloatArray, unit: FloatArray,
+                    taut_axial: bool) -> FloatArray:
+        """Element blocks of the sag-corrected law (:func:`moorline.physics.sag.sag_blocks`),
+        with the slack elements' generalized Jacobian as :meth:`tangent` describes."""
+        m = self.mesh
+        if taut_axial:
+            raise ValueError("sag-corrected elements (lines with element: sag_corrected) have "
+                             "no taut-axial tangent (strumming modes): use straight elements")
+        law, dphi = self.sag_tension(x, length, unit, m.slack_ratio,
+                                     0.0 if self.exact_cable else m.slack_smoothing)
+        if self.exact_cable:
+            law = law._replace(tension=np.maximum(law.tension, 0.0))
+        return sag.sag_blocks(length, unit, law, dphi)
 
     def _taut_stiffness(self, length: FloatArray) -> FloatArray:
         """``dT/dl`` of every element as if taut: ``EA / L0``, or a non-linear law's tangent
@@ -290,6 +333,17 @@ def bending_loads(mesh: Mesh, x: FloatArray, element_blocks: FloatArray | None =
     if len(mesh.clamp_elements):
         np.add.at(blocks, mesh.clamp_elements, bending.clamp_tangent(x, *clamp))
     return shear, blocks
+
+
+def _own_far(law: sag.SagTension, dphi: FloatArray, unit: FloatArray, elems: NDArray[np.int64],
+             first: NDArray[np.bool_]) -> FloatArray:
+    """``dT/dx`` of elements ``elems`` with respect to the node ``first`` names (its first
+    node, else its second) and the element's other node, (n, 6)."""
+    t = law.dT_dl[elems, None] * unit[elems] + law.dT_dx2[elems]   # relative part, d/dx2
+    d1 = -t + law.dT_dphi[elems, None] * dphi[elems, 0]
+    d2 = t + law.dT_dphi[elems, None] * dphi[elems, 1]
+    f = first[:, None]
+    return np.concatenate((np.where(f, d1, d2), np.where(f, d2, d1)), axis=1)
 
 
 def _friction_map(mesh: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]]:

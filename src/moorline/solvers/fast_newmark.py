@@ -1,5 +1,6 @@
 """Compiled implicit step for the common case: elastic lines (constant ``EA``, tension-strain
-tables, the fibre-rope dynamic stiffness) in still water or a uniform current, on a seabed
+tables, the fibre-rope dynamic stiffness, sag-corrected elements, whose ``phi`` on the flat
+seabed is computed here) in still water or a uniform current, on a seabed
 with contact, damping and (isotropic) friction, Newmark beta = 1/4, gamma = 1/2 with
 equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
 
@@ -141,14 +142,62 @@ def _seabed(x, v, seabed_z, k, c, ramp, mu, v_slip, force, kzz, czz, fric_c, fri
 
 
 @numba.njit(**_JIT)
+def _sag_share(x, elements, active, seabed_on, seabed_z, k, ramp, load, phi, dphi):
+    """``phi`` and ``dphi/dx`` of the sag correction on a flat seabed
+    (:meth:`moorline.physics.sag.SagCorrection.share` with
+    :func:`moorline.physics.seabed.carried_share`)."""
+    for e in range(elements.shape[0]):
+        for m in range(2):
+            for c in range(3):
+                dphi[e, m, c] = 0.0
+        phi[e] = active[e]
+    if not seabed_on:
+        return
+    for e in range(elements.shape[0]):
+        share = (0.0, 0.0)
+        slope = (0.0, 0.0)
+        for m in range(2):
+            n = elements[e, m]
+            p = -(x[n, 2] - seabed_z)
+            q = p + 0.5 * ramp[n]
+            sh = 0.0
+            sl = 0.0
+            half = 0.5 * load[n]
+            if q > 0 and half > 0:
+                full = q >= ramp[n]
+                c_share = min(q / ramp[n], 1.0)
+                spring = k[n] * p if full else 0.5 * k[n] * q * c_share
+                if spring > 0:
+                    d_spring = -(k[n] if full else k[n] * c_share)
+                    u = spring / half
+                    uc = min(max(u, 0.0), 1.0)
+                    sh = uc * uc * (3.0 - 2.0 * uc)
+                    if u < 1:
+                        sl = 6.0 * uc * (1.0 - uc) * d_spring / half
+            if m == 0:
+                share = (sh, share[1])
+                slope = (sl, slope[1])
+            else:
+                share = (share[0], sh)
+                slope = (slope[0], sl)
+        phi[e] = active[e] * (1.0 - share[0] * share[1])
+        dphi[e, 0, 2] = -active[e] * share[1] * slope[0]
+        dphi[e, 1, 2] = -active[e] * share[0] * slope[1]
+
+
+@numba.njit(**_JIT)
 def _evaluate(x, v, a, uf, af, elements, props, laws, with_drag, with_added_mass, node_mass,
-              external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, tangent,
-              buf):
+              external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on,
+              sag_active, sag_load, tangent, buf):
     """All nodal forces minus structural inertia at (x, v, a); fills ``buf``'s arrays."""
     (el_forces, total, f_am, tension, strain, taut, K, C, Ma, nodal, nodal_am, resid,
-     kzz, czz, fric_c, fric_kz, fric_cz) = buf
-    _kernel(x, v, a, uf, af, elements, props, laws, tangent, with_drag, with_added_mass,
-            el_forces, total, f_am, tension, strain, taut, K, C, Ma, nodal, nodal_am)
+     kzz, czz, fric_c, fric_kz, fric_cz, phi, dphi) = buf
+    if sag_on:
+        _sag_share(x, elements, sag_active, seabed_on, seabed_z, k_sb, ramp, sag_load, phi,
+                   dphi)
+    _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, with_drag,
+            with_added_mass, el_forces, total, f_am, tension, strain, taut, K, C, Ma, nodal,
+            nodal_am)
     for n in range(x.shape[0]):
         for c in range(3):
             resid[n, c] = nodal[n, c] + external[n, c] + point_force[n, c] \
@@ -222,7 +271,8 @@ def _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1):
 @numba.njit(**_JIT)
 def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
                  with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
-                 seabed_z, k_sb, c_sb, ramp, mu, v_slip, h, beta, gamma, tol, max_iter,
+                 seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta,
+                 gamma, tol, max_iter,
                  refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
                  stall_limit, max_halvings):
     """One Newmark step with modified-Newton iterations: the algorithm of
@@ -243,7 +293,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
     _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag, with_added_mass,
               node_mass, external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu,
-              v_slip, refresh, buf)
+              v_slip, sag_on, sag_active, sag_load, refresh, buf)
     counters[1] += 1
     norm = _norm_inf_free(buf[11], band, rvec)
     have_tangent = refresh
@@ -256,7 +306,8 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             if not have_tangent:
                 _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag,
                           with_added_mass, node_mass, external, point_force, seabed_on,
-                          seabed_z, k_sb, c_sb, ramp, mu, v_slip, True, buf)
+                          seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load,
+                          True, buf)
                 counters[1] += 1
                 norm = _norm_inf_free(buf[11], band, rvec)
             _assemble(lu, bw, band, elements, buf[6], buf[7], buf[8], with_added_mass,
@@ -283,7 +334,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             _kinematics(x0, v0, a0, trial, h, beta, gamma, free, v1, a1)
             _evaluate(trial, v1, a1, uf, af, elements, props, laws, with_drag,
                       with_added_mass, node_mass, external, point_force, seabed_on, seabed_z,
-                      k_sb, c_sb, ramp, mu, v_slip, True, buf)
+                      k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, True, buf)
             counters[1] += 1
             n_new = _norm_inf_free(buf[11], band, rvec)
             merit = 0.0
@@ -317,7 +368,7 @@ def make_buffers(n_el: int, n_nodes: int) -> tuple:
             e(n_el, dtype=np.bool_), e((n_el, 6, 6)), e((n_el, 6, 6)), e((n_el, 6, 6)),
             e((n_nodes, 3)), e((n_nodes, 3)), e((n_nodes, 3)), np.zeros(n_nodes),
             np.zeros(n_nodes), np.zeros((n_nodes, 2, 2)), np.zeros((n_nodes, 2)),
-            np.zeros((n_nodes, 2)))
+            np.zeros((n_nodes, 2)), np.zeros(n_el), np.zeros((n_el, 2, 3)))
 
 
 def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
@@ -377,6 +428,9 @@ class FastStepper:
         zeros = np.zeros((mesh.n_elements, 3))
         self._still = (zeros, zeros) if isinstance(model.fluid, StillWater) else None
         self._no_forces = np.zeros((mesh.n_nodes, 3))
+        sag = model.sag
+        self.sag = (sag is not None, np.zeros(mesh.n_elements) if sag is None else sag.active,
+                    np.zeros(mesh.n_nodes) if sag is None else sag.node_load)
 
     def forget_tangent(self) -> None:
         """Drop the factorization (after a step cut)."""
@@ -429,7 +483,7 @@ class FastStepper:
             f.props, f.laws, f.with_drag, f.with_added_mass, m.node_mass, m.external, forces,
             uf, af,
             self.seabed_on, float(mesh.seabed_z), m.k_seabed, m.c_seabed, m.seabed_ramp,
-            self.mu, self.v_slip, h, self.c.beta, self.c.gamma, pol.tolerance,
+            self.mu, self.v_slip, *self.sag, h, self.c.beta, self.c.gamma, pol.tolerance,
             pol.max_iterations, refresh, self.lu, self.buf, self.rvec, self.trial, self.counts,
             np.inf if pol.refresh_ratio is None else pol.refresh_ratio, pol.stall_ratio,
             pol.stall_limit, pol.max_halvings)

@@ -65,7 +65,7 @@ from .dynamic_model import DynamicModel
 from .excitation import Excitation
 from .harmonic_bodies import BodyTerms, Collector
 from .harmonic_material import maxwell_jacobian, maxwell_operator
-from .linearized_laws import refuse_static_dynamic
+from .linearized_laws import refuse_unlinearized
 from .newton import Counters, NewtonPolicy, TangentCache
 from .newton import solve as newton_solve
 from .statics import equilibrium_for
@@ -465,7 +465,7 @@ def solve_harmonic(system: System, settings: HarmonicSettings,
     ConvergenceError
         When the static state it starts from did not converge.
     """
-    refuse_static_dynamic(system, "harmonic")
+    refuse_unlinearized(system, "harmonic")
     balance = HarmonicBalance(system, settings, statics)
     name = f"harmonic balance of {system.name}"
     tolerance = settings.tolerance * balance.scale

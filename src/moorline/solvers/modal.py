@@ -43,7 +43,7 @@ from ..model import ModalSettings, System
 from ..physics import element, hydro
 from ..results import BODY_DOFS, ModalResult, StaticResult
 from .assembly import scatter_free
-from .linearized_laws import refuse_static_dynamic
+from .linearized_laws import refuse_unlinearized
 from .statics import equilibrium_for
 
 FloatArray = NDArray[np.float64]
@@ -99,7 +99,7 @@ def solve_modes(
     band's lower end), so that ``K - sigma M`` is positive definite even for a (near-)
     mechanism and ARPACK converges to the eigenvalues nearest the shift: the lowest ones.
     """
-    refuse_static_dynamic(system, "modal")
+    refuse_unlinearized(system, "modal")
     settings = settings or _default_settings(system)
     statics = equilibrium_for(system, statics, "modal analysis")
     mesh = dynamic_mesh(statics.mesh, statics.positions)

@@ -260,7 +260,8 @@ class _NewtonStatics:
     """One load increment of the static balance as a problem of the Newton core: the exact
     tangent, a step limited to ``max_step``, and a line search that also accepts a step
     lowering the potential energy enough (Armijo; the loads are conservative but a current's
-    drag, held at its value at the start of the search, its work added to the energy)."""
+    drag, held at its value at the start of the search, its work added to the energy; with
+    sag-corrected elements, which have no potential, the residual norm alone)."""
 
     def __init__(self, model: StaticModel, lam: float, max_step: float) -> None:
         self.model, self.lam, self.max_step = model, lam, max_step
@@ -286,11 +287,15 @@ class _NewtonStatics:
         return gather_free(_limit_step(scatter_free(du, self.dof), self.max_step), self.dof)
 
     def search_context(self, x: FloatArray, du: FloatArray, trial0: _StaticTrial):
+        if self.model.sag is not None:
+            return None
         frozen = self.model.drag_loads(x, self.lam)
         slope = -float(np.sum(du * trial0.r))
         return frozen, self.model.potential_energy(x, self.lam, frozen), slope
 
     def accept(self, x, x_try, trial, alpha, du, trial0, context) -> bool:
+        if context is None:  # sag-corrected elements have no potential: the residual's norm
+            return False
         frozen, energy0, slope = context
         return slope < 0 and (self.model.potential_energy(x_try, self.lam, frozen)
                               <= energy0 + 1e-4 * alpha * slope)

@@ -110,7 +110,7 @@ from ..waves.transfer import kinematics_transfer
 from . import drag_linearization
 from .assembly import solve_sparse
 from .bodies import long_wave_geometry
-from .linearized_laws import refuse_static_dynamic
+from .linearized_laws import refuse_unlinearized
 from .modal import system_matrices
 from .statics import _current_field, equilibrium_for, solve_statics
 
@@ -534,7 +534,7 @@ def solve_stochastic(system: System, settings: StochasticSettings | None = None,
     ConvergenceError
         When the statics fails.
     """
-    refuse_static_dynamic(system, "stochastic")
+    refuse_unlinearized(system, "stochastic")
     settings = settings or StochasticSettings()
     env = system.environment
     if env.waves.kind != "random" or env.waves.height <= 0:

@@ -55,7 +55,7 @@ from ..model import ModalSettings, StrummingSettings, System
 from ..physics import hydro, wake
 from ..results import DynamicResult, StaticResult, StrummingResult
 from .assembly import BlockPattern
-from .linearized_laws import refuse_static_dynamic
+from .linearized_laws import refuse_unlinearized
 from .modal import BODY_DOFS, _eigen, body_mode_shapes, system_matrices
 
 FloatArray = NDArray[np.float64]
@@ -250,7 +250,7 @@ def solve_strumming(system: System, settings: StrummingSettings,
         Without fluid, without an in-line history, or at a slack state (unless
         ``nonpositive_modes`` is ``keep``).
     """
-    refuse_static_dynamic(system, "strumming")
+    refuse_unlinearized(system, "strumming")
     from ..waves import fluid_field_from_environment
 
     mesh = with_loads_of(inline.mesh, system)
