@@ -88,7 +88,10 @@ def test_statics_json_contract(statics_run: tuple[Result, Path]) -> None:
     assert "stiffness" not in points["anchor"]  # fixed point: no stiffness
     K = np.array(points["fairlead"]["stiffness"])
     assert K.shape == (3, 3)
-    assert np.allclose(K, K.T, rtol=1e-6, atol=1e-6 * np.abs(K).max())
+    # the case's sag-corrected elements have no potential (their tangent is not symmetric,
+    # moorline.physics.sag): K is symmetric to their O(h^2) error (3.4e-5 of K11 at 20
+    # elements), not to round-off
+    assert np.allclose(K, K.T, rtol=0, atol=1e-4 * np.abs(K).max())
     assert np.all(np.diag(K) > 0)
 
 

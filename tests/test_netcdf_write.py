@@ -51,12 +51,14 @@ def test_every_kind_of_variable(tmp_path: Path) -> None:
 
 
 def test_results_of_the_analyses(tmp_path: Path) -> None:
-    from moorline.io import load_case
+    from moorline.io import load_case_text
     from moorline.model import ModalSettings
     from moorline.solvers.modal import solve_modes
     from moorline.solvers.statics import solve_statics
 
-    system = load_case(Path(__file__).parents[1] / "cases" / "oc3_line.yaml")
+    text = (Path(__file__).parents[1] / "cases" / "oc3_line.yaml").read_text()
+    # straight elements: a modal analysis refuses sag-corrected ones
+    system = load_case_text(text.replace("element: sag_corrected", "element: straight"))
     static = solve_statics(system)
     assert static.success
     _assert_same(static.to_xarray(), tmp_path)
