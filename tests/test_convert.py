@@ -202,8 +202,6 @@ PUBLIC_BODY_DECKS = [
 
 
 RTEST = "OpenFAST-r-test/"
-_PINNED = pytest.mark.xfail(strict=True, reason="a pinned rod on a free body: singular "
-                             "coupled statics (issue 14)")
 
 
 def _no_equilibrium(why: str):
@@ -254,11 +252,11 @@ RTEST_DECKS = [RTEST + deck for deck in (
     "modules/moordyn/md_waterkin3/moordyn.dat",
     "modules/moordyn/py_md_5MW_OC4Semi/md_primary.inp",
 )] + [
-    pytest.param(RTEST + "modules/moordyn/md_BodiesAndRods/moordyn.dat", marks=_PINNED),
+    # rods above water at the deck's pose, the body sinking: rod buoyancy at every pose
+    RTEST + "modules/moordyn/md_BodiesAndRods/moordyn.dat",
     pytest.param(RTEST + "modules/moordyn/md_float/moordyn.dat", marks=_no_equilibrium(
         "a free-floating buoy (no mooring) decaying from 45 deg of pitch; surge, sway and yaw "
-        "have no restoring and the surface-piercing rod's buoyancy is linearized at the "
-        "deck's pose")),
+        "have no restoring")),
     pytest.param(RTEST + "modules/moordyn/md_horizontal/moordyn.dat", marks=_no_equilibrium(
         "a free rod sinking to the seabed, and moorline's bodies have no seabed contact")),
     pytest.param(RTEST + "modules/moordyn/md_vertical/moordyn.dat", marks=_no_equilibrium(
