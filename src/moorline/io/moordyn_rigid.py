@@ -36,9 +36,10 @@ The mapping to moorline (:class:`moorline.model.Body`):
   ``Ca rho V`` are added to the body's (exactly: mass and centre of gravity, inertia by
   parallel axes, volume and centre of buoyancy by volume-weighted centroid, added mass as a
   6x6 at the point's arm), their ``CdA`` to the body's drag area (a warning);
-- rods ``Body<k>``: rigid parts of body ``k``; their weight, inertia, buoyancy (submerged part
-  at the initial pose, constant; a rod piercing the surface adds its waterplane's constant
-  heave/roll/pitch stiffness), added mass (6x6 about the body origin) and drag (lumped at the
+- rods ``Body<k>``: rigid parts of body ``k``; their weight, inertia, buoyancy (``rods``
+  hydrostatics: recomputed at every pose from each rod's submerged length,
+  :mod:`moorline.physics.rod_buoyancy`, so a rod piercing or leaving the surface floats the
+  body as MoorDyn's does), added mass (6x6 about the body origin) and drag (lumped at the
   body origin per world axis, a warning) are added to the body; their ends ``R<k>A``/``R<k>B``
   are body points;
 - ``Free`` rods -> a free body ``rod<k>`` at the rod's middle with its x axis along the rod
@@ -108,7 +109,8 @@ class _Rigid:
 
     Body frame: ``mass``, ``moment`` (sum m r), ``inertia_origin`` (about the origin), ``volume``,
     ``volume_moment``. World axes at the initial pose: ``added`` (6x6 about the origin),
-    ``drag`` (area per axis), ``stiffness`` (6x6 waterplane restoring about the origin)."""
+    ``drag`` (area per axis); ``rods`` (ends in the body frame, diameter) float it at every
+    pose."""
 
     name: str
     kind: str
@@ -121,7 +123,6 @@ class _Rigid:
     volume_moment: FloatArray = field(default_factory=lambda: np.zeros(3))
     added: FloatArray = field(default_factory=lambda: np.zeros((6, 6)))
     drag: FloatArray = field(default_factory=lambda: np.zeros(3))
-    stiffness: FloatArray = field(default_factory=lambda: np.zeros((6, 6)))
     has_rods: bool = False
     rods: list[tuple[tuple[float, float, float], tuple[float, float, float], float]] = field(
         default_factory=list)
@@ -156,9 +157,8 @@ class _Rigid:
         inertia = self.inertia_origin - self.mass * (cg @ cg * np.eye(3) - np.outer(cg, cg))
         inertia = 0.5 * (inertia + inertia.T)
         cb = self.volume_moment / self.volume if self.volume > 0 else cg
-        hydro = Hydrostatics("matrix", volume=self.volume, center_of_buoyancy=_vec(cb),
-                             stiffness=_mat(self.stiffness))
-        if self.volume == 0 and not self.stiffness.any():
+        hydro = Hydrostatics("matrix", volume=self.volume, center_of_buoyancy=_vec(cb))
+        if self.volume == 0:
             hydro = Hydrostatics()
         if self.rods:
             hydro = Hydrostatics("rods", volume=self.volume, center_of_buoyancy=_vec(cb),
