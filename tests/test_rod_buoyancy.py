@@ -184,3 +184,30 @@ def test_md_float_converted_buoy_balances_at_archimedes_draft():
     heave = 1.0 - (mass - rho * np.pi * 2.0**2 * 1.0) / (rho * np.pi * 1.0**2)
     assert body.mass == pytest.approx(mass)
     assert q[0] == pytest.approx(heave, abs=1e-9) and q[1] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_rods_hydrostatics_round_trip_through_a_case_file_and_bad_input(tmp_path):
+    """The spar's rods hydrostatics written to a case file and read back are the same; a
+    ``rods`` kind without rods, or a rod of zero diameter, is refused naming the key."""
+    from dataclasses import replace
+
+    from moorline.errors import CaseError
+    from moorline.io.case import load_case, load_case_text
+    from moorline.io.case_writer import write_case
+
+    system = spar(0.0)
+    tether = replace(system.line_types["tether"], mass_per_length=1.0, displaced_area=1e-4)
+    system = replace(system, analyses=(), line_types={"tether": tether})
+    path = write_case(system, tmp_path / "spar.yaml")
+    back = load_case(path).bodies["spar"].hydrostatics
+    assert back == system.bodies["spar"].hydrostatics
+    text = path.read_text()
+    for bad, key in ((text.replace("diameter: 2.0", "diameter: 0.0"), "diameter"),):
+        with pytest.raises(CaseError, match=key):
+            load_case_text(bad, "bad.yaml")
+    import yaml
+
+    data = yaml.safe_load(text)
+    data["bodies"]["spar"]["hydrostatics"]["rods"] = []
+    with pytest.raises(CaseError, match="hydrostatics.rods"):
+        load_case_text(yaml.safe_dump(data), "bad.yaml")
