@@ -144,7 +144,8 @@ def body_loads(body: Body, r: FloatArray, R: FloatArray, gravity: float,
                rho: float) -> tuple[FloatArray, FloatArray]:
     """Gravity, hydrostatics and constant loads on a body: generalized force (6,) about its
     origin and its tangent ``K = -d(force)/d(dr, dtheta)`` (6, 6). Unpacks ``body`` for the
-    kernels of :mod:`moorline.physics.rigid_body`."""
+    kernels of :mod:`moorline.physics.rigid_body` (``rods`` hydrostatics:
+    :mod:`moorline.physics.rod_buoyancy`)."""
     force, K = rb.gravity_load(body.mass, body.center_of_gravity, R, gravity)
     force = np.asarray(body.force, dtype=float) + force
     hs = body.hydrostatics
@@ -153,19 +154,17 @@ def body_loads(body: Body, r: FloatArray, R: FloatArray, gravity: float,
         area, inertia = waterplane(hs)
         parts = [rb.hull_buoyancy(area, hs.height, r, R, rho, gravity),
                  rb.waterplane_restoring(inertia, R, rho, gravity)]
-    elif hs.kind == "matrix":
-        stiffness = hs.stiffness if hs.stiffness is not None else np.zeros((6, 6))
-        parts = [rb.point_load([0.0, 0.0, rho * gravity * hs.volume], hs.center_of_buoyancy,
-                               R),
-                 rb.matrix_restoring(stiffness, r, R, body.position,
-                                     rotation_matrix(body.rotation))]
-    elif hs.kind == "rods":
+    elif hs.kind in ("matrix", "rods"):  # a constant buoyancy at the centre of buoyancy
         parts = [rb.point_load([0.0, 0.0, rho * gravity * hs.volume], hs.center_of_buoyancy,
                                R)]
-        if hs.rods:
-            ends = np.array([(a, b) for a, b, _ in hs.rods], dtype=float)
-            parts.append(rod_buoyancy(ends[:, 0], ends[:, 1], [d for *_, d in hs.rods], r, R,
-                                      rho, gravity))
+    if hs.kind == "matrix":
+        stiffness = hs.stiffness if hs.stiffness is not None else np.zeros((6, 6))
+        parts.append(rb.matrix_restoring(stiffness, r, R, body.position,
+                                         rotation_matrix(body.rotation)))
+    elif hs.kind == "rods" and hs.rods:
+        ends = np.array([(a, b) for a, b, _ in hs.rods], dtype=float)
+        parts.append(rod_buoyancy(ends[:, 0], ends[:, 1], [d for *_, d in hs.rods], r, R,
+                                  rho, gravity))
     for load, dK in parts:
         force, K = force + load, K + dK
     return force, K
