@@ -39,7 +39,7 @@ def _start_long_run(tmp_path: Path) -> tuple[subprocess.Popen, Path]:
     """The OC3 three-line run, long enough never to finish before the signal."""
     long_case = tmp_path / "oc3_long.yaml"
     text = OC3_DYNAMICS.read_text(encoding="utf-8")
-    long_case.write_text(re.sub(r"duration: *[0-9.]+", "duration: 30000", text),
+    long_case.write_text(re.sub(r"duration: *[0-9.]+", "duration: 90000", text),
                          encoding="utf-8")
     # the writer takes no HDF5 file lock, so that this process can read the file meanwhile
     env = {**os.environ, "HDF5_USE_FILE_LOCKING": "FALSE"}

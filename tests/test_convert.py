@@ -204,8 +204,10 @@ PUBLIC_BODY_DECKS = [
 RTEST = "OpenFAST-r-test/"
 
 
-def _no_equilibrium(why: str):
-    return pytest.mark.xfail(strict=True, reason=f"no static equilibrium in moorline: {why}")
+#: Decks without a static equilibrium: free rods sinking with nothing to hold them (MoorDyn
+#: runs their fall); the statics say so and the dynamics starts from the deck's pose.
+NO_EQUILIBRIUM = [RTEST + "modules/moordyn/md_horizontal/moordyn.dat",
+                  RTEST + "modules/moordyn/md_vertical/moordyn.dat"]
 
 
 #: MoorDyn decks of OpenFAST's regression tests (origins in tests/data/moordyn/public/
@@ -252,16 +254,12 @@ RTEST_DECKS = [RTEST + deck for deck in (
     "modules/moordyn/md_waterkin3/moordyn.dat",
     "modules/moordyn/py_md_5MW_OC4Semi/md_primary.inp",
 )] + [
-    # rods above water at the deck's pose, the body sinking: rod buoyancy at every pose
+    # rods above water at the deck's pose: rod buoyancy at every pose floats the body
     RTEST + "modules/moordyn/md_BodiesAndRods/moordyn.dat",
-    pytest.param(RTEST + "modules/moordyn/md_float/moordyn.dat", marks=_no_equilibrium(
-        "a free-floating buoy (no mooring) decaying from 45 deg of pitch; surge, sway and yaw "
-        "have no restoring")),
-    pytest.param(RTEST + "modules/moordyn/md_horizontal/moordyn.dat", marks=_no_equilibrium(
-        "a free rod sinking to the seabed, and moorline's bodies have no seabed contact")),
-    pytest.param(RTEST + "modules/moordyn/md_vertical/moordyn.dat", marks=_no_equilibrium(
-        "a free rod sinking to the seabed, and moorline's bodies have no seabed contact")),
-]
+    # a free-floating buoy (no mooring) decaying from 45 deg of pitch: surge, sway and yaw
+    # have no restoring (held at the deck's pose by the statics)
+    RTEST + "modules/moordyn/md_float/moordyn.dat",
+] + NO_EQUILIBRIUM
 
 
 #: MoorDyn-F v1 decks of OpenFAST's in-tree regression tests (before r-test): count rows
@@ -287,7 +285,9 @@ def _deck_id(deck: str) -> str:
 def test_public_body_decks_convert_solve_and_run(deck, tmp_path):
     """`moorline convert` then `moorline statics` (converged) and a short dynamics run from
     the equilibrium (2 s) of the converted case: the body decks of MoorPy and MoorDyn and
-    the OpenFAST regression-test decks."""
+    the OpenFAST regression-test decks. A deck without a static equilibrium
+    (:data:`NO_EQUILIBRIUM`): the statics say so (exit 1) and the dynamics starts from the
+    deck's pose (``start: initial``)."""
     import json
 
     from moorline.model import DynamicsSettings
@@ -300,10 +300,17 @@ def test_public_body_decks_convert_solve_and_run(deck, tmp_path):
     assert result.exit_code == 0, result.output
     statics = runner.invoke(cli, ["statics", str(out), "--out", str(tmp_path / "o"),
                                   "--json", "--quiet", "--no-plots"])
-    assert statics.exit_code == 0, statics.output
     summary = json.loads(statics.stdout)
-    assert summary["converged"] is True
     system = load_case(out)
+    if deck in NO_EQUILIBRIUM:
+        assert statics.exit_code == 1, statics.output
+        assert summary["converged"] is False
+        assert summary["message"].startswith("no static equilibrium"), summary["message"]
+        run = simulate(system, DynamicsSettings(duration=2.0, dt=0.05, start="initial"))
+        assert run.success, run.message
+        return
+    assert statics.exit_code == 0, statics.output
+    assert summary["converged"] is True
     if system.bodies:
         assert set(summary["bodies"]) == set(system.bodies)
     run = simulate(system, DynamicsSettings(duration=2.0, dt=0.05), initial=solve_statics(system))

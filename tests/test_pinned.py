@@ -32,6 +32,17 @@ from moorline.solvers.statics import solve_statics
 RHO, G = 1025.0, 9.80665
 
 
+def _central_differences(residual, n: int, columns, h: float = 1e-6) -> np.ndarray:
+    """Minus the central-difference derivative of ``residual(du)`` (a step ``du`` of the
+    ``n`` unknowns) over the given ``columns``: the tangent's finite-difference twin."""
+    fd = np.zeros((n, n))
+    for j in columns:
+        e = np.zeros(n)
+        e[j] = h
+        fd[:, j] = -(residual(e) - residual(-e)) / (2 * h)
+    return fd
+
+
 def rod_deck(path: Path, *, d: float, mpl: float, Ca: float, a: tuple, b: tuple,
              lines: str = "", points: str = "", segments: int = 10, options: str = "") -> Path:
     """A MoorDyn v2 deck with one ``Pinned`` rod (no drag) from ``a`` to ``b``, a dummy wire
@@ -283,13 +294,8 @@ def test_pinned_body_statics_tangent_matches_finite_differences():
     held = problem.held
     assert held.sum() == 3 and not R[held].any()
     n = problem.n_unknowns
-    fd = np.zeros_like(K)
-    for j in np.flatnonzero(~held):
-        du = np.zeros(n)
-        du[j] = 1e-6
-        plus = problem.residual(*problem.update(x, poses, du))[0]
-        minus = problem.residual(*problem.update(x, poses, -du))[0]
-        fd[:, j] = -(plus - minus) / 2e-6
+    fd = _central_differences(lambda du: problem.residual(*problem.update(x, poses, du))[0],
+                              n, np.flatnonzero(~held))
     free = ~held
     Kf, fdf = K[np.ix_(free, free)], fd[np.ix_(free, free)]
     assert np.allclose(Kf, fdf, rtol=1e-4, atol=1e-5 * np.abs(K).max())
@@ -330,13 +336,8 @@ def test_pinned_body_step_tangent_matches_finite_differences():
     u = (state.x + h * state.v, np.array([[0.0, 0.0, 0.0, 0.04, -0.03, 0.05]]))
     K = stepper.tangent_matrix(u, stepper.residual(u, True)).toarray()
     held = stepper.layout.held
-    fd = np.zeros_like(K)
-    for j in np.flatnonzero(~held):
-        e = np.zeros(K.shape[0])
-        e[j] = 1e-6
-        plus = stepper.residual(stepper.update(u, e), False).r
-        minus = stepper.residual(stepper.update(u, -e), False).r
-        fd[:, j] = -(plus - minus) / 2e-6
+    fd = _central_differences(lambda e: stepper.residual(stepper.update(u, e), False).r,
+                              K.shape[0], np.flatnonzero(~held))
     free = ~held
     assert np.allclose(K[np.ix_(free, free)], fd[np.ix_(free, free)], rtol=1e-5,
                        atol=1e-6 * np.abs(K).max())
@@ -355,7 +356,7 @@ def test_modal_analysis_refuses_pinned_bodies():
         solve_modes(system)
 
 
-def test_accelerating_pin_against_moordyn_on_pinned_body_deck():
+def test_accelerating_pin_against_moordyn_on_pinned_body_deck(tmp_path):
     """MoorDyn-C (``moordyn`` module) runs tests/Mooring/body_tests/pinnedBody.txt itself
     (the CoupledPinned body, its pin driven at 0.5 m/s^2 along y, dt 0.01 s, 12 s, as
     MoorDyn's ``tests/bodies.cpp``); moorline its equivalent (:func:`_accelerating_pin`, dt
@@ -367,7 +368,9 @@ def test_accelerating_pin_against_moordyn_on_pinned_body_deck():
     moordyn = pytest.importorskip("moordyn")
     from moorline.compare.moordyn_runner import silenced_fd
 
-    deck = Path(__file__).parent / "data/moordyn/public/MoorDyn/body_tests/pinnedBody.txt"
+    source = Path(__file__).parent / "data/moordyn/public/MoorDyn/body_tests/pinnedBody.txt"
+    deck = tmp_path / source.name  # MoorDyn writes its .log and .out files next to the deck
+    deck.write_bytes(source.read_bytes())
     a, duration = 0.5, 12.0
     x, xd = [0.0, 0.0, -5.0, 0.0, 0.0, 0.0], [0.0] * 6
     with silenced_fd(1):
@@ -446,13 +449,8 @@ def test_pin_on_a_free_body_statics_tangent_matches_finite_differences():
     K = problem.tangent(x, poses, state).toarray()
     held = problem.held
     n = problem.n_unknowns
-    fd = np.zeros_like(K)
-    for j in np.flatnonzero(~held):
-        du = np.zeros(n)
-        du[j] = 1e-6
-        plus = problem.residual(*problem.update(x, poses, du))[0]
-        minus = problem.residual(*problem.update(x, poses, -du))[0]
-        fd[:, j] = -(plus - minus) / 2e-6
+    fd = _central_differences(lambda du: problem.residual(*problem.update(x, poses, du))[0],
+                              n, np.flatnonzero(~held))
     # the rod's spin about its own axis is projected out (a mechanism): compare across it
     assert problem.layout.spin.tolist() == [False, True]
     S = spin_projection(problem.layout, poses)[0].toarray()
@@ -498,13 +496,8 @@ def test_pin_on_a_free_body_step_tangent_matches_finite_differences(scheme, zeta
                                           [0.0, 0.0, 0.0, 0.04, -0.03, 0.05]]))
     K = stepper.tangent_matrix(u, stepper.residual(u, True)).toarray()
     held = stepper.layout.held
-    fd = np.zeros_like(K)
-    for j in np.flatnonzero(~held):
-        e = np.zeros(K.shape[0])
-        e[j] = 1e-6
-        plus = stepper.residual(stepper.update(u, e), False).r
-        minus = stepper.residual(stepper.update(u, -e), False).r
-        fd[:, j] = -(plus - minus) / 2e-6
+    fd = _central_differences(lambda e: stepper.residual(stepper.update(u, e), False).r,
+                              K.shape[0], np.flatnonzero(~held))
     free = ~held
     Kf, fdf = K[np.ix_(free, free)], fd[np.ix_(free, free)]
     bad = np.argwhere(~np.isclose(Kf, fdf, rtol=1e-5, atol=1e-6 * np.abs(K).max()))

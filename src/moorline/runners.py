@@ -131,7 +131,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     """Simulate, streaming the histories into group ``label`` of the results file.
 
     Starts from the preceding statics result of the run when there is one (otherwise the
-    solver solves statics itself). A failed result (``success`` False), or a
+    solver solves statics itself); with ``start: initial``, from the case's body poses (the
+    lines at rest with the bodies held there). A failed result (``success`` False), or a
     :class:`~moorline.errors.ConvergenceError`, ends the analysis as failed: the group keeps
     the records computed so far (``success = 0``, ``status = failed``, the message). Ctrl-C
     or SIGTERM closes the group the same way (``interrupted``, ``terminated``) and raises
@@ -144,6 +145,8 @@ def run_dynamics(settings: Any, context: RunContext, label: str) -> Outcome:
     system = context.system
     statics = context.latest("statics")
     initial = statics.result if statics is not None and statics.success else None
+    if settings.start == "initial":  # the case's poses, whatever a statics found
+        initial = None
     mesh = initial.mesh if initial is not None else discretize(system)
     result, counters, attrs = None, {}, {}
     first_step: list[float] = []

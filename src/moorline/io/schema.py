@@ -585,6 +585,7 @@ class DynamicsSpec(_Spec):
     envelope_start: quantity("time", ge=0.0) | None = None
     slack_damping: bool = False
     drag_velocity: Literal["element", "node"] = "element"
+    start: Literal["statics", "initial"] = "statics"
 
 
 def _band(values: list[float]) -> list[float]:

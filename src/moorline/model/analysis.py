@@ -121,6 +121,13 @@ class DynamicsSettings:
         element's drag at the node's own velocity instead of the element's mean velocity
         (``element``). They change the slack, grounded part of a line most (issue 16, the
         OC3 minimum tension: ``benchmarks/min_tension_study.py``).
+    start
+        What the run starts from: ``statics`` (the static equilibrium, solved unless a
+        preceding statics analysis gives it) or ``initial``: the bodies at rest at the poses
+        the case gives and the lines at rest in their static shape with the bodies held
+        there (MoorDyn's line initial condition with its bodies fixed;
+        :func:`moorline.solvers.statics.lines_at_rest`): decay tests and free falls of
+        bodies without a static equilibrium.
     """
 
     kind: Literal["dynamics"] = "dynamics"
@@ -141,6 +148,7 @@ class DynamicsSettings:
     envelope_start: float | None = None
     slack_damping: bool = False
     drag_velocity: Literal["element", "node"] = "element"
+    start: Literal["statics", "initial"] = "statics"
 
 
 ModalMass = Literal["lumped", "consistent"]

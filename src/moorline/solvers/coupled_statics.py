@@ -29,6 +29,7 @@ from .bodies import (
     world_arms,
 )
 from .equilibrium import ForceState, StaticModel
+from .neutral_dofs import NeutralDofs, find_neutral
 from .newton import Counters, NewtonPolicy, TangentCache
 from .newton import solve as newton_solve
 
@@ -82,9 +83,11 @@ class CoupledStatics:
         return out
 
     def tangent(self, x: FloatArray, poses: BodyState, state: ForceState,
-                taut_axial: bool = False):
+                taut_axial: bool = False, regularize: bool = True):
         """Exact tangent ``-d(residual)/d(unknowns)`` (CSC); ``taut_axial``: see
-        :meth:`moorline.solvers.equilibrium.StaticModel.tangent`."""
+        :meth:`moorline.solvers.equilibrium.StaticModel.tangent`; ``regularize``: add the
+        vanishing diagonal of the body dofs and hold the held ones (``False``: the bare
+        tangent, to find the directions nothing resists)."""
         arms = world_arms(self.mesh, poses)
         P = transformation(self.mesh, self.ext_dofs, self.n_free, self.body_dof, arms)
         K = (P.T @ self.model.tangent(x, self.pattern, taut_axial) @ P).tolil()
@@ -112,7 +115,7 @@ class CoupledStatics:
         # diagonal keeps the Newton matrix solvable without changing the equilibrium
         # (the spin of a slender pinned rod about its axis, too)
         body = np.flatnonzero(np.arange(self.n_unknowns) >= self.n_free)
-        if body.size:
+        if body.size and regularize:
             largest = float(np.abs(K.diagonal()).max(initial=1.0))
             K = K + sp.csc_matrix((np.full(body.size, 1e-9 * largest), (body, body)),
                                   shape=K.shape)
@@ -181,22 +184,33 @@ class _SchurStep:
     the one at the factorization point."""
 
     def __init__(self, K, R: FloatArray, n: int) -> None:
-        K = K.tocsc()
-        schur = K[n:, n:].toarray()
-        self.correction = np.zeros(K.shape[0] - n)
-        if n:
-            K_bl, K_lb = K[n:, :n].toarray(), K[:n, n:].toarray()
-            lines = factorize(K[:n, :n])
-            schur = schur - K_bl @ lines.solve(K_lb)
-            self.correction = K_bl @ lines.solve(R[:n])
+        schur, self.correction = reduced_stiffness(K, n, R)
         self.lu = scipy.linalg.lu_factor(schur)
 
     def solve(self, r_bodies: FloatArray) -> FloatArray:
         return scipy.linalg.lu_solve(self.lu, r_bodies - self.correction)
 
 
+def reduced_stiffness(K, n: int, R: FloatArray | None = None
+                      ) -> tuple[FloatArray, FloatArray]:
+    """The body dofs' stiffness with the ``n`` line dofs condensed out (the Schur complement
+    ``K_bb - K_bl K_ll^-1 K_lb``, dense) and the correction ``K_bl K_ll^-1 R_l`` of a line
+    residual ``R`` (zeros without one)."""
+    K = K.tocsc()
+    schur = K[n:, n:].toarray()
+    correction = np.zeros(K.shape[0] - n)
+    if n:
+        K_bl, K_lb = K[n:, :n].toarray(), K[:n, n:].toarray()
+        lines = factorize(K[:n, :n])
+        schur = schur - K_bl @ lines.solve(K_lb)
+        if R is not None:
+            correction = K_bl @ lines.solve(R[:n])
+    return schur, correction
+
+
 def solve_coupled(mesh: Mesh, x: FloatArray, settings: StaticsSettings, counters, hold,
-                  current=None) -> tuple[bool, str, int, ForceState, FloatArray, BodyState]:
+                  current=None, bodies_held: bool = False
+                  ) -> tuple[bool, str, int, ForceState, FloatArray, BodyState]:
     """Static equilibrium of lines and bodies: Newton on the bodies' six dofs with the lines
     kept in equilibrium (partitioned); without free bodies, the lines' own solve.
 
@@ -208,11 +222,17 @@ def solve_coupled(mesh: Mesh, x: FloatArray, settings: StaticsSettings, counters
     stiffness; a monolithic Newton step then throws the line through the seabed, where the
     partitioned one cannot. ``current``: the steady current whose drag the lines carry (the
     one ``hold`` solves with), so that the bodies feel the drag on their nodes' elements.
+    ``bodies_held``: only the lines, the bodies held at the case's poses (the start of a
+    dynamics from the initial pose).
+
+    Body dofs nothing resists (:mod:`.neutral_dofs`) are held where the case puts them when
+    they carry no force (the message names them); with a force there, the result is "no
+    static equilibrium", naming the body, the dof and the force.
     """
     problem = CoupledStatics(mesh, exact_cable=True, current=current)  # the lines' law
     poses = BodyState.initial(mesh)
     x = place_slaves(mesh, poses, x)
-    if problem.n_unknowns == problem.n_free:  # no free body: the lines' solve is the answer
+    if bodies_held or problem.n_unknowns == problem.n_free:  # the lines' solve is the answer
         ok, message, iterations, state, x = hold(x)
         return ok, message, iterations, state, x, poses
     scale = max(problem.model.load_scale(),
@@ -221,20 +241,60 @@ def solve_coupled(mesh: Mesh, x: FloatArray, settings: StaticsSettings, counters
     policy = NewtonPolicy(tolerance=tol, max_iterations=settings.max_iterations,
                           stiffness_update=1, age_per="iteration", refresh_ratio=None,
                           stall_limit=0, max_halvings=7)
+    x, R, state = _equilibrate(problem, x, poses, hold, counters)
+    neutral = _neutral(problem, x, poses, state, R, tol)
+    if neutral.unbalanced:
+        return False, neutral.no_equilibrium(), 0, state, x, poses
+    problem.held = problem.held | neutral.held
+    R = np.where(problem.held, 0.0, R)
     body_counters = Counters()
     out = newton_solve(_BodyNewton(problem, hold, counters, settings), (x, poses), policy,
-                       TangentCache(), body_counters)
+                       TangentCache(), body_counters,
+                       trial=_CoupledTrial(R[problem.n_free:], R, x, state, (x, poses)))
     counters.residuals += body_counters.residuals
     counters.tangents += body_counters.tangents
     counters.factorizations += body_counters.factorizations
     counters.history.extend(out.history)
     x, poses = out.trial.x, out.u[1]
     if out.converged:
-        return True, f"converged in {out.iterations} body iterations", out.iterations, \
-            out.trial.state, x, poses
+        drift = _held_drift(problem, neutral, out.trial.state, poses, tol)
+        if drift:
+            return False, f"converged in {out.iterations} body iterations, but {drift}", \
+                out.iterations, out.trial.state, x, poses
+        return True, (f"converged in {out.iterations} body iterations"
+                      f"{neutral.held_note()}"), out.iterations, out.trial.state, x, poses
     return (False, f"coupled statics did not converge in {settings.max_iterations} body "
             f"iterations ({out.reason}): largest out-of-balance force {out.norm:.3e}",
             out.iterations, out.trial.state, x, poses)
+
+
+def _neutral(problem: CoupledStatics, x: FloatArray, poses: BodyState, state: ForceState,
+             R: FloatArray, tol: float) -> NeutralDofs:
+    """The free bodies' dofs nothing resists at the start (:mod:`.neutral_dofs`); none when
+    the lines' own tangent is singular (the regularized Newton then does what it can)."""
+    K = problem.tangent(x, poses, state, regularize=False)
+    try:
+        S = reduced_stiffness(K, problem.n_free)[0]
+    except (np.linalg.LinAlgError, RuntimeError, ValueError):
+        return NeutralDofs(np.zeros(problem.n_unknowns, dtype=bool))
+    return find_neutral(S, R[problem.n_free:], problem.body_dof, problem.n_free,
+                        [b.kind == "free" for b in problem.bodies],
+                        [b.name for b in problem.bodies], tol)
+
+
+def _held_drift(problem: CoupledStatics, neutral: NeutralDofs, state: ForceState,
+                poses: BodyState, tol: float) -> str:
+    """What is wrong with the held neutral dofs at the solution: the out-of-balance force
+    that appeared there while the others were balanced ("" when none)."""
+    if not neutral.names:
+        return ""
+    forces = problem.body_forces(state, poses).ravel()
+    first = problem.n_free
+    bad = [(name, forces[j - first]) for name, j in
+           zip(neutral.names, np.flatnonzero(neutral.held), strict=True)
+           if abs(forces[j - first]) > tol]
+    return ", ".join(f"{name}, held for having no restoring, carries {f:.4g}"
+                     for name, f in bad)
 
 
 def _equilibrate(problem: CoupledStatics, x: FloatArray, poses: BodyState, hold, counters):
@@ -252,15 +312,17 @@ def _limit(du: FloatArray, problem: CoupledStatics, settings: StaticsSettings) -
     longest line (slack lines give a body almost no stiffness in some direction, and a full
     step would throw it far away), and clip each body's rotation to 0.2 rad on its own (a
     body nearly free to turn, such as the yaw of a buoy on one line, would otherwise hold the
-    whole step back)."""
+    whole step back), its translation scaled with it: the body's step keeps the Newton
+    direction (clipping the rotation alone turns it, and a buoy whose heave and pitch are
+    coupled by its waterplane then finds no descent)."""
     mesh = problem.mesh
     reach = settings.max_step * mesh.longest_line
     du = du.copy()
     moves = [np.abs(du[: problem.n_free]).max(initial=0.0) / reach]
     for d in problem.body_dof[problem.body_dof >= 0]:
-        moves.append(np.linalg.norm(du[d:d + 3]) / reach)
         turn = np.linalg.norm(du[d + 3:d + 6])
         if turn > 0.2:
-            du[d + 3:d + 6] *= 0.2 / turn
+            du[d:d + 6] *= 0.2 / turn
+        moves.append(np.linalg.norm(du[d:d + 3]) / reach)
     largest = max(moves)
     return du / largest if largest > 1.0 else du

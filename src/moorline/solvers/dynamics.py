@@ -1,6 +1,7 @@
 """Time-domain simulation of a cable system (Tuah 1982, sec. 4.2).
 
-:func:`simulate` starts from a static equilibrium (solved here unless given), then advances
+:func:`simulate` starts from a static equilibrium (solved here unless given; or, with ``start:
+initial``, from the case's body poses with the lines at rest in their static shape), then advances
 with :class:`~moorline.solvers.newmark.Stepper` (or its compiled backend). A step that fails to
 converge is cut in half (recursively, ``max_step_cuts`` times) with a fresh tangent; if that
 fails too, the run ends and the result says so (``success`` False, the time and the line and
@@ -23,14 +24,14 @@ from ..errors import ConvergenceError
 from ..mesh import Mesh, discretize, dynamic_mesh, with_loads_of
 from ..model import DynamicsSettings, StaticsSettings, System
 from ..results import DynamicResult, StaticResult
-from .bodies import BodyState
+from .bodies import BodyState, body_mass_matrix
 from .body_model import BodyModel, with_pins
 from .dynamic_model import DynamicModel, MaterialState
 from .equilibrium import StaticModel
 from .excitation import Excitation
 from .newmark import Coefficients, Stepper, StepState, accelerated
 from .newton import NewtonPolicy
-from .statics import describe_dof, solve_statics
+from .statics import describe_dof, lines_at_rest, solve_statics
 
 FloatArray = NDArray[np.float64]
 logger = logging.getLogger(__name__)
@@ -55,8 +56,10 @@ def simulate(
     settings
         Time step, duration, scheme and tolerances.
     initial
-        Static equilibrium to start from (solved with the system's statics settings if None),
-        or node positions (n_nodes, 3) to start from at rest (e.g. a displaced string).
+        Static equilibrium to start from (if None: solved with the system's statics
+        settings, or with ``settings.start == "initial"`` the lines at rest with the bodies
+        held at the case's poses, :func:`~moorline.solvers.statics.lines_at_rest`), or node
+        positions (n_nodes, 3) to start from at rest (e.g. a displaced string).
     fluid
         Fluid kinematics (``kinematics(points, t)``); default: built from the environment.
     output_every
@@ -118,7 +121,12 @@ def start(system: System, settings: DynamicsSettings,
     as :func:`simulate`'s."""
     mesh = (with_loads_of(initial.mesh, system) if isinstance(initial, StaticResult)
             else discretize(system))
-    if initial is None:
+    if initial is None and settings.start == "initial":
+        initial = lines_at_rest(system, mesh=mesh)
+        if not initial.success:
+            raise ConvergenceError(f"the lines' static shape at the case's body poses "
+                                   f"(start: initial) failed: {initial.message}", time=0.0)
+    elif initial is None:
         initial = solve_statics(system, _statics_settings(system), mesh=mesh)
         if not initial.success:
             raise ConvergenceError(f"static equilibrium before dynamics failed: "
@@ -132,6 +140,8 @@ def start(system: System, settings: DynamicsSettings,
                          drag_velocity=settings.drag_velocity)
     excitation = Excitation(mesh, x0)
     state = _initial_state(model, excitation, x0, settings.dt, maxwell, initial)
+    if settings.start == "initial" and state.bodies is not None:
+        state = _bodies_released(model, state)
     # force scale of the residual tolerance: the larger of the nodal loads and the tensions
     scale = max(float(np.abs(model.external).max(initial=0.0)),
                 float(np.abs(state.evaluation.tension).max(initial=0.0)), 1e-12)
@@ -216,6 +226,30 @@ def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
     bodies = with_pins(mesh.bodies, _static_poses(initial), 0.0) if mesh.body_names else None
     state = StepState(0.0, x, v, a, ev.material, ev, bodies)
     return accelerated(model, state, material, forces, dt)
+
+
+def _bodies_released(model: DynamicModel, state: StepState) -> StepState:
+    """``state`` with the free bodies' accelerations the loads give them at the start,
+    ``(M + A) a = F`` per body (rigid-body mass and added mass about its origin; the forces
+    of :meth:`BodyModel.forces` at rest: weight, hydrostatics, the lines' pull): a body
+    released away from equilibrium (a decay test, a free fall, ``start: initial``) starts
+    with its true acceleration, not at ``a = 0``, which would lag its velocity by ``a h / 2``
+    for the whole run. The attached line nodes' mass is not in ``M`` (the first step
+    corrects it)."""
+    bm = BodyModel(model.mesh, model.fluid, state.bodies)
+    x, v, a = state.x.copy(), state.v.copy(), state.a.copy()
+    bs = state.bodies
+    arms = bm.place(x, v, a, bs)
+    ev = state.evaluation
+    m_s = model.node_mass[:, None]
+    other = bm.forces(bs, ev.nodal - ev.inertial, ev.inertial - m_s * a, arms, state.t)[0]
+    acc = bs.acc.copy()
+    for b, body in enumerate(bm.bodies):
+        if bm.body_dof[b] >= 0 and body.kind == "free":
+            acc[b] = np.linalg.solve(body_mass_matrix(body, bs.R[b]) + bm.added[b], other[b])
+    released = BodyState(bs.r, bs.R, bs.vel, acc)
+    bm.place(x, v, a, released)
+    return StepState(state.t, state.x, state.v, a, state.material, state.evaluation, released)
 
 
 def _static_poses(initial) -> BodyState:

@@ -64,6 +64,16 @@ def equilibrium_for(system: System, statics: StaticResult | None,
     return replace(statics, mesh=with_loads_of(statics.mesh, system))
 
 
+def lines_at_rest(system: System, mesh: Mesh | None = None) -> StaticResult:
+    """The lines in static equilibrium with every body held at the pose the case gives (as
+    MoorDyn computes its lines' initial condition with the bodies fixed): the start of a
+    dynamics analysis with ``start: initial``. ``success``: the lines' balance; the bodies'
+    out-of-balance forces are what sets them moving."""
+    settings = _default_settings(system)
+    mesh = mesh or discretize(system)
+    return _solve(system, settings, None, mesh, None, bodies_held=True)
+
+
 def solve_statics(
     system: System,
     settings: StaticsSettings | None = None,
@@ -143,7 +153,7 @@ def _with_body_drag(system: System, settings: StaticsSettings, initial: FloatArr
 
 
 def _solve(system: System, settings: StaticsSettings, initial: FloatArray | None, mesh: Mesh,
-           current) -> StaticResult:
+           current, bodies_held: bool = False) -> StaticResult:
     model = StaticModel(mesh, current, exact_cable=True,
                         friction=system.environment.seabed.friction)
     x = (initial_positions(system, mesh, settings.start) if initial is None
@@ -175,7 +185,7 @@ def _solve(system: System, settings: StaticsSettings, initial: FloatArray | None
     # bodies by Newton on their six dofs, the lines re-equilibrated (robust line statics)
     # with the bodies held at every trial pose; without bodies, the line statics alone
     ok, message, iterations, state, x, poses = solve_coupled(mesh, x, settings, counters, hold,
-                                                             model.current)
+                                                             model.current, bodies_held)
     pose = poses.as_array()
     extras: dict = {"seabed_friction": model.friction} if model.friction > 0 else {}
     if any(b.kind == "pinned" for b in mesh.bodies):
