@@ -115,7 +115,7 @@ def test_free_floating_buoy_small_pitch_decay_period_matches_its_modes(tmp_path)
     uncoupled upright). Tolerance 0.2 %: Newmark's period elongation at 100 steps a period
     is (w h)^2 / 12 = 0.03 %, and the quadratic drag and the nonlinearity at 0.02 rad are
     smaller."""
-    expected = float_upright(waterplane=0.0)
+    expected = float_upright()
     system = read_moordyn(float_deck(tmp_path, expected["z"], 0.0))
     static = solve_statics(system)
     assert static.success, static.message

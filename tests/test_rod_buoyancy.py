@@ -23,22 +23,22 @@ from moorline.solvers.statics import solve_statics
 RHO, G = 1025.0, 9.81
 
 
-def _fd_tangent(a, b, d, r, R, h=1e-7):
-    """``-d load / d(dr, dtheta)`` by forward differences (left rotations)."""
-    base = rod_buoyancy(a, b, d, r, R, RHO, G)[0]
+def _fd_tangent(a, b, d, r, R, h=1e-6):
+    """``-d load / d(dr, dtheta)`` by central differences (left rotations)."""
     K = np.zeros((6, 6))
     for j in range(6):
         step = np.zeros(6)
         step[j] = h
-        moved = rod_buoyancy(a, b, d, r + step[:3], rotation_matrix(step[3:]) @ R, RHO, G)[0]
-        K[:, j] = -(moved - base) / h
+        plus = rod_buoyancy(a, b, d, r + step[:3], rotation_matrix(step[3:]) @ R, RHO, G)[0]
+        minus = rod_buoyancy(a, b, d, r - step[:3], rotation_matrix(-step[3:]) @ R, RHO, G)[0]
+        K[:, j] = -(plus - minus) / (2 * h)
     return K
 
 
 @pytest.mark.parametrize("z", [-3.0, -0.4, 0.0, 0.3, 2.5])
 def test_tangent_matches_finite_differences_at_every_pose(z):
     """Rods wet, piercing (either end up), and dry; none with an end within 1e-4 of the
-    surface (the kink), so forward differences of 1e-7 stay on one side."""
+    surface (the kink), so central differences of 1e-6 stay on one side."""
     rng = np.random.default_rng(7)
     a, b = rng.normal(size=(5, 3)), rng.normal(size=(5, 3))
     d = rng.uniform(0.1, 0.6, 5)
@@ -60,22 +60,85 @@ def test_tangent_on_both_sides_of_an_end_crossing_the_surface(side):
     np.testing.assert_allclose(K, _fd_tangent(a, b, d, r, R), atol=1e-5 * np.abs(load).max())
 
 
+def _cut_cylinder_load(h, L, d, theta):
+    """Archimedes' force and moment about end A of a cylinder (end A at depth ``h``, axis
+    ``t = (sin theta, 0, cos theta)``) cut by ``z = 0``, by quadrature over its cross-section,
+    independent of moorline: a fibre at ``u`` along ``p = (cos theta, 0, -sin theta)`` is wet
+    over ``clip(h / cos(theta) + u tan(theta), 0, L)`` of its length (the fibres across, along
+    y, cancel in the moment). Gauss-Chebyshev (second kind) of 40 points: exact for the
+    polynomial integrands while the cut stays on the rod's side."""
+    k = np.arange(1, 41)
+    x = np.cos(np.pi * k / 41)
+    w = np.pi / 41 * np.sin(np.pi * k / 41) ** 2  # int f(x) sqrt(1 - x^2) dx on [-1, 1]
+    r = d / 2
+    u, weight = r * x, 2 * r**2 * w  # int f(u) 2 sqrt(r^2 - u^2) du
+    t = np.array([np.sin(theta), 0.0, np.cos(theta)])
+    p = np.array([np.cos(theta), 0.0, -np.sin(theta)])
+    wet = np.clip(h / np.cos(theta) + u * np.tan(theta), 0.0, L)
+    lift = RHO * G * wet * weight
+    centre = 0.5 * wet[:, None] * t + u[:, None] * p
+    moment = np.cross(centre, lift[:, None] * np.array([0.0, 0.0, 1.0])).sum(axis=0)
+    return np.concatenate(([0.0, 0.0, lift.sum()], moment))
+
+
 @pytest.mark.parametrize("theta", [0.0, 0.2, 0.6, -0.9])
 def test_tilted_piercing_rod_righting_moment(theta):
     """A rod from its lower end A at depth h, tilted by theta from vertical (about y): its
     submerged axis is h / cos(theta) long, so the buoyancy is rho g A h / cos(theta) at
-    (h / (2 cos theta)) (sin theta, 0, cos theta) from A and the moment about A
-    ``M_y = -rho g A h^2 sin(theta) / (2 cos^2 theta)`` (closed form, slender rod)."""
+    (h / (2 cos theta)) (sin theta, 0, cos theta) from A, plus the waterplane couple
+    ``-rho g I sin(theta) (1 + tan(theta)^2 / 2)`` (``I = pi d^4 / 64``): the moment about A
+    ``M_y = -rho g A h^2 sin(theta) / (2 cos^2 theta) - rho g I sin(theta) (1 + tan^2 / 2)``
+    (closed form), equal to Archimedes' load of the obliquely cut cylinder by quadrature
+    (:func:`_cut_cylinder_load`). Tolerance 1e-9 (round-off; both exact)."""
     h, L, d = 2.0, 10.0, 0.8
-    area = np.pi * d**2 / 4
+    area, inertia = np.pi * d**2 / 4, np.pi * d**4 / 64
     R = rotation_matrix([0.0, theta, 0.0])
     load, _ = rod_buoyancy([[0.0, 0.0, 0.0]], [[0.0, 0.0, L]], [d], [5.0, 1.0, -h], R, RHO, G)
     force = RHO * G * area * h / np.cos(theta)
-    moment = -RHO * G * area * h**2 * np.sin(theta) / (2 * np.cos(theta) ** 2)
+    moment = (-RHO * G * area * h**2 * np.sin(theta) / (2 * np.cos(theta) ** 2)
+              - RHO * G * inertia * np.sin(theta) * (1 + np.tan(theta) ** 2 / 2))
+    # about the origin (5, 1, -h) = end A: the force is vertical, M_x = y F = 0 there
     np.testing.assert_allclose(load, [0, 0, force, 0, moment, 0], atol=1e-9 * force)
+    np.testing.assert_allclose(load, _cut_cylinder_load(h, L, d, theta), atol=1e-9 * force)
     # the same rod upside down (end B the lower one) gives the same buoyancy
     flip, _ = rod_buoyancy([[0.0, 0.0, L]], [[0.0, 0.0, 0.0]], [d], [5.0, 1.0, -h], R, RHO, G)
     np.testing.assert_allclose(flip, load, atol=1e-9 * force)
+
+
+@pytest.mark.parametrize(("h", "theta"), [(0.3, 1.2), (5.13, 1.0), (0.05, 0.3), (0.1, 1.55)],
+                         ids=["wet-cap", "dry-cap", "end-near", "near-horizontal"])
+def test_waterplane_moment_beyond_its_bound_is_capped_with_its_tangent(h, theta):
+    """Past the bound (the waterline reaching an end cap: ``min(h_w, h_d) < (d / 2)
+    tan(theta)``) ``tan(theta)`` is capped at ``2 min(h_w, h_d) / d``: the moment is that
+    closed form, bounded near horizontal, and its tangent matches finite differences (both
+    the wet and the dry part the shorter)."""
+    L, d = 10.0, 0.8
+    R = rotation_matrix([0.0, theta, 0.0])
+    a, b, r = [[0.0, 0.0, 0.0]], [[0.0, 0.0, L]], np.array([0.0, 0.0, -h])
+    load, K = rod_buoyancy(a, b, [d], r, R, RHO, G)
+    h_w = h / np.cos(theta)
+    cap = 2 * min(h_w, L - h_w) / d
+    assert cap < np.tan(theta)
+    area, inertia = np.pi * d**2 / 4, np.pi * d**4 / 64
+    moment = (-RHO * G * area * h_w**2 * np.sin(theta) / 2
+              - RHO * G * inertia * np.sin(theta) * (1 + cap**2 / 2))
+    assert load[4] == pytest.approx(moment, rel=1e-12)
+    np.testing.assert_allclose(K, _fd_tangent(a, b, [d], r, R), atol=1e-5 * np.abs(load).max())
+
+
+def test_waterplane_moment_tangent_of_a_piercing_rod_in_3d():
+    """A rod piercing the surface, tilted in x and y and spun, under the bound: the tangent
+    (waterplane couple included) against finite differences, and against Archimedes' moment
+    at small tilt: ``-dM_y/dtheta_y = rho g (A h^2 / 2 + I)`` about the lower end (upright)."""
+    L, d, h = 6.0, 1.2, 2.5
+    a, b = [[0.0, 0.0, 0.0]], [[0.0, 0.0, L]]
+    R = rotation_matrix([0.25, -0.15, 0.4])
+    r = np.array([1.0, -2.0, -h])
+    load, K = rod_buoyancy(a, b, [d], r, R, RHO, G)
+    np.testing.assert_allclose(K, _fd_tangent(a, b, [d], r, R), atol=1e-5 * np.abs(load).max())
+    _, K0 = rod_buoyancy(a, b, [d], np.array([0.0, 0.0, -h]), np.eye(3), RHO, G)
+    area, inertia = np.pi * d**2 / 4, np.pi * d**4 / 64
+    assert K0[4, 4] == pytest.approx(RHO * G * (area * h**2 / 2 + inertia), rel=1e-12)
 
 
 def test_submerged_and_dry_rods():

@@ -16,7 +16,7 @@ a ``Body1`` hull rod (8 m in diameter, massless, ``Ca`` 1, from 60 m draft to 10
 40 segments in MoorDyn) giving the buoyancy and the waterplane, held by six catenaries (425 m
 of a 60 kg/m, EA 500 MN rope from 5 m radius, 20 m draft, to anchors at 400 m radius). moorline
 maps the rod to ``rods`` hydrostatics: the buoyancy of its submerged length recomputed at
-every pose (:mod:`moorline.physics.rod_buoyancy`; no waterplane-inertia moment).
+every pose (:mod:`moorline.physics.rod_buoyancy`, with its cut's waterplane moment).
 
 Equilibrium: moorline's statics. MoorDyn's own initial-condition solve does not move a free
 body to equilibrium (its stationary solver stops at 0.16 m/s^2 after 300 s with the body still
