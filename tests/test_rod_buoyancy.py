@@ -224,9 +224,8 @@ def test_md_float_converted_buoy_balances_at_archimedes_draft():
     ``z = 1 - (m - rho V_w) / (rho A_can)`` (Archimedes: the 4 m weight rod, 1 m long, fully
     wet; the 2 m can, from 1 m below the origin, wet over the rest), whatever the deck's pose
     of 45 deg: a Newton on the body's loads and their tangent from that pose. Tolerance 1e-9 m
-    (the Newton's residual). MoorDyn-C 2.7 (``moordyn`` module, dt 0.01 s, 60 s from the
-    deck's pose) is still oscillating then (+-0.17 m); its heave over the last 20 s averages
-    -1.827 m against -1.832 m here: not asserted (no settled MoorDyn value)."""
+    (the Newton's residual). MoorDyn-C released there stays there (tests/test_neutral_bodies.py
+    ``test_float_equilibrium_against_moordyn``)."""
     from pathlib import Path
 
     from moorline.io.moordyn import read_moordyn_deck

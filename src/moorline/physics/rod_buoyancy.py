@@ -23,7 +23,7 @@ end cap: the moment stays bounded (and continuous); the axis-length buoyancy is 
 approximate there.
 
 What differs from MoorDyn-C v2.7 (Rod.cpp, checked against the ``moordyn`` module on
-r-test md_float, tests/test_float_moordyn.py): MoorDyn weights its nodes by a volume-of-fluid
+r-test md_float, tests/test_neutral_bodies.py): MoorDyn weights its nodes by a volume-of-fluid
 fraction (the same total force) and for a piercing rod adds ``rho g pi d^4 / 16 sin(phi)
 cos(phi)`` ("waterplane moment", four times ``rho g I``) and, at the submerged end cap,
 ``-rho g I sin(phi)`` (of the opposite sign to the cap's pressure-centre moment): a pitch
