@@ -39,7 +39,8 @@ The mapping to moorline (:class:`moorline.model.Body`):
 - rods ``Body<k>``: rigid parts of body ``k``; their weight, inertia, buoyancy (``rods``
   hydrostatics: recomputed at every pose from each rod's submerged length,
   :mod:`moorline.physics.rod_buoyancy`, so a rod piercing or leaving the surface floats the
-  body as MoorDyn's does), added mass (6x6 about the body origin) and drag (lumped at the
+  body as MoorDyn's does; a piercing rod's waterplane moment is Archimedes', not MoorDyn's),
+  added mass (6x6 about the body origin) and drag (lumped at the
   body origin per world axis, a warning) are added to the body; their ends ``R<k>A``/``R<k>B``
   are body points;
 - ``Free`` rods -> a free body ``rod<k>`` at the rod's middle with its x axis along the rod
