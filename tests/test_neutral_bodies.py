@@ -42,11 +42,12 @@ def float_upright(waterplane: float = 1.0) -> dict[str, float]:
     """md_float upright at rest, from its deck: mass ``m``, centre of gravity ``zg`` (body
     frame), the origin's height ``z`` at the Archimedes draft (the weight rod fully wet, the
     can wet from its end A up to ``z = 0``: ``L_sub = (m / rho - V_w) / A_can``), centre of
-    buoyancy ``zb``, heave and pitch stiffness ``k33 = rho g A_can`` and ``k55 = W (zb - zg)
-    + waterplane rho g pi d^4 / 64`` (the can's waterplane inertia, ``waterplane`` times), and
-    the (surge, heave, pitch) mass about the origin: rods as solid cylinders (MoorDyn's
-    ``m (L^2 / 12 + d^2 / 16)``), added mass ``Ca rho A`` per wet length across (Ca = 1) and
-    ``CaEnd rho (2/3) pi r^3`` along at each wet end (CaEnd = 1)."""
+    buoyancy ``zb``, pitch stiffness ``k55 = W (zb - zg) + waterplane rho g pi d^4 / 64``
+    (the can's waterplane inertia, ``waterplane`` times), rods as solid cylinders (MoorDyn's
+    ``m (L^2 / 12 + d^2 / 16)``; ``inertia`` about the origin), added mass ``Ca rho A`` per
+    wet length across (Ca = 1) and ``CaEnd rho (2/3) pi r^3`` along at each wet end
+    (CaEnd = 1); ``heave_period`` ``2 pi sqrt((m + A33) / (rho g A_can))`` and
+    ``pitch_period`` of the (surge, pitch) system about the origin, surge condensed."""
     rods = (CAN, WEIGHT)
     m = sum((b - a) * mpl for a, b, _, mpl in rods)
     zg = sum((b - a) * mpl * (a + b) / 2 for a, b, _, mpl in rods) / m
@@ -66,7 +67,7 @@ def float_upright(waterplane: float = 1.0) -> dict[str, float]:
     k55 = m * G * (zb - zg) + waterplane * RHO * G * math.pi * 2.0**4 / 64
     mass = np.array([[m + a11, m * zg + a15], [m * zg + a15, inertia + a55]])
     pitch_mass = mass[1, 1] - mass[0, 1] ** 2 / mass[0, 0]  # surge (no stiffness) condensed
-    return {"m": m, "zg": zg, "z": z, "zb": zb, "k33": RHO * G * area[2.0], "k55": k55,
+    return {"m": m, "zg": zg, "inertia": inertia, "z": z, "zb": zb, "k55": k55,
             "heave_period": 2 * math.pi * math.sqrt((m + a33) / (RHO * G * area[2.0])),
             "pitch_period": 2 * math.pi * math.sqrt(pitch_mass / k55)}
 
@@ -294,9 +295,7 @@ def moordyn_pitch_period(z: float) -> float:
             added, height = vof * per_length * dl, za + i * step
             a11, a15, a55 = a11 + added, a15 + added * height, a55 + added * height**2
     exact = float_upright(waterplane=3.0)
-    m, zg = exact["m"], exact["zg"]
-    inertia = sum((b - a) * mpl * ((b - a) ** 2 / 12 + d**2 / 16 + ((a + b) / 2) ** 2)
-                  for a, b, d, mpl in (CAN, WEIGHT))
+    m, zg, inertia = exact["m"], exact["zg"], exact["inertia"]
     mass = np.array([[m + a11, m * zg + a15], [m * zg + a15, inertia + a55]])
     pitch_mass = mass[1, 1] - mass[0, 1] ** 2 / mass[0, 0]
     return 2 * math.pi * math.sqrt(pitch_mass / exact["k55"])
