@@ -150,8 +150,8 @@ def test_surface_piercing_rod_floats_at_its_submerged_length(tmp_path):
     """A vertical rod through the surface (rods hydrostatics, issue 14): buoyancy rho g A 6 at
     the submerged part's centre (0, 0, -3), heave stiffness K33 = rho g A, and, the body origin
     on the surface (the submerged length unchanged by a tilt about it), roll and pitch
-    stiffness ``-rho g V 3`` of the centre of buoyancy 3 below the origin (the slender-rod
-    model: no waterplane inertia term)."""
+    stiffness ``-rho g V 3`` of the centre of buoyancy 3 below the origin plus the waterplane
+    inertia's ``rho g pi d^4 / 64`` (Archimedes' metacentric term of the piercing can)."""
     path = _deck(tmp_path, ["1 Free 0 0 0 0 0 0 0 0 0 0 0 0"], ANCHORS,
                  ["1 rope 1 R1A 230 10 -", "2 rope 2 R1A 230 10 -"],
                  rods=["1 can Body1 0 0 -6 0 0 2 8 -"])
@@ -164,7 +164,8 @@ def test_surface_piercing_rod_floats_at_its_submerged_length(tmp_path):
     assert load[2] + body.mass * G == pytest.approx(buoyancy)
     assert K[2, 2] == pytest.approx(RHO * G * area)
     weight_arm = -body.mass * G * body.center_of_gravity[2]  # the rod's weight below the origin
-    assert K[3, 3] == pytest.approx(-buoyancy * 3 + weight_arm)
+    waterplane = RHO * G * math.pi * 2.0**4 / 64  # the can's diameter: 2 m
+    assert K[3, 3] == pytest.approx(-buoyancy * 3 + weight_arm + waterplane)
     assert K[4, 4] == pytest.approx(K[3, 3])
     assert K[2, 4] == pytest.approx(0.0, abs=1e-9 * buoyancy)
 
