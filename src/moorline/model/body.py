@@ -28,7 +28,8 @@ class Hydrostatics:
         about the initial pose plus a constant buoyancy ``volume`` at ``center_of_buoyancy``
         (body frame). ``rods``: slender cylinders ``rods`` (end A, end B in the body frame,
         diameter) whose buoyancy is recomputed at each pose from their submerged part under
-        ``z = 0`` (:mod:`moorline.physics.rod_buoyancy`), plus a constant buoyancy ``volume``
+        ``z = 0``, with a piercing rod's waterplane moment
+        (:mod:`moorline.physics.rod_buoyancy`), plus a constant buoyancy ``volume``
         at ``center_of_buoyancy`` (e.g. a MoorDyn body's own volume). ``none``: no
         hydrostatics.
     """
