@@ -144,13 +144,14 @@ def waterplane_moment(D: FloatArray, length: FloatArray, diameter: FloatArray,
     dh = np.where(dry_shorter[:, None], -1.0, 1.0) * length[:, None] * d_wet
     tan_cap = 2.0 * h / diameter
     capped = sin2 > (tan_cap * c) ** 2  # tan(phi) beyond the cap
-    tan2 = np.where(capped, tan_cap**2, sin2 / c**2)
+    c_free = np.where(capped, 1.0, c)  # c only where not capped (a rod near horizontal is)
+    tan2 = np.where(capped, tan_cap**2, sin2 / c_free**2)
     f = 1.0 + 0.5 * tan2
     arm = np.cross(up, ez)  # t x e_z, |.| = sin(phi)
     # df: capped: tan dtan, dtan = 2 dh / d; else f = (1 + 1/c^2) / 2, df = -dc / c^3 with
     # dc = d t_z = dtheta . (t x e_z)
     df = np.zeros((n, 6))
-    df[:, 3:] = -arm / c[:, None] ** 3
+    df[:, 3:] = -arm / c_free[:, None] ** 3
     df = np.where(capped[:, None], (tan_cap * 2.0 / diameter)[:, None] * dh, df)
     scale = np.where(crossing, rho_g * np.pi * diameter**4 / 64.0, 0.0)
     M = (scale * f)[:, None] * arm
