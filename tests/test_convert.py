@@ -202,8 +202,6 @@ PUBLIC_BODY_DECKS = [
 
 
 RTEST = "OpenFAST-r-test/"
-_PINNED = pytest.mark.xfail(strict=True, reason="a pinned rod on a free body: singular "
-                             "coupled statics (issue 14)")
 
 
 #: Decks without a static equilibrium: free rods sinking with nothing to hold them (MoorDyn
@@ -256,7 +254,8 @@ RTEST_DECKS = [RTEST + deck for deck in (
     "modules/moordyn/md_waterkin3/moordyn.dat",
     "modules/moordyn/py_md_5MW_OC4Semi/md_primary.inp",
 )] + [
-    pytest.param(RTEST + "modules/moordyn/md_BodiesAndRods/moordyn.dat", marks=_PINNED),
+    # rods above water at the deck's pose: rod buoyancy at every pose floats the body
+    RTEST + "modules/moordyn/md_BodiesAndRods/moordyn.dat",
     # a free-floating buoy (no mooring) decaying from 45 deg of pitch: surge, sway and yaw
     # have no restoring (held at the deck's pose by the statics)
     RTEST + "modules/moordyn/md_float/moordyn.dat",
@@ -318,15 +317,14 @@ def test_public_body_decks_convert_solve_and_run(deck, tmp_path):
     assert run.success, run.message
 
 
-@pytest.mark.slow  # about 30 s: its statics rest the sunk body's lines on the seabed
+@pytest.mark.slow  # about 15 s (convert, statics and 1 s of dynamics of 6 lines)
 def test_public_deck_with_a_rod_pinned_to_a_body_converts_solves_and_runs(tmp_path):
     """BodiesAndRods.dat: rod 2 is pinned to the free body 1 (Body1Pinned): it becomes a
     pinned body on body 1, its pin at its end A (body frame (2, 0, 2)), its axis towards end
-    B; the statics converge and a short dynamics runs. The equilibrium is not MoorDyn's:
-    both rods are above the water at the deck's pose, so moorline's constant rod buoyancy
-    (taken there) is none, and the 1000 t body without volume sinks onto the seabed, where
-    MoorDyn's rods, buoyant node by node, float it (a limitation of the rod model, not of the
-    pin)."""
+    B; the statics converge and a short dynamics runs. The rod (10 m in diameter, 1 t/m) is
+    buoyant (rods hydrostatics): it stands straight up from its pin (its buoyancy and weight
+    then both act on the vertical through the pin), and the pin holds it down with its
+    buoyancy less its weight, ``rho g A L_wet - m g``, ``L_wet`` the depth of the pin."""
     from moorline.model import DynamicsSettings
     from moorline.physics.rigid_body import rotation_matrix
     from moorline.solvers.dynamics import simulate
@@ -345,7 +343,14 @@ def test_public_deck_with_a_rod_pinned_to_a_body_converts_solves_and_runs(tmp_pa
     assert axis == pytest.approx(np.array([3.0, 0.0, 13.0]) / math.hypot(3.0, 13.0), abs=1e-12)
     static = solve_statics(system)
     assert static.success, static.message
-    assert static.pin_reaction("rod2")[2] > 0  # holding the rod up
+    pose = static.body_pose[static.mesh.body_names.index("rod2")]
+    axis = rotation_matrix(pose[3:]) @ np.array([1.0, 0.0, 0.0])
+    assert axis == pytest.approx([0.0, 0.0, 1.0], abs=1e-6)
+    env = system.environment
+    length, area = math.hypot(3.0, 13.0), math.pi * 10.0**2 / 4
+    assert -pose[2] < length  # piercing the surface
+    held = (1.0e3 * length - env.water_density * area * -pose[2]) * env.gravity
+    assert static.pin_reaction("rod2") == pytest.approx([0.0, 0.0, held], abs=1e-6 * abs(held))
     run = simulate(system, DynamicsSettings(duration=1.0, dt=0.05), initial=static)
     assert run.success, run.message
 

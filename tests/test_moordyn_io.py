@@ -601,8 +601,9 @@ def test_rods_pinned_to_a_pinned_body_are_refused_at_once(tmp_path: Path) -> Non
 def test_pinned_rods_and_coupled_pinned_bodies_become_pinned_bodies(tmp_path: Path) -> None:
     """``Pinned`` and ``CoupledPinned`` rods and a ``CoupledPinned`` body are pinned bodies:
     a rod's pin at its end A with its x axis along the rod, its mass ``Mass/m L`` at its
-    middle and its submerged volume there; the body keeps its mass and volume (as MoorDyn-C
-    2.7 ``Body.cpp`` does for ``CPLDPIN``), its pin at its reference point."""
+    middle; the body keeps its mass and volume (as MoorDyn-C
+    2.7 ``Body.cpp`` does for ``CPLDPIN``), its pin at its reference point; the rods float them
+    by rods hydrostatics."""
     path, _ = _rods_deck(tmp_path, ["1 rod Pinned 0 0 -10 3 0 -14 4 -",
                                     "2 rod CoupledPinned 5 0 -1 5 0 -6 4 -"])
     system = read_moordyn(path)
@@ -615,8 +616,11 @@ def test_pinned_rods_and_coupled_pinned_bodies_become_pinned_bodies(tmp_path: Pa
     assert R @ np.array([1.0, 0.0, 0.0]) == pytest.approx([0.6, 0.0, -0.8], abs=1e-12)
     assert rod.mass == pytest.approx(100 * 5.0)
     assert rod.center_of_gravity == pytest.approx((2.5, 0.0, 0.0), abs=1e-12)
-    assert rod.hydrostatics.volume == pytest.approx(math.pi / 4 * 5.0)
-    assert rod.hydrostatics.center_of_buoyancy == pytest.approx((2.5, 0.0, 0.0), abs=1e-12)
+    # rods hydrostatics: the rod, end A at the pin, 5 m along body x, 1 m in diameter
+    hs = rod.hydrostatics
+    assert hs.kind == "rods" and hs.volume == 0.0 and len(hs.rods) == 1
+    np.testing.assert_allclose(np.asarray(hs.rods[0][:2]), [[0, 0, 0], [5, 0, 0]], atol=1e-12)
+    assert hs.rods[0][2] == 1.0
 
 
 def test_is_moordyn_deck() -> None:

@@ -13,6 +13,7 @@ import pytest
 from moorline.errors import CaseError
 from moorline.io.moordyn import read_moordyn_deck
 from moorline.mesh import world_position
+from moorline.solvers.bodies import body_loads
 
 RHO, G = 1025.0, 9.80665
 LINE_TYPE = ["---------------------- LINE TYPES ----------------------",
@@ -124,8 +125,13 @@ def test_body_attached_rod_adds_a_cylinder(tmp_path):
     assert body.center_of_gravity == pytest.approx((0.0, 0.0, -3.0))
     transverse = m * (L**2 / 12 + d**2 / 16)
     np.testing.assert_allclose(np.diag(body.inertia), [transverse, transverse, m * d**2 / 8])
-    assert body.hydrostatics.volume == pytest.approx(area * L)
-    assert body.hydrostatics.center_of_buoyancy == pytest.approx((0.0, 0.0, -3.0))
+    hs = body.hydrostatics
+    assert hs.kind == "rods" and hs.volume == 0.0
+    assert hs.rods == (((0.0, 0.0, -1.0), (0.0, 0.0, -5.0), d),)
+    # its buoyancy at the deck pose: rho g A L at the rod's middle
+    load, _ = body_loads(body, np.array(body.position), np.eye(3), G, RHO)
+    np.testing.assert_allclose(load, [0, 0, RHO * G * area * L - m * G, 0, 0, 0],
+                               atol=1e-9 * m * G)
     A = np.asarray(body.added_mass)
     side = 1.0 * RHO * area * L
     ends = 2 * 0.5 * RHO * 2 / 3 * math.pi * (d / 2) ** 3
@@ -140,22 +146,28 @@ def test_body_attached_rod_adds_a_cylinder(tmp_path):
     assert deck.system.points[lines["line2"].end_b].position == (0.0, 0.0, -5.0)
 
 
-def test_surface_piercing_rod_gives_waterplane_stiffness(tmp_path):
-    """A vertical rod through the surface: submerged volume and centroid, K33 = rho g A,
-    K44 = K55 = rho g pi r^4 / 4 (the circle about the body origin above it)."""
+def test_surface_piercing_rod_floats_at_its_submerged_length(tmp_path):
+    """A vertical rod through the surface (rods hydrostatics, issue 14): buoyancy rho g A 6 at
+    the submerged part's centre (0, 0, -3), heave stiffness K33 = rho g A, and, the body origin
+    on the surface (the submerged length unchanged by a tilt about it), roll and pitch
+    stiffness ``-rho g V 3`` of the centre of buoyancy 3 below the origin plus the waterplane
+    inertia's ``rho g pi d^4 / 64`` (Archimedes' metacentric term of the piercing can)."""
     path = _deck(tmp_path, ["1 Free 0 0 0 0 0 0 0 0 0 0 0 0"], ANCHORS,
                  ["1 rope 1 R1A 230 10 -", "2 rope 2 R1A 230 10 -"],
                  rods=["1 can Body1 0 0 -6 0 0 2 8 -"])
     deck = read_moordyn_deck(path)
-    hs = deck.system.bodies["body1"].hydrostatics
-    area, r = math.pi, 1.0
-    assert hs.volume == pytest.approx(6 * area)
-    assert hs.center_of_buoyancy == pytest.approx((0.0, 0.0, -3.0))
-    K = np.asarray(hs.stiffness)
+    body = deck.system.bodies["body1"]
+    area = math.pi
+    assert body.hydrostatics.kind == "rods"
+    load, K = body_loads(body, np.zeros(3), np.eye(3), G, RHO)
+    buoyancy = RHO * G * area * 6
+    assert load[2] + body.mass * G == pytest.approx(buoyancy)
     assert K[2, 2] == pytest.approx(RHO * G * area)
-    assert K[3, 3] == pytest.approx(RHO * G * math.pi * r**4 / 4)
-    assert K[4, 4] == pytest.approx(K[3, 3]) and K[2, 4] == pytest.approx(0.0)
-    assert any("pierces the surface" in n for n in deck.notes)
+    weight_arm = -body.mass * G * body.center_of_gravity[2]  # the rod's weight below the origin
+    waterplane = RHO * G * math.pi * 2.0**4 / 64  # the can's diameter: 2 m
+    assert K[3, 3] == pytest.approx(-buoyancy * 3 + weight_arm + waterplane)
+    assert K[4, 4] == pytest.approx(K[3, 3])
+    assert K[2, 4] == pytest.approx(0.0, abs=1e-9 * buoyancy)
 
 
 def test_free_rod_becomes_a_body_along_its_axis(tmp_path):

@@ -383,6 +383,8 @@ def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
         hs = body.hydrostatics
         need = {"box": ("length", "width", "height"), "cylinder": ("diameter", "height"),
                 "matrix": ()}.get(hs.kind, ())
+        if hs.kind == "rods" and not hs.rods:
+            fail("rods hydrostatics needs at least one rod", f"bodies.{name}.hydrostatics.rods")
         for key in need:
             if getattr(hs, key) <= 0:
                 fail(f"a {hs.kind} needs {key} > 0", f"bodies.{name}.hydrostatics.{key}")
@@ -714,7 +716,9 @@ def _body(name: str, spec: Any, source: str | None, environment: Environment,
     hydrostatics = Hydrostatics(kind=hs.kind, length=hs.length, width=hs.width,
                                 height=hs.height, diameter=hs.diameter,
                                 stiffness=hs.stiffness, volume=hs.volume,
-                                center_of_buoyancy=tuple(hs.center_of_buoyancy))
+                                center_of_buoyancy=tuple(hs.center_of_buoyancy),
+                                rods=tuple((tuple(r.end_a), tuple(r.end_b), r.diameter)
+                                           for r in hs.rods))
     excitation, radiation = _excitation(spec.excitation), None
     if spec.hydrodynamics is not None:
         from .hydrodynamics import body_hydrodynamics

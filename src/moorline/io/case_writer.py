@@ -152,7 +152,10 @@ def _line(line: Line) -> dict[str, Any]:
 
 
 def _body(b: Body) -> dict[str, Any]:
-    hs = {k: v for k, v in asdict(b.hydrostatics).items() if v not in (None, 0.0)}
+    hs = {k: v for k, v in asdict(b.hydrostatics).items() if v not in (None, 0.0, ())}
+    if "rods" in hs:
+        hs["rods"] = [{"end_a": list(a), "end_b": list(e), "diameter": d}
+                      for a, e, d in b.hydrostatics.rods]
     data: dict[str, Any] = {
         "kind": b.kind, "position": list(b.position),
         "rotation": [math.degrees(a) for a in b.rotation], "mass": b.mass,

@@ -36,9 +36,11 @@ The mapping to moorline (:class:`moorline.model.Body`):
   ``Ca rho V`` are added to the body's (exactly: mass and centre of gravity, inertia by
   parallel axes, volume and centre of buoyancy by volume-weighted centroid, added mass as a
   6x6 at the point's arm), their ``CdA`` to the body's drag area (a warning);
-- rods ``Body<k>``: rigid parts of body ``k``; their weight, inertia, buoyancy (submerged part
-  at the initial pose, constant; a rod piercing the surface adds its waterplane's constant
-  heave/roll/pitch stiffness), added mass (6x6 about the body origin) and drag (lumped at the
+- rods ``Body<k>``: rigid parts of body ``k``; their weight, inertia, buoyancy (``rods``
+  hydrostatics: recomputed at every pose from each rod's submerged length,
+  :mod:`moorline.physics.rod_buoyancy`, so a rod piercing or leaving the surface floats the
+  body as MoorDyn's does; a piercing rod's waterplane moment is Archimedes', not MoorDyn's),
+  added mass (6x6 about the body origin) and drag (lumped at the
   body origin per world axis, a warning) are added to the body; their ends ``R<k>A``/``R<k>B``
   are body points;
 - ``Free`` rods -> a free body ``rod<k>`` at the rod's middle with its x axis along the rod
@@ -108,7 +110,8 @@ class _Rigid:
 
     Body frame: ``mass``, ``moment`` (sum m r), ``inertia_origin`` (about the origin), ``volume``,
     ``volume_moment``. World axes at the initial pose: ``added`` (6x6 about the origin),
-    ``drag`` (area per axis), ``stiffness`` (6x6 waterplane restoring about the origin)."""
+    ``drag`` (area per axis); ``rods`` (ends in the body frame, diameter) float it at every
+    pose."""
 
     name: str
     kind: str
@@ -121,8 +124,9 @@ class _Rigid:
     volume_moment: FloatArray = field(default_factory=lambda: np.zeros(3))
     added: FloatArray = field(default_factory=lambda: np.zeros((6, 6)))
     drag: FloatArray = field(default_factory=lambda: np.zeros(3))
-    stiffness: FloatArray = field(default_factory=lambda: np.zeros((6, 6)))
     has_rods: bool = False
+    rods: list[tuple[tuple[float, float, float], tuple[float, float, float], float]] = field(
+        default_factory=list)
     pin_body: str | None = None
 
     def add_mass(self, mass: float, at: FloatArray, inertia: FloatArray | None = None) -> None:
@@ -154,10 +158,12 @@ class _Rigid:
         inertia = self.inertia_origin - self.mass * (cg @ cg * np.eye(3) - np.outer(cg, cg))
         inertia = 0.5 * (inertia + inertia.T)
         cb = self.volume_moment / self.volume if self.volume > 0 else cg
-        hydro = Hydrostatics("matrix", volume=self.volume, center_of_buoyancy=_vec(cb),
-                             stiffness=_mat(self.stiffness))
-        if self.volume == 0 and not self.stiffness.any():
+        hydro = Hydrostatics("matrix", volume=self.volume, center_of_buoyancy=_vec(cb))
+        if self.volume == 0:
             hydro = Hydrostatics()
+        if self.rods:
+            hydro = Hydrostatics("rods", volume=self.volume, center_of_buoyancy=_vec(cb),
+                                 rods=tuple(self.rods))
         added = _mat(self.added) if self.added.any() else None
         return Body(self.name, self.kind if self.kind in ("free", "pinned") else "fixed",
                     position=_vec(self.position), rotation=_vec(rotation_vector(self.R)),
@@ -433,12 +439,12 @@ def add_rod(rigid: _Rigid, rod: RodType, a: FloatArray, b: FloatArray, rho: floa
     own = mass * ((length**2 / 12.0 + rod.diameter**2 / 16.0) * (np.eye(3) - np.outer(t, t))
                   + rod.diameter**2 / 8.0 * np.outer(t, t))
     rigid.add_mass(mass, 0.5 * (a + b), own)
+    rigid.rods.append((_vec(a), _vec(b), rod.diameter))
     a_w, b_w = rigid.position + rigid.world_arm(a), rigid.position + rigid.world_arm(b)
     s0, s1 = _submerged(a_w, b_w)
     wet = (s1 - s0) * length
     if wet <= 0:
         return
-    rigid.add_volume(area * wet, a + 0.5 * (s0 + s1) * (b - a))
     t_w = rigid.R @ t
     transverse = np.eye(3) - np.outer(t_w, t_w)
     for gauss in _GAUSS:  # exact for the quadratic moment terms
@@ -458,45 +464,6 @@ def add_rod(rigid: _Rigid, rod: RodType, a: FloatArray, b: FloatArray, rho: floa
         rigid.drag += drag
         warnings.append(f"{label}: its drag is lumped at the body origin, per world axis "
                         "(MoorDyn distributes it along the rod)")
-    if 0.0 < s1 - s0 < 1.0:
-        _waterplane(rigid, a_w, b_w, t_w, rod.diameter, rho * g)
-        warnings.append(f"{label} pierces the surface: buoyancy taken constant at its "
-                        "submerged volume and centroid at the deck's pose, with its "
-                        "waterplane's constant heave, roll and pitch stiffness (MoorDyn "
-                        "recomputes the submerged part node by node; a body settling far from "
-                        "its deck pose has its pitch and roll restoring off by rho g A dz z_B)")
-
-
-def _waterplane(rigid: _Rigid, a_w: FloatArray, b_w: FloatArray, t_w: FloatArray,
-                diameter: float, rho_g: float) -> None:
-    """Constant waterplane restoring (world axes, about the body origin) of a rod cutting
-    z = 0: an ellipse of semi-axes ``R / |t_z|`` (along the axis' horizontal projection) and
-    ``R``; ``K33 = rho g A``, ``K34 = rho g S_y``, ``K35 = -rho g S_x``, ``K44 = rho g I_yy``,
-    ``K55 = rho g I_xx``, ``K45 = -rho g I_xy`` (waterplane moments about the origin)."""
-    s = a_w[2] / (a_w[2] - b_w[2])
-    centre = a_w + s * (b_w - a_w) - rigid.position
-    r = diameter / 2.0
-    cz = abs(float(t_w[2]))
-    major = r / cz
-    area = math.pi * major * r
-    horizontal = np.array([t_w[0], t_w[1]])
-    norm = float(np.linalg.norm(horizontal))
-    u = horizontal / norm if norm > 1e-12 else np.array([1.0, 0.0])
-    local = np.diag([math.pi * major**3 * r / 4.0, math.pi * major * r**3 / 4.0])
-    rot = np.column_stack((u, [-u[1], u[0]]))
-    second = rot @ local @ rot.T  # [[int x'^2, int x'y'], [., int y'^2]] about the centre
-    x, y = float(centre[0]), float(centre[1])
-    Ixx = second[0, 0] + area * x * x   # int x^2 dA about the origin
-    Iyy = second[1, 1] + area * y * y
-    Ixy = second[0, 1] + area * x * y
-    K = np.zeros((6, 6))
-    K[2, 2] = area
-    K[2, 3] = K[3, 2] = area * y
-    K[2, 4] = K[4, 2] = -area * x
-    K[3, 3] = Iyy
-    K[4, 4] = Ixx
-    K[3, 4] = K[4, 3] = -Ixy
-    rigid.stiffness += rho_g * K
 
 
 def parse_rods(rows: list[Any], types: Mapping[str, RodType], rho: float, g: float,

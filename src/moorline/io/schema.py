@@ -400,11 +400,22 @@ def _matrix6(value: Any) -> tuple[tuple[float, ...], ...]:
 Matrix6 = Annotated[Any, PlainValidator(_matrix6)]
 
 
+class RodSpec(_Spec):
+    """One slender cylinder of ``rods`` hydrostatics: its ends in the body frame and its
+    diameter."""
+
+    end_a: Vector3
+    end_b: Vector3
+    diameter: quantity("length", gt=0.0)
+
+
 class HydrostaticsSpec(_Spec):
     """``bodies.<name>.hydrostatics``: ``box`` (length, width, height), ``cylinder`` (diameter,
-    height), ``matrix`` (stiffness 6x6, volume, center_of_buoyancy) or ``none``."""
+    height), ``matrix`` (stiffness 6x6, volume, center_of_buoyancy), ``rods`` (a list of
+    ``{end_a, end_b, diameter}`` whose submerged parts float the body at each pose, plus a
+    constant volume at center_of_buoyancy) or ``none``."""
 
-    kind: Literal["none", "box", "cylinder", "matrix"] = "none"
+    kind: Literal["none", "box", "cylinder", "matrix", "rods"] = "none"
     length: quantity("length", ge=0.0) = 0.0
     width: quantity("length", ge=0.0) = 0.0
     height: quantity("length", ge=0.0) = 0.0
@@ -412,6 +423,7 @@ class HydrostaticsSpec(_Spec):
     stiffness: Matrix6 | None = None
     volume: quantity("volume", ge=0.0) = 0.0
     center_of_buoyancy: Vector3 = (0.0, 0.0, 0.0)
+    rods: list[RodSpec] = []
 
 
 class ExcitationSpec(_Spec):

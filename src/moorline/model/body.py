@@ -10,7 +10,8 @@ from .components import Motion
 
 Vector3 = tuple[float, float, float]
 Matrix6 = tuple[tuple[float, ...], ...]
-HydrostaticsKind = Literal["none", "box", "cylinder", "matrix"]
+HydrostaticsKind = Literal["none", "box", "cylinder", "matrix", "rods"]
+Rod = tuple[Vector3, Vector3, float]
 
 
 @dataclass(frozen=True)
@@ -25,7 +26,12 @@ class Hydrostatics:
         the centre of buoyancy, and roll/pitch restoring from the waterplane inertia; the body
         frame origin is the shape's geometric centre. ``matrix``: a constant 6x6 ``stiffness``
         about the initial pose plus a constant buoyancy ``volume`` at ``center_of_buoyancy``
-        (body frame). ``none``: no hydrostatics.
+        (body frame). ``rods``: slender cylinders ``rods`` (end A, end B in the body frame,
+        diameter) whose buoyancy is recomputed at each pose from their submerged part under
+        ``z = 0``, with a piercing rod's waterplane moment
+        (:mod:`moorline.physics.rod_buoyancy`), plus a constant buoyancy ``volume``
+        at ``center_of_buoyancy`` (e.g. a MoorDyn body's own volume). ``none``: no
+        hydrostatics.
     """
 
     kind: HydrostaticsKind = "none"
@@ -36,6 +42,7 @@ class Hydrostatics:
     stiffness: Matrix6 | None = None
     volume: float = 0.0
     center_of_buoyancy: Vector3 = (0.0, 0.0, 0.0)
+    rods: tuple[Rod, ...] = ()
 
 
 @dataclass(frozen=True)

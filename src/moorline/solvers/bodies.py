@@ -24,6 +24,7 @@ from ..mesh import Mesh
 from ..model import Body
 from ..physics import rigid_body as rb
 from ..physics.rigid_body import inverse_left_jacobian, rotation_matrix, rotation_vector, skew
+from ..physics.rod_buoyancy import rod_buoyancy
 
 __all__ = ["BodyDofs", "BodyState", "body_loads", "body_mass_matrix", "hold_dofs",
            "inverse_left_jacobian", "long_wave_geometry", "place_slaves", "rotation_vector",
@@ -143,7 +144,8 @@ def body_loads(body: Body, r: FloatArray, R: FloatArray, gravity: float,
                rho: float) -> tuple[FloatArray, FloatArray]:
     """Gravity, hydrostatics and constant loads on a body: generalized force (6,) about its
     origin and its tangent ``K = -d(force)/d(dr, dtheta)`` (6, 6). Unpacks ``body`` for the
-    kernels of :mod:`moorline.physics.rigid_body`."""
+    kernels of :mod:`moorline.physics.rigid_body` (``rods`` hydrostatics:
+    :mod:`moorline.physics.rod_buoyancy`)."""
     force, K = rb.gravity_load(body.mass, body.center_of_gravity, R, gravity)
     force = np.asarray(body.force, dtype=float) + force
     hs = body.hydrostatics
@@ -152,12 +154,17 @@ def body_loads(body: Body, r: FloatArray, R: FloatArray, gravity: float,
         area, inertia = waterplane(hs)
         parts = [rb.hull_buoyancy(area, hs.height, r, R, rho, gravity),
                  rb.waterplane_restoring(inertia, R, rho, gravity)]
-    elif hs.kind == "matrix":
-        stiffness = hs.stiffness if hs.stiffness is not None else np.zeros((6, 6))
+    elif hs.kind in ("matrix", "rods"):  # a constant buoyancy at the centre of buoyancy
         parts = [rb.point_load([0.0, 0.0, rho * gravity * hs.volume], hs.center_of_buoyancy,
-                               R),
-                 rb.matrix_restoring(stiffness, r, R, body.position,
-                                     rotation_matrix(body.rotation))]
+                               R)]
+    if hs.kind == "matrix":
+        stiffness = hs.stiffness if hs.stiffness is not None else np.zeros((6, 6))
+        parts.append(rb.matrix_restoring(stiffness, r, R, body.position,
+                                         rotation_matrix(body.rotation)))
+    elif hs.kind == "rods" and hs.rods:
+        ends = np.array([(a, b) for a, b, _ in hs.rods], dtype=float)
+        parts.append(rod_buoyancy(ends[:, 0], ends[:, 1], [d for *_, d in hs.rods], r, R,
+                                  rho, gravity))
     for load, dK in parts:
         force, K = force + load, K + dK
     return force, K
@@ -306,13 +313,14 @@ def _axisymmetric(mesh: Mesh, bodies: list[Body], b: int) -> bool:
     that its spin about that axis meets no moment and no stiffness."""
     body = bodies[b]
     hs = body.hydrostatics
-    if hs.kind not in ("none", "matrix") or (hs.stiffness is not None
+    if hs.kind not in ("none", "matrix", "rods") or (hs.stiffness is not None
                                              and np.any(np.asarray(hs.stiffness, float))):
         return False
     if any(body.force[3:]) or any(body.drag_area) or body.wave_loads or \
             body.excitation is not None or body.radiation is not None:
         return False
     spots = [np.asarray(body.center_of_gravity, float), np.asarray(hs.center_of_buoyancy, float),
+             *np.asarray([end for a, b, _ in hs.rods for end in (a, b)], float).reshape(-1, 3),
              *np.asarray(mesh.slave_arm, float).reshape(-1, 3)[mesh.slave_body == b]]
     scale = 1.0 + max(float(np.abs(p).max()) for p in spots)
     return all(abs(p[1]) <= 1e-9 * scale and abs(p[2]) <= 1e-9 * scale for p in spots)

@@ -15,8 +15,8 @@ gravity 35 m below the still water level, inertia 1e9|1e9|2e7 kg m^2, no volume 
 a ``Body1`` hull rod (8 m in diameter, massless, ``Ca`` 1, from 60 m draft to 10 m freeboard,
 40 segments in MoorDyn) giving the buoyancy and the waterplane, held by six catenaries (425 m
 of a 60 kg/m, EA 500 MN rope from 5 m radius, 20 m draft, to anchors at 400 m radius). moorline
-maps the rod to the body's constant buoyancy at its initial submerged volume and centroid plus
-the waterplane's heave and pitch stiffness (:mod:`moorline.io.moordyn_rigid`).
+maps the rod to ``rods`` hydrostatics: the buoyancy of its submerged length recomputed at
+every pose (:mod:`moorline.physics.rod_buoyancy`, with its cut's waterplane moment).
 
 Equilibrium: moorline's statics. MoorDyn's own initial-condition solve does not move a free
 body to equilibrium (its stationary solver stops at 0.16 m/s^2 after 300 s with the body still
@@ -34,14 +34,17 @@ the mean over the zero crossings of the surge (about 13 half periods).
 Spar: equilibrium as the platform's; the pitch free decay (2 deg, full form only) is not
 reproduced: MoorDyn-C 2.7's rod waterplane moment is not the waterplane's ``rho g I_wp``
 (:data:`SPAR_PITCH_NOTE`, measured from MoorDyn's force on a coupled body holding the rod alone),
-so its spar is stiffer in pitch (period 24.24 s against moorline's 25.42 s at 20 segments).
+so its spar is stiffer in pitch (period 24.24 s against moorline's 25.34 s at 20 segments).
 
 Meshes and steps: 10 segments a line in both (quick; full: 20); MoorDyn ``dtM`` 2 ms (1 ms);
 moorline dt 0.1 s (0.05 s). Differences, moorline minus MoorDyn, at 10 / 20 segments:
 equilibrium heave -0.37 / -0.38 mm (surge 0 by symmetry in both), line 1 tensions at the
 anchor and the fairlead -0.008 % / -0.008 %, surge period 8.967 / 8.964 s against 8.962 s
-(+0.055 % / +0.016 %); spar (10 segments): heave +0.75 mm, tensions -0.075 % (anchor) and
-+0.008 % (fairlead). Tolerances are the acceptance limits of issue 14 (1 cm, 0.5 %, 2 %);
+(+0.055 % / +0.016 %); spar (10 segments): heave +1.32 mm, tensions -0.12 % (anchor) and
+-0.033 % (fairlead) (with the rods hydrostatics; +0.75 mm, -0.075 %, +0.008 % with the former
+constant buoyancy; the spar pitch decay above with the rods hydrostatics and their
+waterplane moment, 25.42 s with the former constant buoyancy).
+Tolerances are the acceptance limits of issue 14 (1 cm, 0.5 %, 2 %);
 the measured differences are far inside them.
 """
 
@@ -71,11 +74,11 @@ SPAR_PITCH_NOTE = (
     "not reproduced: the codes' pitch restoring differs. MoorDyn-C 2.7's rod waterplane moment "
     "is not rho g I_wp: the hull rod alone on a coupled body at the equilibrium draft, pitched "
     "+-0.01 rad, has in MoorDyn a pitch stiffness 4.05e6 N m/rad above rho g (I_wp + V z_B) "
-    "(3.0 rho g I_wp instead of 1.0; Rod.cpp adds pi d^4/16 rho g sin(phi) cos(phi), four "
-    "times pi d^4/64; MoorDyn issue #70 calls its waterplane moment incorrect); moorline's "
-    "constant buoyancy at the deck's pose (draft 60 m, the equilibrium's 58.2 m) is 0.82e6 "
-    "N m/rad softer than the exact value. The two explain about half of the 4.9 % period "
-    "difference; the rest is not explained here")
+    "(3.0 rho g I_wp instead of Archimedes' 1.0, which moorline's rods have; Rod.cpp adds "
+    "pi d^4/16 rho g sin(phi) cos(phi), four times pi d^4/64, and an end-cap moment of the "
+    "opposite sign; MoorDyn issue #70 calls its waterplane moment incorrect). That explains "
+    "0.43 s of the 1.10 s (4.5 %) period difference (moorline with 3 rho g I_wp: 24.90 s); "
+    "the rest is not explained here")
 
 
 def _table(title: str, head: str, units: str, rows: list[str]) -> list[str]:
