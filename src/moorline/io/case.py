@@ -307,6 +307,8 @@ def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
                        if env.waves.kind == "components" else "")
                 fail("a stochastic analysis needs a random sea (environment.waves kind: "
                      f"random), not {env.waves.kind!r}{why}", f"analyses[{k}].kind")
+    if env.gravity == 0.0 and env.waves.kind != "none":
+        fail("waves need gravity > 0 (the dispersion relation)", "environment.gravity")
     if env.waves.kind in ("airy", "random"):
         what = "an airy wave" if env.waves.kind == "airy" else "a random sea (Hs, Tp)"
         for key in ("height", "period"):

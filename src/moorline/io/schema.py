@@ -299,7 +299,7 @@ class EnvironmentSpec(_Spec):
 
     depth: quantity("length", gt=0.0, allow_inf=True) | None = None
     water_density: quantity("mass/length^3", gt=0.0) | None = None
-    gravity: quantity("acceleration", gt=0.0) | None = None
+    gravity: quantity("acceleration", ge=0.0) | None = None
     seabed: SeabedSpec = Field(default_factory=SeabedSpec)
     current: CurrentSpec = Field(default_factory=CurrentSpec)
     waves: WavesSpec = Field(default_factory=WavesSpec)
