@@ -325,14 +325,22 @@ def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
     for name, lt in spec.line_types.items():
         if lt.material == "viscoelastic" and lt.tau <= 0.0:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
-        if lt.material == "static_dynamic":
-            _check_static_dynamic(name, lt, fail)
+        if lt.material in ("static_dynamic", "syrope"):
+            if lt.material == "static_dynamic":
+                _check_static_dynamic(name, lt, fail)
+            else:
+                check_syrope(name, lt, spec.lines, fail)
+            what = ("mean-load dependent viscoelastic model" if lt.material == "static_dynamic"
+                    else "Syrope rope with load-history dependent working curves")
             for k, analysis in enumerate(spec.analyses or ()):
                 if analysis.kind in ("modal", "strumming", "stochastic", "harmonic"):
-                    fail(f"line type {name} is a static_dynamic rope (MoorDyn's mean-load "
-                         f"dependent viscoelastic model), modelled in statics and the time "
-                         f"domain only: no {analysis.kind} analysis (not linearized)",
-                         f"analyses[{k}].kind")
+                    fail(f"line type {name} is a {lt.material} rope (MoorDyn's {what}), "
+                         f"modelled in statics and the time domain only: no "
+                         f"{analysis.kind} analysis (not linearized)", f"analyses[{k}].kind")
+    for name, line in spec.lines.items():
+        if line.syrope_ic is not None and (line.type not in spec.line_types or
+                                           spec.line_types[line.type].material != "syrope"):
+            fail("syrope_ic is for lines of a syrope line type", f"lines.{name}.syrope_ic")
     depth = env.depth if env.depth is not None else math.inf
     bodies = spec.bodies or {}
     surface = _surface(depth, seabed)
@@ -474,6 +482,36 @@ def _check_resolved_periods(spec: CaseSpec, dt: float, field: str,
                 and history.period < 2.0 * dt:
             fail(f"period {history.period:g} is shorter than two time steps of the dynamics "
                  f"({field} = {dt:g}): the step cannot resolve it", f"{key}.period")
+
+
+def check_syrope(name: str, lt, lines: dict, fail) -> None:
+    """A ``syrope`` line type (:mod:`moorline.physics.syrope`): its curves, dynamic stiffness
+    and dampings, and each of its lines' ``syrope_ic``."""
+    from ..physics.syrope import SyropeRope
+
+    where = f"line_types.{name}"
+    if lt.owc is None:
+        fail("a syrope material needs owc (the original working curve)", f"{where}.owc")
+    if lt.EAd is None:
+        fail("a syrope material needs EAd (the dynamic stiffness at zero load)",
+             f"{where}.EAd")
+    if not isinstance(lt.BA, int | float) or lt.BA < 0 or lt.BA + lt.BA_dynamic <= 0:
+        fail("a syrope material needs BA >= 0 (no damping ratio) and BA + BA_dynamic > 0",
+             f"{where}.BA")
+    rope = SyropeRope(np.asarray(lt.owc, dtype=float), lt.working_curve, lt.wc_k1, lt.wc_k2,
+                      float(lt.EAd), float(lt.EAd_Lm))
+    problems = rope.problems()
+    if problems:
+        fail("; ".join(problems), f"{where}.owc")
+    for line_name, line in lines.items():
+        if line.type != name:
+            continue
+        if line.syrope_ic is None:
+            fail(f"a line of the syrope line type {name} needs syrope_ic: [Tmax0, Tmean0]",
+                 f"lines.{line_name}.syrope_ic")
+        problem = rope.tmax_problem(line.syrope_ic[0])
+        if problem is not None:
+            fail(problem, f"lines.{line_name}.syrope_ic")
 
 
 def _check_static_dynamic(name: str, lt, fail) -> None:
@@ -801,6 +839,7 @@ def _line(name: str, line: LineSpec) -> Line:
         initial_shape=shape,
         clamp_a=None if line.clamp_a is None else tuple(line.clamp_a),
         clamp_b=None if line.clamp_b is None else tuple(line.clamp_b),
+        syrope_ic=None if line.syrope_ic is None else tuple(line.syrope_ic),
     )
 
 

@@ -4,6 +4,8 @@ or by hand, as :class:`~moorline.model.LineType` objects in the case's units."""
 from __future__ import annotations
 
 from pathlib import Path
+
+import numpy as np
 from typing import Any
 
 from moorline.catalog import CatalogError, in_units, line_properties
@@ -75,6 +77,11 @@ def resolve_line_types(specs: dict[str, Any], units: str, file: str,
                             "them); without one give diameter, mass_per_length and EA",
                             file=file, field=f"{where}.nominal_diameter")
         _strain_law(values, spec, source, file, where)
+        if values["owc"] is not None:
+            values["owc"] = tuple((float(e), float(t)) for e, t in values["owc"])
+            if values["EA"] is None and len(values["owc"]) > 1:  # the reference stiffness
+                owc = np.asarray(values["owc"])
+                values["EA"] = float(np.max(np.diff(owc[:, 1]) / np.diff(owc[:, 0])))
         for key in REQUIRED:
             if values[key] is None:
                 raise CaseError(f"missing required key {key!r} (or give catalog and "

@@ -123,10 +123,13 @@ def apply_syrope_ic(rows: list[tuple[int, list[str]]], lines: dict[str, Line],
     for lineno, tokens in rows:
         if len(tokens) < 3:
             raise fail(f"3 fields needed (Line(s) Tmax0 Tmean0), found {len(tokens)}", lineno)
-        Tmax0, Tmean0 = (_number(t, what, lambda why: fail(why, lineno))
+        def row_fail(why: str, n: int = lineno) -> Exception:
+            return fail(why, n)
+
+        Tmax0, Tmean0 = (_number(t, what, row_fail)
                          for t, what in ((tokens[-2], "Tmax0"), (tokens[-1], "Tmean0")))
         for token in "".join(tokens[:-2]).split(","):
-            number = int(_number(token, "Line(s)", lambda why: fail(why, lineno)))
+            number = int(_number(token, "Line(s)", row_fail))
             if number not in by_id:
                 raise fail(f"there is no line {number}", lineno)
             line = out[by_id[number]]

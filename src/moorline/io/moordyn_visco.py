@@ -20,6 +20,7 @@ from typing import Any
 
 from ..physics.static_dynamic import sls_parameters
 
+
 def viscoelastic_line_type(ea: str, ba: str, fail: Callable[[str], Exception]
                            ) -> dict[str, Any] | None:
     """The :class:`~moorline.model.LineType` fields of a viscoelastic ``EA``/``BA`` pair, or

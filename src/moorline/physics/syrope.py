@@ -58,7 +58,8 @@ increasing in practice; bisection where Newton leaves the bracket). Then ``Tm = 
 so that ``T = T_e + eta de/dt`` with ``eta = c1 c2 / (c1 + c2)``, moorline's Kelvin-Voigt
 dashpot ``BA`` on the current strain rate (exactly ``Tm + c1 dz/dt``). ``dT_e/de_n`` is exact
 (implicit function theorem on ``phi``). Slack: where the tension is not positive
-(``T_e <= 0``) or the segment is shorter than unstretched (``e_n < 0``) the element transmits the line's slack regularization ``slack_ratio EA e_n`` (MoorDyn zeroes ``Tm`` and
+(``T_e <= 0``) or the segment is shorter than unstretched (``e_n < 0``) the element
+transmits the line's slack regularization ``slack_ratio EA e_n`` (MoorDyn zeroes ``Tm`` and
 keeps ``Td``).
 
 Statics and the initial state
@@ -184,11 +185,12 @@ class SyropeRope:
         y = y + 0.0 * x
         return x, y, x - self.dynamic_strain(y)
 
-    def mean_tension(self, z: FloatArray, Tmax: FloatArray
+    def mean_tension(self, z: FloatArray, Tmax: FloatArray,
+                     curve: tuple[FloatArray, FloatArray, FloatArray] | None = None
                      ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """``Tm = S(z)``, ``X(Tm)`` and their derivatives ``dTm/dz``, ``dX/dz`` on the active
-        curve of ``Tmax`` (module docstring)."""
-        x, y, zw = self.working_curve(Tmax)
+        curve of ``Tmax`` (module docstring); ``curve``: ``working_curve(Tmax)`` if known."""
+        x, y, zw = self.working_curve(Tmax) if curve is None else curve
         on_wc = z < zw[:, -1]
         T, X, dT, dX = _interp_rows(zw, y, x, z)
         if np.any(~on_wc):
@@ -248,9 +250,9 @@ def _interp_rows(zp: FloatArray, yp: FloatArray, xp: FloatArray, z: FloatArray
     return yp[rows, j - 1] + f * dy, xp[rows, j - 1] + f * dx, dy * slope, dx * slope
 
 
-def _rate(rope: SyropeRope, z, e, Tmax):
+def _rate(rope: SyropeRope, z, e, Tmax, curve):
     """``f(z, e) = K(Tm) (e - X(Tm))``, ``df/dz``, ``df/de`` and ``Tm``, ``dTm/dz``."""
-    T, X, dT, dX = rope.mean_tension(z, Tmax)
+    T, X, dT, dX = rope.mean_tension(z, Tmax, curve)
     K = rope.alpha + rope.beta * T
     f = K * (e - X)
     return f, rope.beta * dT * (e - X) - K * dX, K, T, dT
@@ -267,7 +269,7 @@ def syrope_update(
     c2: ArrayLike,
     slack_stiffness: ArrayLike,
     *,
-    tol: float = 1e-15,
+    tol: float = 1e-13,
     max_iter: int = 100,
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """Elastic part of the force after one step, the new state and the exact tangent.
@@ -301,9 +303,10 @@ def syrope_update(
     c = c1 + c2
     e_m = 0.5 * (e_o + e_n)
     de = e_n - e_o
+    curve = rope.working_curve(Tmax)
 
     def residual(z):
-        f, f_z, _, _, _ = _rate(rope, 0.5 * (z_o + z), e_m, Tmax)
+        f, f_z, _, _, _ = _rate(rope, 0.5 * (z_o + z), e_m, Tmax, curve)
         return c * (z - z_o) - dt * f - c2 * de, c - 0.5 * dt * f_z
 
     z = z_o + c2 * de / c
@@ -315,18 +318,17 @@ def syrope_update(
         hi = np.where(phi > 0, np.minimum(hi, z), hi)
         step = phi / dphi
         trial = z - step
-        bisect = ~((trial > lo) & (trial < hi)) & np.isfinite(lo) & np.isfinite(hi)
-        trial = np.where(bisect, 0.5 * (lo + hi), trial)
-        done = (phi == 0) | (np.abs(trial - z) <= tol * np.maximum(np.abs(z), 1e-3))
-        z = np.where(phi == 0, z, trial)
+        done = (phi == 0) | (np.abs(step) <= tol * np.maximum(np.abs(z), 1e-3))
+        bisect = ~(done | ((trial > lo) & (trial < hi))) & np.isfinite(lo) & np.isfinite(hi)
+        z = np.where(bisect, 0.5 * (lo + hi), np.where(phi == 0, z, trial))
         if np.all(done):
             break
     else:
         raise FloatingPointError("Syrope rope update did not converge")
     _, dphi = residual(z)
-    _, _, K_m, _, _ = _rate(rope, 0.5 * (z_o + z), e_m, Tmax)
+    _, _, K_m, _, _ = _rate(rope, 0.5 * (z_o + z), e_m, Tmax, curve)
     dz_de = (0.5 * dt * K_m + c2) / dphi
-    f, f_z, K, T_mean, dT = _rate(rope, z, e_n, Tmax)
+    f, f_z, K, T_mean, dT = _rate(rope, z, e_n, Tmax, curve)
     share = c1 / c
     tension = T_mean + share * f
     tangent = share * K + (dT + share * f_z) * dz_de
