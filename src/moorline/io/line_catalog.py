@@ -4,9 +4,9 @@ or by hand, as :class:`~moorline.model.LineType` objects in the case's units."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
-from typing import Any
 
 from moorline.catalog import CatalogError, in_units, line_properties
 from moorline.errors import CaseError
