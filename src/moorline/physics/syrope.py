@@ -320,7 +320,8 @@ def syrope_update(
         trial = z - step
         done = (phi == 0) | (np.abs(step) <= tol * np.maximum(np.abs(z), 1e-3))
         bisect = ~(done | ((trial > lo) & (trial < hi))) & np.isfinite(lo) & np.isfinite(hi)
-        z = np.where(bisect, 0.5 * (lo + hi), np.where(phi == 0, z, trial))
+        mid = 0.5 * (np.where(bisect, lo, 0.0) + np.where(bisect, hi, 0.0))
+        z = np.where(bisect, mid, np.where(phi == 0, z, trial))
         if np.all(done):
             break
     else:
