@@ -70,8 +70,10 @@ its points the static solver uses moorline's monotone cubic table interpolation,
 :mod:`moorline.physics.load_strain`). Dynamics start relaxed at the static strain
 (:meth:`SyropeRope.relaxed_state`: ``z`` with ``X(S(z)) = e``, ``Tmax = max(Tmax0, Tm)``),
 so there is no start-up transient. MoorDyn instead sets ``z`` from the ``SYROPE IC`` row's
-``Tmean0`` on ``WC(Tmax0)`` (``Line::initialize``) whatever the geometry and lets its
-dynamic relaxation move it; the two agree when ``Tmean0`` is the working curve's tension at
+``Tmean0`` on ``WC(Tmax0)`` (``Line::initialize``) whatever the geometry; its initial-
+condition solver (``StationaryScheme``, ``source/Time.cpp``) then moves the nodes by their
+accelerations but advances the slow strain by its own rate, so it keeps creeping (and
+``Tmax`` may rise) over the pseudo-time ``TmaxIC`` (``Init_NoIC`` skips that); the two agree when ``Tmean0`` is the working curve's tension at
 the deck's geometry (OpenFAST r-test ``md_syrope``, MoorDyn's ``tests/Mooring/syrope/
 linear_wc``), and MoorDyn's own test (``tests/syrope.cpp``) notes the large start-up error of
 its quadratic and exponential decks, whose ``Tmean0`` is not.

@@ -13,8 +13,7 @@ from ..model import System
 
 def refuse_static_dynamic(system: System, analysis: str) -> None:
     """Raise a :class:`~moorline.errors.CaseError` naming the ``static_dynamic`` (or
-    ``syrope``) line types of
-    ``system`` for an ``analysis`` that would linearize them."""
+    ``syrope``) line types of ``system`` for an ``analysis`` that would linearize them."""
     for kind, what in (("static_dynamic", "mean-load dependent viscoelastic model"),
                        ("syrope", "Syrope rope with load-history dependent working curves")):
         names = [n for n, lt in system.line_types.items() if lt.material == kind]
