@@ -75,8 +75,8 @@ condition solver (``StationaryScheme``, ``source/Time.cpp``) then moves the node
 accelerations but advances the slow strain by its own rate, so it keeps creeping (and
 ``Tmax`` may rise) over the pseudo-time ``TmaxIC`` (``Init_NoIC`` skips that). The two agree
 when ``Tmean0`` is the working curve's tension at the deck's geometry (OpenFAST r-test
-``md_syrope`` and MoorDyn's ``tests/Mooring/syrope/linear_wc``, to 5e-4 and 2e-4, the
-rounding of their numbers); MoorDyn's own test (``tests/syrope.cpp``) notes the large
+``md_syrope`` and MoorDyn's ``tests/Mooring/syrope/linear_wc``, to 5e-4 and 2e-4 of the
+tension); MoorDyn's own test (``tests/syrope.cpp``) notes the large
 start-up error of its quadratic and exponential decks, whose ``Tmean0`` is not.
 """
 
