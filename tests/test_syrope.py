@@ -359,3 +359,16 @@ def test_linearized_analyses_refuse_the_rope_through_the_api():
         solve_modes(system, ModalSettings())
     assert info.value.field == "line_types.poly.material"
     assert "syrope rope" in info.value.reason and "no modal analysis" in info.value.reason
+
+
+def test_case_file_round_trip(tmp_path):
+    """The deck's system written as a case file and loaded again: the same line type and
+    line history, and the same static tension."""
+    from moorline.io import load_case
+    from moorline.io.case_writer import write_case
+
+    system = read_moordyn(DATA / "quadratic_wc/line.txt")
+    back = load_case(write_case(system, tmp_path / "rope.yaml"))
+    assert back.line_types["poly"] == system.line_types["poly"]
+    assert back.lines["line1"].syrope_ic == system.lines["line1"].syrope_ic
+    assert solve_statics(back).tension[0] == solve_statics(system).tension[0]
