@@ -209,62 +209,133 @@ def _copy_deck(tmp_path: Path, form: str = "linear") -> Path:
     return folder / "line.txt"
 
 
-X0 = 1.0148657  # the deck's coupled point
+RTEST = (Path(__file__).parent / "data/moordyn/public/OpenFAST-r-test/modules/moordyn/"
+         "md_syrope")
 
 
-def _x(t: float) -> float:
-    """Point 2: pulled 2 % in 10 s, held, released by 1.2 % at 150-160 s, with a 2 mm
-    oscillation of period 8 s (smooth)."""
-    ramp = 0.5 * (1 - math.cos(math.pi * min(t / 10.0, 1.0)))
-    down = 0.5 * (1 - math.cos(math.pi * min(max(t - 150.0, 0.0) / 10.0, 1.0)))
-    return X0 + 0.02 * ramp - 0.012 * down + 0.002 * math.sin(2 * math.pi * t / 8.0)
+def _motion(x0: float):
+    """Point 2 from ``x0``: pulled 2 cm in 10 s, held, released by 1.2 cm at 150-160 s, with
+    a 2 mm oscillation of period 8 s (smooth)."""
+
+    def x(t: float) -> float:
+        ramp = 0.5 * (1 - math.cos(math.pi * min(t / 10.0, 1.0)))
+        down = 0.5 * (1 - math.cos(math.pi * min(max(t - 150.0, 0.0) / 10.0, 1.0)))
+        return x0 + 0.02 * ramp - 0.012 * down + 0.002 * math.sin(2 * math.pi * t / 8.0)
+
+    return x
 
 
 @pytest.mark.compare
-def test_linear_wc_deck_against_moordyn(tmp_path):
-    """MoorDyn's tests/Mooring/syrope/linear_wc deck (one 1 m segment, the deck's rope)
-    with point 2 driven by :func:`_x` for 170 s: its tension rises past Tmax0 onto the OWC
-    (to 2.9 Tmax0) while the slow strain creeps (time constant about 300 s), then unloads onto
-    a new working curve. MoorDyn-C (RK2 at the deck's dtM = 0.05 s, driven every 0.1 s,
+@pytest.mark.parametrize(("case", "x0", "z", "lag"), [
+    ("linear_wc", 1.0148657, -5.0, 0.025), ("md_syrope", 1.0137912, 0.0, 0.0)])
+def test_single_segment_decks_against_moordyn(tmp_path, case, x0, z, lag):
+    """MoorDyn's tests/Mooring/syrope/linear_wc deck and OpenFAST r-test md_syrope (one 1 m
+    segment of the same rope, Tmax0 1.3886e6 and 1.302e6 N) with point 2 driven by
+    :func:`_motion` for 170 s: the tension rises past Tmax0 onto the OWC (to 2.9 Tmax0) while
+    the slow strain creeps (time constant about 300 s), then unloads onto a new working
+    curve. MoorDyn-C (RK2 at the deck's dtM, 0.05 and 0.01 s, driven every 0.1 s,
     ``Init_NoIC``: its slow strain set from the deck's Tmean0) against moorline (read from
     the same deck, implicit midpoint step of 0.1 s, started at rest at the static state).
     MoorDyn's RK2 (``source/Time.cpp``) evaluates the tension last at the midpoint of its
-    internal step, so its ``FairTen`` after a step to ``t`` is the tension at ``t - dtM / 2``:
-    compared there (as tests/test_static_dynamic.py; without the shift the difference is
-    1.5 %). Measured: 5.7e-5 of the tension at most (the two time discretizations, and the
-    start: the deck's Tmean0 is 1.9e-4 below the working curve's tension at its geometry,
-    which the dynamic branch turns into 5e-5 of the tension, decaying with the creep);
-    tolerance 3e-4."""
+    last internal step, so its ``FairTen`` after a step to ``t`` is the tension at ``t -
+    lag``: ``dtM / 2`` = 0.025 s for linear_wc (as tests/test_static_dynamic.py; without it
+    the difference is 1.5 %), but 0 for md_syrope: MoorDyn-C's ``Step`` (``MoorDyn2.cpp``)
+    takes internal steps while ``t_target -= dt_step`` stays positive, and 0.1 less ten
+    times 0.01 leaves 1.0e-17 s, an eleventh, vanishing step (with 0.005 s the difference is
+    2.9e-3). Measured: 5.7e-5 and 1.6e-4 of the tension at most (the two time
+    discretizations, and the start: the decks' Tmean0 are 1.9e-4 and 5.2e-4 off the working
+    curve's tension at their geometry, which the dynamic branch turns into 5e-5 and 1.6e-4 of
+    the tension, decaying with the creep); tolerance 3e-4."""
     moordyn = pytest.importorskip("moordyn")
     from moorline.compare.moordyn_runner import silenced_fd
 
-    deck = _copy_deck(tmp_path)
-    dt, duration, dt_md = 0.1, 170.0, 0.05
+    if case == "md_syrope":
+        shutil.copytree(RTEST, tmp_path / case)
+        deck = tmp_path / case / "moordyn.dat"
+    else:
+        deck = _copy_deck(tmp_path)
+    x = _motion(x0)
+    dt, duration = 0.1, 170.0
     n = round(duration / dt)
     theirs = []
     with silenced_fd(1):
         md = moordyn.Create(str(deck))
-        moordyn.Init_NoIC(md, [_x(0.0), 0.0, -5.0], [0.0, 0.0, 0.0])
+        moordyn.Init_NoIC(md, [x(0.0), 0.0, z], [0.0, 0.0, 0.0])
         line = moordyn.GetLine(md, 1)
         for k in range(n):
             t = k * dt
-            moordyn.Step(md, [_x(t), 0.0, -5.0], [(_x(t + dt) - _x(t)) / dt, 0.0, 0.0], t, dt)
+            moordyn.Step(md, [x(t), 0.0, z], [(x(t + dt) - x(t)) / dt, 0.0, 0.0], t, dt)
             theirs.append(moordyn.GetLineFairTen(line))
         moordyn.Close(md)
     theirs = np.array(theirs)
     system = read_moordyn(deck)
     times = dt * np.arange(n + 1)
     motion = Motion(kind="table", times=tuple(times),
-                    values=tuple((_x(t) - X0, 0.0, 0.0) for t in times))
+                    values=tuple((x(t) - x0, 0.0, 0.0) for t in times))
     p2 = replace(system.points["point2"], motion=motion)
     system = replace(system, points={**system.points, "point2": p2})
     run = simulate(system, DynamicsSettings(duration=duration, dt=dt),
                    initial=solve_statics(system), output_every=dt)
     assert run.success, run.message
     t_theirs = times[1:]
-    ours = np.interp(t_theirs - 0.5 * dt_md, run.time, run.tension[:, 0])
+    ours = np.interp(t_theirs - lag, run.time, run.tension[:, 0])
     assert theirs.max() > 1.5 * TMAX0  # far past the history's maximum
     np.testing.assert_allclose(ours, theirs, rtol=3e-4)
+
+
+@pytest.mark.compare
+def test_written_taut_line_with_mass_against_moordyn(tmp_path):
+    """The deck's rope (static damping 2e9 N s) as a 50 m line of 5 segments with its mass
+    (no gravity, no fluid: both codes start on the straight line at the deck's strain, its
+    Tmean0 set to the working curve's tension there), written by :func:`write_moordyn` (its
+    settings and OWC files, ``SYROPE IC``) and run by MoorDyn-C at 1e-4 s (explicit RK2),
+    against moorline's implicit step of 0.01 s, the end pulled 1 % further with a 0.1 %
+    oscillation of period 3 s. The top segment's tension (``FairTen``, half a MoorDyn step
+    back) after 5 s: measured 4.4e-5 of the tension (the axial modes, period about 0.1 s,
+    that the start excites are resolved by MoorDyn and filtered by moorline's step: 0.9 % in
+    the first second); tolerance 3e-4."""
+    moordyn = pytest.importorskip("moordyn")
+    from moorline.compare.moordyn_runner import silenced_fd
+    from moorline.model import Line, Point, System
+    from moorline.physics.syrope import rope_of
+
+    deck = read_moordyn(DATA / "linear_wc/line.txt")
+    rope = replace(deck.line_types["poly"], BA=2.0e9)
+    length, n_seg, dt, duration, strain = 50.0, 5, 0.01, 10.0, 0.0148657
+    x0 = length * (1.0 + strain)
+
+    def x(t: float) -> float:
+        ramp = 0.5 * (1 - math.cos(math.pi * min(t / 5.0, 1.0)))
+        return x0 + length * (0.01 * ramp + 0.001 * math.sin(2 * math.pi * t / 3.0))
+
+    curves = rope_of(rope)
+    z, peak = curves.relaxed_state(np.array([strain]), np.array([TMAX0]))
+    tmean0 = float(curves.mean_tension(z, peak)[0][0])
+    times = dt * np.arange(round(duration / dt) + 1)
+    motion = Motion(kind="table", times=tuple(times),
+                    values=tuple((x(t) - x0, 0.0, 0.0) for t in times))
+    points = {"a": Point("a", "fixed", (0.0, 0.0, -50.0)),
+              "b": Point("b", "prescribed", (x0, 0.0, -50.0), motion=motion)}
+    system = System("taut", environment=deck.environment, line_types={"poly": rope},
+                    points=points, lines={"l": Line("l", "poly", length, n_seg, "a", "b",
+                                                    syrope_ic=(TMAX0, tmean0))})
+    run = simulate(system, DynamicsSettings(duration=duration, dt=dt),
+                   initial=solve_statics(system), output_every=dt)
+    assert run.success, run.message
+    path = write_moordyn(system, tmp_path / "taut.dat", 1.0e-4)
+    theirs = []
+    with silenced_fd(1):
+        md = moordyn.Create(str(path))
+        moordyn.Init_NoIC(md, [x(0.0), 0.0, -50.0], [0.0, 0.0, 0.0])
+        line = moordyn.GetLine(md, 1)
+        for t in times[:-1]:
+            moordyn.Step(md, [x(t), 0.0, -50.0], [(x(t + dt) - x(t)) / dt, 0.0, 0.0], t, dt)
+            theirs.append(moordyn.GetLineFairTen(line))
+        moordyn.Close(md)
+    t_theirs = times[1:]
+    ours = np.interp(t_theirs - 0.5e-4, run.time, run.tension[:, -1])
+    keep = t_theirs >= 5.0
+    np.testing.assert_allclose(ours[keep], np.array(theirs)[keep], rtol=3e-4)
 
 
 def test_deck_round_trip(tmp_path):

@@ -777,7 +777,7 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
         if lt.EA_table is not None and len(lt.EA_table) > MOORDYN_CURVE_POINTS:
             errors.append(f"line type {lt.name}: an EA table of {len(lt.EA_table)} points "
                           f"(MoorDyn-C reads at most {MOORDYN_CURVE_POINTS})")
-        if lt.EAd is not None and lt.material != "static_dynamic":
+        if lt.EAd is not None and lt.material not in ("static_dynamic", "syrope"):
             omissions.append(f"line type {lt.name}: dynamic stiffness EAd (MoorDyn's EA_s|EA_Dc|"
                              "EA_D_Lm is another, viscoelastic, model)")
         if lt.displaced_area is not None and not math.isclose(
