@@ -157,17 +157,23 @@ class SyropeRope:
         return out
 
     def tmax_problem(self, Tmax: float) -> str | None:
-        """Why ``Tmax`` cannot define a working curve (``None`` when it can)."""
+        """Why a history starting at ``Tmax`` cannot be modelled (``None`` when it can): its
+        working curve, or one of a larger ``Tmax`` it may grow to (checked at 64 values up
+        to the OWC's end), has no strain range or a slow strain that does not increase (a
+        curve stiffer than the dynamic stiffness; MoorDyn would interpolate it anyway)."""
         y = self.owc[:, 1]
         if not y[0] <= Tmax <= y[-1]:
             return (f"Tmax {Tmax:g} is outside the original working curve's tensions "
                     f"[{y[0]:g}, {y[-1]:g}] (MoorDyn refuses it)")
-        x, _, z = self.working_curve(np.array([Tmax]))
-        if not x[0, -1] > x[0, 0]:
-            return f"the working curve of Tmax {Tmax:g} has no strain range"
-        if np.any(np.diff(z[0]) <= 0):
-            return (f"the working curve of Tmax {Tmax:g} is stiffer than the dynamic stiffness "
-                    "(its slow strain does not increase)")
+        levels = np.linspace(Tmax, y[-1], 64)
+        x, _, z = self.working_curve(levels)
+        bad = ~((x[:, -1] > x[:, 0]) & np.all(np.diff(z, axis=1) > 0, axis=1))
+        if np.any(bad):
+            at = levels[np.argmax(bad)]
+            reached = "" if at == Tmax else f" (reached when the mean tension grows to {at:g})"
+            return (f"the working curve of Tmax {at:g}{reached} is stiffer than the dynamic "
+                    "stiffness somewhere or has no strain range: its slow strain does not "
+                    "increase")
         return None
 
     def working_curve(self, Tmax: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
