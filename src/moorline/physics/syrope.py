@@ -136,6 +136,9 @@ class SyropeRope:
     def problems(self) -> list[str]:
         """What makes the curves unusable (empty when none): MoorDyn's checks."""
         out = []
+        if not np.all(np.isfinite([self.k1, self.k2, self.alpha, self.beta])) or not np.all(
+                np.isfinite(self.owc)):
+            return ["k1, k2, EA_Dc, EA_D_Lm and the curve must be finite numbers"]
         x, y = self.owc[:, 0], self.owc[:, 1]
         if len(x) < 2 or np.any(np.diff(x) <= 0) or np.any(np.diff(y) <= 0):
             out.append("the original working curve needs at least 2 points with strain and "
