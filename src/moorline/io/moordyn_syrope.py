@@ -22,7 +22,8 @@ from typing import Any
 import numpy as np
 
 from ..model import Line, LineType, System
-from ..physics.syrope import FORMS, SyropeRope, rope_of
+from ..physics.syrope import FORMS, SyropeRope, reference_stiffness, rope_of
+from .files import MAX_TABLE_BYTES, file_problem
 
 _HEADER_LINES = 3  # MoorDyn-C read_curve skips the first three lines of a curve file
 
@@ -51,19 +52,18 @@ def syrope_line_type(ea: str, ba: str, folder: Path, fail: Callable[[str], Excep
     problems = rope.problems()
     if problems:
         raise fail(f"EA {ea!r} ({settings_file.name}, {owc_file.name}): " + "; ".join(problems))
-    slope = float(np.max(np.diff(owc[:, 1]) / np.diff(owc[:, 0])))
-    return {"EA": slope, "material": "syrope", "owc": tuple(map(tuple, owc.tolist())),
-            "working_curve": settings["wctype"], "wc_k1": settings["k1"],
-            "wc_k2": settings["k2"], "EAd": alpha, "EAd_Lm": beta, "BA": c1, "BA_dynamic": c2}
+    return {"EA": reference_stiffness(owc), "material": "syrope",
+            "owc": tuple(map(tuple, owc.tolist())), "working_curve": settings["wctype"],
+            "wc_k1": settings["k1"], "wc_k2": settings["k2"], "EAd": alpha, "EAd_Lm": beta,
+            "BA": c1, "BA_dynamic": c2}
 
 
 def read_syrope_settings(path: Path, fail: Callable[[str], Exception]) -> dict[str, Any]:
     """``OWC``, ``WCType``, ``k1``, ``k2`` of a Syrope settings file (``value name`` rows)."""
-    try:
-        text = path.read_text(encoding="utf-8", errors="replace")
-    except OSError as exc:
-        raise fail(f"cannot read the Syrope settings file {str(path)!r}: "
-                   f"{exc.strerror or exc}") from None
+    problem = file_problem(path.resolve(), MAX_TABLE_BYTES)
+    if problem is not None:
+        raise fail(f"cannot read the Syrope settings file {str(path)!r}: {problem}")
+    text = path.read_text(encoding="utf-8", errors="replace")
     found: dict[str, Any] = {}
     for number, line in enumerate(text.splitlines(), start=1):
         tokens = line.split()
@@ -90,10 +90,10 @@ def read_moordyn_curve(path: Path, fail: Callable[[str], Exception],
                        warn: Callable[[str], None]) -> np.ndarray:
     """Rows ``(strain, tension)`` of a MoorDyn curve file as MoorDyn-C reads it (three header
     lines skipped, then two numbers per line)."""
-    try:
-        lines = path.read_text(encoding="utf-8", errors="replace").splitlines()
-    except OSError as exc:
-        raise fail(f"cannot read the curve file {str(path)!r}: {exc.strerror or exc}") from None
+    problem = file_problem(path.resolve(), MAX_TABLE_BYTES)
+    if problem is not None:
+        raise fail(f"cannot read the curve file {str(path)!r}: {problem}")
+    lines = path.read_text(encoding="utf-8", errors="replace").splitlines()
     skipped = lines[_HEADER_LINES - 1].split() if len(lines) >= _HEADER_LINES else []
     if len(skipped) >= 2 and all(_is_number(t) for t in skipped[:2]):
         warn(f"curve file {path.name}: line {_HEADER_LINES} ({lines[_HEADER_LINES - 1].strip()!r})"

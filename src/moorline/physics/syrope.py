@@ -90,7 +90,8 @@ from numpy.typing import ArrayLike, NDArray
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
-__all__ = ["N_WC", "SyropeRope", "syrope_update"]
+__all__ = ["N_WC", "SyropeElements", "SyropeRope", "reference_stiffness", "rope_of",
+           "syrope_update"]
 
 #: points of a sampled working curve (MoorDyn-C's ``Line::nEApointsWC``)
 N_WC = 30
@@ -387,6 +388,13 @@ class SyropeElements:
     c1: FloatArray
     c2: FloatArray
     Tmax0: FloatArray
+
+
+def reference_stiffness(owc: ArrayLike) -> float:
+    """A Syrope line type's ``EA`` [force]: the original working curve's largest secant
+    slope (the slack regularization's scale, as a tabulated law's ``EA``)."""
+    owc = np.asarray(owc, dtype=float)
+    return float(np.max(np.diff(owc[:, 1]) / np.diff(owc[:, 0])))
 
 
 def rope_of(line_type) -> SyropeRope:
