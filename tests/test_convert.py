@@ -251,6 +251,8 @@ RTEST_DECKS = [RTEST + deck for deck in (
     "modules/moordyn/md_lineFail/moordyn.dat",
     "modules/moordyn/md_no_line/moordyn.dat",  # pinned rods
     "modules/moordyn/md_viscoelastic/moordyn.dat",  # EA_s|EA_Dc|EA_D_Lm, BA_s|BA_d
+    # the Syrope rope (g = 0; owc.dat: MoorDyn's, see tests/data/moordyn/public/README.md)
+    "modules/moordyn/md_syrope/moordyn.dat",
     "modules/moordyn/md_waterkin3/moordyn.dat",
     "modules/moordyn/py_md_5MW_OC4Semi/md_primary.inp",
 )] + [
@@ -392,9 +394,6 @@ def test_public_coupled_pinned_body_deck_converts_solves_and_runs(tmp_path):
 
 
 @pytest.mark.parametrize(("deck", "named"), [
-    # MoorDyn's Syrope model (load-history dependent working curves)
-    ("modules/moordyn/md_syrope/moordyn.dat", "line 6, LINE TYPES: line type 'poly': EA "
-     "'SYROPE:syrope.dat|1.53e8|23.12': the Syrope model"),
     # a rod of a type the deck never defines (MoorDyn-C 2.7.2 refuses it too: "Unrecognized
     # rod type Can")
     ("modules/moordyn/md_waterkin2/moordyn.dat", "RODS: unknown rod type 'Can'"),

@@ -205,7 +205,7 @@ BAD_CASES = [
     ("fractional_segments", "lines.line1.segments", "must be a positive integer, got 2.5"),
     ("negative_depth", "environment.depth", "must be > 0"),
     ("zero_water_density", "environment.water_density", "must be > 0"),
-    ("negative_gravity", "environment.gravity", "must be > 0"),
+    ("negative_gravity", "environment.gravity", "must be >= 0"),
     ("negative_drag", "line_types.chain.Cd", "must be >= 0, got -1.2"),
     ("negative_seabed_stiffness", "environment.seabed.stiffness", "must be >= 0"),
     ("negative_EA1", "line_types.chain.EA1", "must be >= 0, got -1.0e8"),

@@ -17,6 +17,7 @@ from .physics import bending, element
 from .physics.bathymetry import SeabedSurface, grid, plane
 from .physics.load_strain import StrainLaws, StrainTable, dynamic_strain_law, strain_laws
 from .physics.rigid_body import rotation_matrix
+from .physics.syrope import SyropeElements, rope_of
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -95,6 +96,10 @@ class Mesh:
         Elements of MoorDyn's viscoelastic rope (:mod:`moorline.physics.static_dynamic`):
         ``(alpha, beta, c1, c2)`` per element (n_elements, 4), NaN on other elements (their
         ``BA`` holds ``c1 c2 / (c1 + c2)``); ``None``: no such element.
+    syrope
+        Elements of MoorDyn's Syrope rope (:mod:`moorline.physics.syrope`; their ``BA`` holds
+        ``c1 c2 / (c1 + c2)``, their table and strain offset the static law at ``Tmax0``);
+        ``None``: no such element.
     bend_nodes, bend_elements, bend_stiffness
         Bending stiffness (:mod:`moorline.physics.bending`): the node triplets
         ``(i-1, i, i+1)`` of the interior nodes of lines with ``EI > 0`` (n_b, 3), their two
@@ -158,6 +163,7 @@ class Mesh:
     EAd: FloatArray | None = None
     EAd_Lm: FloatArray | None = None
     static_dynamic: FloatArray | None = None
+    syrope: SyropeElements | None = None
     bend_nodes: IntArray = field(default_factory=lambda: np.zeros((0, 3), dtype=np.int64))
     bend_elements: IntArray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
     bend_stiffness: FloatArray = field(default_factory=lambda: np.zeros(0))
@@ -266,17 +272,48 @@ def _element_properties(system: System, line_of_element: IntArray) -> dict[str, 
     out["viscoelastic"] = out["viscoelastic"] > 0.5
     types = [system.line_types[line.line_type] for line in lines]
     tables = {lt.name: StrainTable(lt.EA_table) for lt in types if lt.EA_table is not None}
-    out["strain_laws"] = strain_laws([tables.get(lt.name) for lt in types], line_of_element)
-    series = [lt.material == "static_dynamic" for lt in types]
+    per_line = [tables.get(lt.name) for lt in types]
+    syrope = _syrope_lines(lines, types, per_line, line_of_element)
+    if syrope is not None:
+        out["strain_offset"], out["syrope"] = syrope
+    out["strain_laws"] = strain_laws(per_line, line_of_element)
+    series = [lt.material in ("static_dynamic", "syrope") for lt in types]
     if any(lt.EAd is not None and not sd for lt, sd in zip(types, series, strict=True)):
         out["EAd"] = np.array([np.nan if lt.EAd is None or sd else lt.EAd
                                for lt, sd in zip(types, series, strict=True)])[line_of_element]
         out["EAd_Lm"] = np.array([lt.EAd_Lm for lt in types], dtype=float)[line_of_element]
-    if any(series):
+    if any(lt.material == "static_dynamic" for lt in types):
         out["static_dynamic"] = np.array(
-            [(lt.EAd, lt.EAd_Lm, 0.0, lt.BA_dynamic) if sd else (np.nan,) * 4
-             for lt, sd in zip(types, series, strict=True)], dtype=float)[line_of_element]
+            [(lt.EAd, lt.EAd_Lm, 0.0, lt.BA_dynamic) if lt.material == "static_dynamic"
+             else (np.nan,) * 4
+             for lt in types], dtype=float)[line_of_element]
     return out
+
+
+def _syrope_lines(lines, types, per_line, line_of_element):
+    """The Syrope lines' static laws put in ``per_line`` (the working curve of each line's
+    ``Tmax0``, :meth:`~moorline.physics.syrope.SyropeRope.relaxed_table`) and their strain
+    offsets (n_elements,) and :class:`~moorline.physics.syrope.SyropeElements` (``c1``
+    filled in by :func:`_assemble_mesh`); ``None`` without Syrope lines."""
+    if not any(lt.material == "syrope" for lt in types):
+        return None
+    ropes, offset = {}, np.zeros(len(types))
+    group, tmax = np.full(len(types), -1), np.zeros(len(types))
+    c2 = np.zeros(len(types))
+    for k, (line, lt) in enumerate(zip(lines, types, strict=True)):
+        if lt.material != "syrope":
+            continue
+        if line.syrope_ic is None:
+            raise ValueError(f"line {line.name}: a Syrope line needs its history (Tmax0, "
+                             "Tmean0), MoorDyn's SYROPE IC")
+        rope = ropes.setdefault(lt.name, rope_of(lt))
+        offset[k], table = rope.relaxed_table(line.syrope_ic[0])
+        per_line[k] = StrainTable(table)
+        group[k], tmax[k], c2[k] = list(ropes).index(lt.name), line.syrope_ic[0], lt.BA_dynamic
+    index = np.flatnonzero(group[line_of_element] >= 0)
+    on = line_of_element[index]
+    return offset[line_of_element], SyropeElements(
+        index, tuple(ropes.values()), group[on], np.zeros(len(index)), c2[on], tmax[on])
 
 
 def world_position(system: System, point) -> FloatArray:
@@ -334,6 +371,11 @@ def _assemble_mesh(system, point_names, node_position, elements, line_nodes, len
         sd[series, 2] = props["BA"][series]
         c1, c2 = sd[series, 2], sd[series, 3]
         props["BA"][series] = c1 * c2 / (c1 + c2)  # the dashpot on the strain rate
+    if props.get("syrope") is not None:  # the same two branches
+        sy = props["syrope"]
+        sy = replace(sy, c1=props["BA"][sy.index].copy())
+        props["syrope"] = sy
+        props["BA"][sy.index] = sy.c1 * sy.c2 / (sy.c1 + sy.c2)
 
     points = list(system.points.values())
     n_points = len(points)

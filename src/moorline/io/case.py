@@ -308,6 +308,8 @@ def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
                        if env.waves.kind == "components" else "")
                 fail("a stochastic analysis needs a random sea (environment.waves kind: "
                      f"random), not {env.waves.kind!r}{why}", f"analyses[{k}].kind")
+    if env.gravity == 0.0 and env.waves.kind != "none":
+        fail("waves need gravity > 0 (the dispersion relation)", "environment.gravity")
     if env.waves.kind in ("airy", "random"):
         what = "an airy wave" if env.waves.kind == "airy" else "a random sea (Hs, Tp)"
         for key in ("height", "period"):
@@ -324,14 +326,22 @@ def _cross_check(spec: CaseSpec, file: str, seabed: Seabed) -> None:
     for name, lt in spec.line_types.items():
         if lt.material == "viscoelastic" and lt.tau <= 0.0:
             fail(f"a viscoelastic material needs tau > 0, got {lt.tau:g}", f"line_types.{name}.tau")
-        if lt.material == "static_dynamic":
-            _check_static_dynamic(name, lt, fail)
+        if lt.material in ("static_dynamic", "syrope"):
+            if lt.material == "static_dynamic":
+                _check_static_dynamic(name, lt, fail)
+            else:
+                check_syrope(name, lt, spec.lines, fail)
+            what = ("mean-load dependent viscoelastic model" if lt.material == "static_dynamic"
+                    else "Syrope rope with load-history dependent working curves")
             for k, analysis in enumerate(spec.analyses or ()):
                 if analysis.kind in ("modal", "strumming", "stochastic", "harmonic"):
-                    fail(f"line type {name} is a static_dynamic rope (MoorDyn's mean-load "
-                         f"dependent viscoelastic model), modelled in statics and the time "
-                         f"domain only: no {analysis.kind} analysis (not linearized)",
-                         f"analyses[{k}].kind")
+                    fail(f"line type {name} is a {lt.material} rope (MoorDyn's {what}), "
+                         f"modelled in statics and the time domain only: no "
+                         f"{analysis.kind} analysis (not linearized)", f"analyses[{k}].kind")
+    for name, line in spec.lines.items():
+        if line.syrope_ic is not None and (line.type not in spec.line_types or
+                                           spec.line_types[line.type].material != "syrope"):
+            fail("syrope_ic is for lines of a syrope line type", f"lines.{name}.syrope_ic")
     _check_sag(spec, fail)
     depth = env.depth if env.depth is not None else math.inf
     bodies = spec.bodies or {}
@@ -499,6 +509,34 @@ def _check_sag(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
                                "their weight only (not of their inertia or drag): right for "
                                "slow motions, wrong near slack (use element: straight for "
                                "dynamics with slack phases)", name)
+def check_syrope(name: str, lt, lines: dict, fail) -> None:
+    """A ``syrope`` line type (:mod:`moorline.physics.syrope`): its curves, dynamic stiffness
+    and dampings, and each of its lines' ``syrope_ic``."""
+    from ..physics.syrope import SyropeRope
+
+    where = f"line_types.{name}"
+    if lt.owc is None:
+        fail("a syrope material needs owc (the original working curve)", f"{where}.owc")
+    if lt.EAd is None:
+        fail("a syrope material needs EAd (the dynamic stiffness at zero load)",
+             f"{where}.EAd")
+    if not isinstance(lt.BA, int | float) or lt.BA < 0 or lt.BA + lt.BA_dynamic <= 0:
+        fail("a syrope material needs BA >= 0 (no damping ratio) and BA + BA_dynamic > 0",
+             f"{where}.BA")
+    rope = SyropeRope(np.asarray(lt.owc, dtype=float), lt.working_curve, lt.wc_k1, lt.wc_k2,
+                      float(lt.EAd), float(lt.EAd_Lm))
+    problems = rope.problems()
+    if problems:
+        fail("; ".join(problems), f"{where}.owc")
+    for line_name, line in lines.items():
+        if line.type != name:
+            continue
+        if line.syrope_ic is None:
+            fail(f"a line of the syrope line type {name} needs syrope_ic: [Tmax0, Tmean0]",
+                 f"lines.{line_name}.syrope_ic")
+        problem = rope.tmax_problem(line.syrope_ic[0])
+        if problem is not None:
+            fail(problem, f"lines.{line_name}.syrope_ic")
 
 
 def _check_static_dynamic(name: str, lt, fail) -> None:
@@ -829,6 +867,7 @@ def _line(name: str, line: LineSpec) -> Line:
         clamp_a=None if line.clamp_a is None else tuple(line.clamp_a),
         clamp_b=None if line.clamp_b is None else tuple(line.clamp_b),
         element=line.element,
+        syrope_ic=None if line.syrope_ic is None else tuple(line.syrope_ic),
     )
 
 

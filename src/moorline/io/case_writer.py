@@ -110,6 +110,12 @@ def _line_type(lt: LineType) -> dict[str, Any]:
     for key in ("EI", "BA_dynamic"):
         if not data[key]:
             data.pop(key)
+    owc = data.pop("owc")
+    if owc is None:
+        for key in ("working_curve", "wc_k1", "wc_k2"):
+            data.pop(key)
+    else:
+        data["owc"] = [list(row) for row in owc]
     return data
 
 
@@ -143,7 +149,7 @@ def _line(line: Line) -> dict[str, Any]:
             "end_a": line.end_a, "end_b": line.end_b}
     if line.initial_shape is not None:
         data["initial_shape"] = [list(r) for r in line.initial_shape]
-    for key in ("clamp_a", "clamp_b"):
+    for key in ("clamp_a", "clamp_b", "syrope_ic"):
         if getattr(line, key) is not None:
             data[key] = list(getattr(line, key))
     if line.element != "straight":

@@ -10,6 +10,7 @@ from moorline.catalog import CatalogError, in_units, line_properties
 from moorline.errors import CaseError
 from moorline.model import LineType
 from moorline.physics.load_strain import StrainTable
+from moorline.physics.syrope import reference_stiffness
 
 from .strain_table import read_strain_table
 
@@ -75,6 +76,10 @@ def resolve_line_types(specs: dict[str, Any], units: str, file: str,
                             "them); without one give diameter, mass_per_length and EA",
                             file=file, field=f"{where}.nominal_diameter")
         _strain_law(values, spec, source, file, where)
+        if values["owc"] is not None:
+            values["owc"] = tuple((float(e), float(t)) for e, t in values["owc"])
+            if values["EA"] is None and len(values["owc"]) > 1:
+                values["EA"] = reference_stiffness(values["owc"])
         for key in REQUIRED:
             if values[key] is None:
                 raise CaseError(f"missing required key {key!r} (or give catalog and "

@@ -87,6 +87,7 @@ from .moordyn_friction import FRICTION_OPTIONS, deck_friction
 from .moordyn_kinematics import deck_waves, water_kinematics
 from .moordyn_outputs import deck_channels, output_channels, time_options, time_settings
 from .moordyn_rigid import RigidParts, attach_point, parse_bodies, parse_rod_types, parse_rods
+from .moordyn_syrope import apply_syrope_ic, syrope_ic_rows, syrope_line_type, write_syrope_files
 from .moordyn_visco import viscoelastic_line_type
 from .schema import check_number
 from .seafloor import read_seafloor
@@ -282,6 +283,10 @@ def read_moordyn_deck(path: str | Path,
         raise reader.fail("cannot be represented: " + "; ".join(parts.errors))
     lines, line_ids, v_lines = _parse_lines(sections["lines"], types, ids, v_points, reader,
                                             parts)
+    syrope = sections.get("syrope", _Section("syrope", "SYROPE IC", 0))
+    lines = apply_syrope_ic([(r.lineno, r.tokens) for r in syrope.rows], lines, line_ids, types,
+                            lambda why, n: reader.fail(why, lineno=n or None,
+                                                       section=syrope.title), reader.warn)
     used = {end for line in lines.values() for end in (line.end_a, line.end_b)}
     for name in parts.rod_points:
         if name not in used:
@@ -383,6 +388,7 @@ def _section_kind(title: str) -> str:
         ("LINE", "lines"), ("OPTION", "options"), ("SOLVER OPTION", "options"),
         ("OUTPUT", "outputs"),
         ("FAIL", "ignored"), ("CONTROL", "ignored"), ("EXTERNAL", "external"),
+        ("SYROPE", "syrope"),
     )
     for key, kind in checks:
         if title.startswith(key):
@@ -464,8 +470,14 @@ def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineTyp
         name, tok = row.tokens[0], row.tokens[1:]
         if name in types:
             raise reader.fail(f"line type {name!r} is defined twice", row, sec.title)
-        visco = viscoelastic_line_type(tok[2], tok[3], lambda why, n=name, r=row: reader.fail(
-            f"line type {n!r}: {why}", r, sec.title))
+        def fail(why: str, n: str = name, r: _Row = row) -> CaseError:
+            return reader.fail(f"line type {n!r}: {why}", r, sec.title)
+
+        if tok[2].upper().startswith("SYROPE:"):
+            visco = syrope_line_type(tok[2], tok[3], Path(reader.file).parent, fail,
+                                     reader.warn)
+        else:
+            visco = viscoelastic_line_type(tok[2], tok[3], fail)
         if visco is not None:  # EA_s|EA_d[|...] with BA_s[|BA_d]: numbers checked there
             tok = [*tok[:2], "1", "0", *tok[4:]]
         if not _is_number(tok[3]):
@@ -700,10 +712,10 @@ def _environment(values: Mapping[str, float], points: Mapping[str, Point],
         reader.warn(f"water depth set to {deepest:g} (the deepest point), as MoorDyn does: "
                     f"WtrDpth {'is missing' if 'WtrDpth' not in values else f'= {depth:g}'}")
         depth = deepest
-    for key in ("g", "rho"):
-        if get[key] <= 0:
-            raise reader.fail(f"option {key} must be positive, got {get[key]:g}",
-                              section="OPTIONS")
+    if get["rho"] <= 0 or get["g"] < 0:
+        key = "rho" if get["rho"] <= 0 else "g"
+        raise reader.fail(f"option {key} must be {'positive' if key == 'rho' else '>= 0'}, "
+                          f"got {get[key]:g}", section="OPTIONS")
     return Environment(depth=depth, water_density=get["rho"], gravity=get["g"],
                        seabed=Seabed(stiffness=get["kBot"], damping=get["cBot"],
                                      friction=get["FrictionCoefficient"]))
@@ -772,12 +784,12 @@ def unsupported_features(system: System) -> tuple[list[str], list[str]]:
         omissions.append("the push of the sloped or gridded seabed along its normal "
                          "(MoorDyn-C's seafloor pushes vertically)")
     for lt in system.line_types.values():
-        if lt.material not in ("elastic", "static_dynamic"):
+        if lt.material not in ("elastic", "static_dynamic", "syrope"):
             errors.append(f"line type {lt.name}: {lt.material} material")
         if lt.EA_table is not None and len(lt.EA_table) > MOORDYN_CURVE_POINTS:
             errors.append(f"line type {lt.name}: an EA table of {len(lt.EA_table)} points "
                           f"(MoorDyn-C reads at most {MOORDYN_CURVE_POINTS})")
-        if lt.EAd is not None and lt.material != "static_dynamic":
+        if lt.EAd is not None and lt.material not in ("static_dynamic", "syrope"):
             omissions.append(f"line type {lt.name}: dynamic stiffness EAd (MoorDyn's EA_s|EA_Dc|"
                              "EA_D_Lm is another, viscoelastic, model)")
         if lt.displaced_area is not None and not math.isclose(
@@ -830,6 +842,9 @@ def _line_type_rows(system: System, path: Path) -> list[str]:
             cells[2] = _write_ea_table(lt, path.with_name(f"{path.stem}_{lt.name}_EA.dat"))
         if lt.material == "static_dynamic":  # MoorDyn's EA_s|EA_Dc|EA_D_Lm and BA_s|BA_d
             cells[2] = "|".join(_fmt(v) for v in (lt.EA, lt.EAd, lt.EAd_Lm))
+            cells[3] = "|".join(_fmt(v) for v in (lt.BA, lt.BA_dynamic))
+        if lt.material == "syrope":  # SYROPE:settings|EA_Dc|EA_D_Lm and BA_s|BA_d
+            cells[2] = write_syrope_files(lt, path)
             cells[3] = "|".join(_fmt(v) for v in (lt.BA, lt.BA_dynamic))
         rows.append(f"{lt.name:<10s} " + " ".join(cells))
     return rows
@@ -953,6 +968,8 @@ def write_moordyn(system: System, path: str | Path, dt: float, *, tmax_ic: float
         "(#)  (-)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)", *_point_rows(system),
         _rule("LINES"), "ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs",
         "(#)  (name)  (#)  (#)  (m)  (-)  (-)", *_line_rows(system),
+        *([_rule("SYROPE IC"), "Line(s)  Tmax0  Tmean0", "(-)  (N)  (N)", *ic]
+          if (ic := syrope_ic_rows(system)) else []),
         _rule("OPTIONS"), *_option_rows(system, dt, settings),
         _rule("OUTPUTS"), *deck_channels(system), *(["END"] if system.output.channels else []),
         _rule("need this line"),

@@ -1,6 +1,7 @@
 """MoorDyn line types with a viscoelastic ``EA``: ``EA_s|EA_d`` or ``EA_s|EA_Dc|EA_D_Lm`` with
 ``BA_s[|BA_d]`` (MoorDyn-C v2.7.1 ``source/MoorDyn2.cpp`` ``readLineProps``; ``docs/inputs.rst``,
-"Line Types"), and the Syrope model's ``SYROPE:file|EA_Dc|EA_D_Lm`` (refused).
+"Line Types"); the Syrope model's ``SYROPE:file|EA_Dc|EA_D_Lm`` is
+:mod:`moorline.io.moordyn_syrope`.
 
 * ``EA_s|EA_d`` (constant dynamic stiffness) is a standard linear solid plus a dashpot
   (:func:`moorline.physics.static_dynamic.sls_parameters`): ``material: viscoelastic`` with
@@ -19,14 +20,6 @@ from typing import Any
 
 from ..physics.static_dynamic import sls_parameters
 
-SYROPE_MISSING = (
-    "the Syrope model (Falkenberg et al. 2017/2018; MoorDyn-C v2.7 ELASTIC_SYROPE) is not "
-    "supported: it needs the original working curve table, the working curve family "
-    "(linear, quadratic, exp) rebuilt whenever the static branch's force exceeds its running "
-    "maximum Tmax, and the SYROPE IC section's Tmax/Tmean per line; moorline has the "
-    "static-dynamic viscoelastic rope (EA_s|EA_Dc|EA_D_Lm) but no load-history dependent "
-    "working curves")
-
 
 def viscoelastic_line_type(ea: str, ba: str, fail: Callable[[str], Exception]
                            ) -> dict[str, Any] | None:
@@ -40,8 +33,6 @@ def viscoelastic_line_type(ea: str, ba: str, fail: Callable[[str], Exception]
     fail
         Builds the error to raise from a reason (the reader's, naming file, line and section).
     """
-    if ea.upper().startswith("SYROPE:"):
-        raise fail(f"EA {ea!r}: {SYROPE_MISSING}")
     if "|" not in ea:
         if "|" in ba:
             raise fail(f"BA/-zeta {ba!r} has more |-separated values than EA {ea!r} "

@@ -172,6 +172,15 @@ def _three(values: list[float]) -> tuple[float, float, float]:
     return (values[0], values[1], values[2])
 
 
+def _two(values: list[float]) -> list[float]:
+    if len(values) != 2:
+        raise _fail(f"must be 2 numbers, got {len(values)}")
+    problem = next((p for p in map(check_number, values) if p), None)
+    if problem is not None:
+        raise _fail(problem)
+    return [float(values[0]), float(values[1])]
+
+
 PositiveInt = Annotated[int, PlainValidator(_positive_int)]
 Iterations = Annotated[int, PlainValidator(lambda v: _positive_int(v, MAX_ITERATIONS))]
 Length = quantity("length")
@@ -299,7 +308,7 @@ class EnvironmentSpec(_Spec):
 
     depth: quantity("length", gt=0.0, allow_inf=True) | None = None
     water_density: quantity("mass/length^3", gt=0.0) | None = None
-    gravity: quantity("acceleration", gt=0.0) | None = None
+    gravity: quantity("acceleration", ge=0.0) | None = None
     seabed: SeabedSpec = Field(default_factory=SeabedSpec)
     current: CurrentSpec = Field(default_factory=CurrentSpec)
     waves: WavesSpec = Field(default_factory=WavesSpec)
@@ -321,7 +330,11 @@ class LineTypeSpec(_Spec):
     viscoelastic rope (:mod:`moorline.physics.static_dynamic`): ``EA`` static, ``EAd`` +
     ``EAd_Lm`` the dynamic branch's stiffness, ``BA`` and ``BA_dynamic`` the two dampings.
     ``EI`` is the bending stiffness [force*length^2] (:mod:`moorline.physics.bending`; line
-    ends pinned), 0 for a cable.
+    ends pinned), 0 for a cable. ``material: syrope`` is MoorDyn's Syrope polyester rope
+    (:mod:`moorline.physics.syrope`): ``owc`` the original working curve (``[[strain,
+    tension], ...]``, tension in the case's force unit), ``working_curve`` (``linear``,
+    ``quadratic``, ``exp``) with ``wc_k1``, ``wc_k2``, ``EAd`` + ``EAd_Lm`` the dynamic
+    stiffness, ``BA`` and ``BA_dynamic`` the two dampings; its lines need ``syrope_ic``.
     """
 
     catalog: str | None = None
@@ -339,7 +352,7 @@ class LineTypeSpec(_Spec):
     Ca: Coefficient = 1.0
     Ct: Coefficient = 0.008
     Cat: Coefficient = 0.0
-    material: Literal["elastic", "viscoelastic", "static_dynamic"] = "elastic"
+    material: Literal["elastic", "viscoelastic", "static_dynamic", "syrope"] = "elastic"
     EA1: quantity("force", ge=0.0) = 0.0
     tau: quantity("time", ge=0.0) = 0.0
     slack_stiffness_ratio: quantity("dimensionless", gt=0.0, le=1.0) = 1.0e-6
@@ -347,6 +360,10 @@ class LineTypeSpec(_Spec):
     BA: Annotated[float, PlainValidator(_internal_damping)] = 0.0
     EI: quantity("force*length^2", ge=0.0) = 0.0
     BA_dynamic: quantity("force*time", ge=0.0) = 0.0
+    owc: list[Annotated[list[float], AfterValidator(_two)]] | None = None
+    working_curve: Literal["linear", "quadratic", "exp"] = "linear"
+    wc_k1: float = 0.0
+    wc_k2: float = 0.0
 
 
 class MotionSpec(_Spec):
@@ -535,7 +552,8 @@ class LineSpec(_Spec):
     (line type with ``EI > 0``, a fixed or prescribed point), the direction its tangent is
     held along (from end A towards end B); omitted: pinned. ``element``: ``straight`` (default)
     or ``sag_corrected`` (the chord shortened by the element's sag,
-    :mod:`moorline.physics.sag`)."""
+    :mod:`moorline.physics.sag`). ``syrope_ic``: ``[Tmax0, Tmean0]`` [force] of a line of a
+    ``syrope`` line type (MoorDyn's ``SYROPE IC``)."""
 
     type: str
     length: quantity("length", gt=0.0)
@@ -546,6 +564,7 @@ class LineSpec(_Spec):
     clamp_a: Annotated[list[float], AfterValidator(_three)] | None = None
     clamp_b: Annotated[list[float], AfterValidator(_three)] | None = None
     element: Literal["straight", "sag_corrected"] = "straight"
+    syrope_ic: Annotated[list[float], AfterValidator(_two)] | None = None
 
 
 class StaticsSpec(_Spec):

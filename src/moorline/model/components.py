@@ -8,7 +8,7 @@ from typing import Literal
 
 Vector3 = tuple[float, float, float]
 PointKind = Literal["fixed", "free", "prescribed", "body"]
-MaterialKind = Literal["elastic", "viscoelastic", "static_dynamic"]
+MaterialKind = Literal["elastic", "viscoelastic", "static_dynamic", "syrope"]
 
 
 @dataclass(frozen=True)
@@ -34,7 +34,11 @@ class LineType:
         ``static_dynamic`` (MoorDyn's viscoelastic rope with a mean-load dependent dynamic
         stiffness, :mod:`moorline.physics.static_dynamic`: static stiffness ``EA``, dynamic
         stiffness ``EAd + EAd_Lm s``, static-branch damping ``BA`` and dynamic-branch damping
-        ``BA_dynamic``).
+        ``BA_dynamic``) or ``syrope`` (MoorDyn's Syrope polyester rope with load-history
+        dependent working curves, :mod:`moorline.physics.syrope`: ``owc``, ``working_curve``,
+        ``wc_k1``, ``wc_k2``, dynamic stiffness ``EAd + EAd_Lm T``, dampings ``BA`` and
+        ``BA_dynamic`` as ``static_dynamic``; ``EA`` is a reference stiffness, the OWC's
+        largest tangent).
     EA1
         Viscoelastic: extra instantaneous stiffness K1*A [force]; instantaneous is EA + EA1.
     tau
@@ -66,6 +70,11 @@ class LineType:
     EI
         Bending stiffness [force*length^2] (0: a cable without bending stiffness;
         :mod:`moorline.physics.bending`, pinned line ends).
+    owc
+        ``syrope`` material: the original working curve, ``(strain, tension)`` rows [-, force].
+    working_curve, wc_k1, wc_k2
+        ``syrope`` material: the working-curve formula (``linear``, ``quadratic``, ``exp``)
+        and its two parameters (MoorDyn's ``WCType``, ``k1``, ``k2``).
     """
 
     name: str
@@ -92,6 +101,10 @@ class LineType:
     EAd_Lm: float = 0.0
     EI: float = 0.0
     BA_dynamic: float = 0.0
+    owc: tuple[tuple[float, float], ...] | None = None
+    working_curve: str = "linear"
+    wc_k1: float = 0.0
+    wc_k2: float = 0.0
 
     @property
     def area_displaced(self) -> float:
@@ -210,6 +223,10 @@ class Line:
         ``straight``: the chord carries the stretched length (the classical element);
         ``sag_corrected``: the chord is shortened by the element's own sag
         (:mod:`moorline.physics.sag`).
+    syrope_ic
+        Lines of a ``syrope`` line type: ``(Tmax0, Tmean0)`` [force], the highest mean tension
+        the rope has seen and its mean tension (MoorDyn's ``SYROPE IC``; statics use the
+        working curve of ``Tmax0``, :mod:`moorline.physics.syrope`).
     """
 
     name: str
@@ -222,3 +239,4 @@ class Line:
     clamp_a: Vector3 | None = None
     clamp_b: Vector3 | None = None
     element: Literal["straight", "sag_corrected"] = "straight"
+    syrope_ic: tuple[float, float] | None = None

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..physics import element, hydro, material, sag, seabed, static_dynamic
+from ..physics import element, hydro, material, sag, seabed, static_dynamic, syrope
 from .equilibrium import StaticModel, bending_loads
 
 FloatArray = NDArray[np.float64]
@@ -34,12 +34,15 @@ class MaterialState:
 
     ``strain`` is each element's strain and ``maxwell`` its internal force variable: the force
     in the Maxwell branch of the standard linear solid, the static branch's spring force ``s``
-    of the static-dynamic rope (:mod:`moorline.physics.static_dynamic`), zero for elastic
-    elements.
+    of the static-dynamic rope (:mod:`moorline.physics.static_dynamic`), the slow strain ``z``
+    of the Syrope rope (:mod:`moorline.physics.syrope`), zero for elastic elements. ``peak``:
+    the Syrope elements' running maximum mean tension [force] (NaN on other elements;
+    ``None`` without Syrope elements).
     """
 
     strain: FloatArray
     maxwell: FloatArray
+    peak: FloatArray | None = None
 
 
 @dataclass(frozen=True)
@@ -115,11 +118,14 @@ class DynamicModel:
                                     or np.any(m.node_Ca * m.node_volume > 0))
         self.series = (None if m.static_dynamic is None
                        else np.flatnonzero(np.isfinite(m.static_dynamic[:, 0])))
-        self.any_viscoelastic = bool(np.any(m.viscoelastic)) or self.series is not None
+        self.any_viscoelastic = (bool(np.any(m.viscoelastic)) or self.series is not None
+                                 or m.syrope is not None)
         if self.sag is not None and (np.any(m.viscoelastic & m.sag_corrected) or (
-                self.series is not None and np.any(m.sag_corrected[self.series]))):
+                self.series is not None and np.any(m.sag_corrected[self.series])) or (
+                m.syrope is not None and np.any(m.sag_corrected[m.syrope.index]))):
             raise ValueError("sag-corrected elements (element: sag_corrected) must be elastic: "
-                             "a viscoelastic or static_dynamic line type has straight elements")
+                             "a viscoelastic, static_dynamic or syrope line type has straight "
+                             "elements")
         self.viscoelastic_update = viscoelastic_update
         self.seabed_ramp = static.seabed_ramp
         self.surface = m.seabed_surface
@@ -146,13 +152,22 @@ class DynamicModel:
 
     def initial_material(self, x: FloatArray) -> MaterialState:
         """Material state in equilibrium at positions ``x`` (relaxed Maxwell branch; a relaxed
-        static-dynamic rope's static branch carries the static tension ``EA eps``)."""
+        static-dynamic rope's static branch carries the static tension ``EA eps``; a Syrope
+        rope at rest on its working curve, :meth:`~moorline.physics.syrope.SyropeRope.\
+relaxed_state`)."""
         length, _ = element.element_geometry(x, self.mesh.elements)
         strain = length / self.mesh.length0 - 1.0
         internal = np.zeros_like(strain)
         if self.series is not None:
             internal[self.series] = self.mesh.EA[self.series] * strain[self.series]
-        return MaterialState(strain, internal)
+        sy, peak = self.mesh.syrope, None
+        if sy is not None:
+            peak = np.full_like(strain, np.nan)
+            for g, rope in enumerate(sy.ropes):
+                on = sy.group == g
+                k = sy.index[on]
+                internal[k], peak[k] = rope.relaxed_state(strain[k], sy.Tmax0[on])
+        return MaterialState(strain, internal, peak)
 
     def evaluate(self, x: FloatArray, v: FloatArray, a: FloatArray, t: float,
                  previous: MaterialState, dt: float, tangent: bool,
@@ -165,9 +180,10 @@ class DynamicModel:
         :mod:`moorline.solvers.harmonic_material`): their tension is then the linear law
         ``EA eps + Q`` and its tangent ``EA`` (``Q``'s own dependence on the strain history
         is the caller's)."""
-        if maxwell is not None and self.series is not None:
-            raise ValueError("the static-dynamic rope (MoorDyn's mean-load dependent "
-                             "viscoelastic model) is time-domain only: no harmonic balance")
+        if maxwell is not None and (self.series is not None or self.mesh.syrope is not None):
+            raise ValueError("the static-dynamic and Syrope ropes (MoorDyn's mean-load "
+                             "dependent viscoelastic models) are time-domain only: no harmonic "
+                             "balance")
         m = self.mesh
         el = m.elements
         if self._fused is not None:  # compiled element loads, elastic elements only
@@ -184,8 +200,8 @@ class DynamicModel:
                 nodal += point_forces
             nodal, el_forces, out = self._bending(x, nodal, r.element_forces, out, tangent)
             nodal, inertial, out = self._nodes(x, v, a, t, nodal, inertial, out, tangent)
-            return Evaluation(nodal, inertial, r.tension, MaterialState(r.strain,
-                              previous.maxwell), el_forces, **out)
+            return Evaluation(nodal, inertial, r.tension, MaterialState(
+                r.strain, previous.maxwell, previous.peak), el_forces, **out)
         length, unit = element.element_geometry(x, el)
         dv = v[el[:, 1]] - v[el[:, 0]]
         T, dT_dl, state, share, sag_law = self._axial_tension(x, length, unit, dv, previous, dt,
@@ -256,6 +272,16 @@ class DynamicModel:
             T[k], maxwell[k], dT_deps[k] = static_dynamic.static_dynamic_update(
                 strain[k], previous.strain[k], previous.maxwell[k], dt, m.EA[k], sd[:, 0],
                 sd[:, 1], sd[:, 2], sd[:, 3], m.slack_ratio[k])
+        peak = previous.peak
+        if m.syrope is not None and given is None:
+            peak = previous.peak.copy()
+            sy = m.syrope
+            for g, rope in enumerate(sy.ropes):
+                on = sy.group == g
+                k = sy.index[on]
+                T[k], maxwell[k], peak[k], dT_deps[k] = syrope.syrope_update(
+                    strain[k], previous.strain[k], previous.maxwell[k], previous.peak[k], dt,
+                    rope, sy.c1[on], sy.c2[on], m.slack_ratio[k] * m.EA[k])
         if self.slack_damping:
             share, dshare = np.ones_like(length), np.zeros_like(length)
         else:
@@ -264,7 +290,7 @@ class DynamicModel:
         strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0
         T = T + m.BA * share * strain_rate
         dT_deps = dT_deps + m.BA * dshare * strain_rate
-        return T, dT_deps / m.length0, MaterialState(strain, maxwell), share, sag_law
+        return T, dT_deps / m.length0, MaterialState(strain, maxwell, peak), share, sag_law
 
     def _viscoelastic(self, strain, strain_old, maxwell_old, dt, EA, EA1, tau, slack_ratio):
         """Standard linear solid update: exact exponential integration of the Maxwell branch

@@ -220,7 +220,8 @@ def _initial_state(model: DynamicModel, excitation: Excitation, x0: FloatArray,
     a[~mesh.free_nodes] = a_c
     material = model.initial_material(x)
     if maxwell is not None:
-        material = MaterialState(material.strain, np.asarray(maxwell, dtype=float).copy())
+        material = MaterialState(material.strain, np.asarray(maxwell, dtype=float).copy(),
+                                 material.peak)
     forces = excitation.point_forces(0.0, mesh.n_nodes)
     ev = model.evaluate(x, v, a, 0.0, material, dt, False, forces)
     bodies = with_pins(mesh.bodies, _static_poses(initial), 0.0) if mesh.body_names else None

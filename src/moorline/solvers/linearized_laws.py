@@ -1,9 +1,9 @@
 """Which laws the linearized analyses (modal, strumming, stochastic, harmonic balance) can
 take: the ``static_dynamic`` rope (:mod:`moorline.physics.static_dynamic`, MoorDyn's mean-load
-dependent viscoelastic model) and the sag-corrected element (:mod:`moorline.physics.sag`) are
-modelled in statics and the time domain only. A case file refuses such an analysis at load;
-this guard refuses the same call made through the Python API, instead of silently linearizing
-with another law."""
+dependent viscoelastic model), the ``syrope`` rope (:mod:`moorline.physics.syrope`) and the
+sag-corrected element (:mod:`moorline.physics.sag`) are modelled in statics and the time
+domain only. A case file refuses such an analysis at load; this guard refuses the same call
+made through the Python API, instead of silently linearizing with another law."""
 
 from __future__ import annotations
 
@@ -12,15 +12,17 @@ from ..model import System
 
 
 def refuse_unlinearized(system: System, analysis: str) -> None:
-    """Raise a :class:`~moorline.errors.CaseError` naming the ``static_dynamic`` line types
-    or the sag-corrected lines of ``system`` for an ``analysis`` that would linearize
-    them."""
-    names = [n for n, lt in system.line_types.items() if lt.material == "static_dynamic"]
-    if names:
-        raise CaseError(f"line type {', '.join(names)} is a static_dynamic rope (MoorDyn's "
-                        "mean-load dependent viscoelastic model), modelled in statics and the "
-                        f"time domain only: no {analysis} analysis (not linearized)",
-                        field=f"line_types.{names[0]}.material")
+    """Raise a :class:`~moorline.errors.CaseError` naming the ``static_dynamic`` or ``syrope``
+    line types or the sag-corrected lines of ``system`` for an ``analysis`` that would
+    linearize them."""
+    for kind, what in (("static_dynamic", "mean-load dependent viscoelastic model"),
+                       ("syrope", "Syrope rope with load-history dependent working curves")):
+        names = [n for n, lt in system.line_types.items() if lt.material == kind]
+        if names:
+            raise CaseError(f"line type {', '.join(names)} is a {kind} rope (MoorDyn's {what}), "
+                            "modelled in statics and the time domain only: no "
+                            f"{analysis} analysis (not linearized)",
+                            field=f"line_types.{names[0]}.material")
     sagging = [n for n, line in system.lines.items() if line.element == "sag_corrected"]
     if sagging:
         raise CaseError(sag_refusal(", ".join(sagging), analysis),
