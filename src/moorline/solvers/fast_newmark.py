@@ -17,6 +17,7 @@ stepper.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -351,7 +352,9 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
 
 class FastStepper:
     """The compiled backend of :class:`~moorline.solvers.newmark.Stepper`: the same step
-    (see :func:`fast_path_reason` for when it applies), run by :func:`newmark_step`."""
+    (see :func:`fast_path_reason` for when it applies), run by :func:`newmark_step` inside
+    the compiled loop :func:`moorline.solvers.fast_loop.advance_block`: :meth:`step` is a
+    block of one sub-step, :meth:`run_block` many steps."""
 
     def __init__(self, model, coefficients, policy) -> None:
         mesh = model.mesh
@@ -362,34 +365,47 @@ class FastStepper:
         self.free = mesh.free_nodes
         n_dof = int(self.free.sum()) * 3
         self.lu = np.zeros((n_dof, 2 * self.bw + 1))
-        self.lu_h, self.lu_age, self.lu_valid = np.nan, 0, False
+        self.tan = np.zeros(3)  # factorization valid, its step size, its age [steps]
         self.buf = make_buffers(mesh.n_elements, mesh.n_nodes)
-        self.rvec = np.zeros(n_dof)
-        self.trial = np.zeros((mesh.n_nodes, 3))
         self.counts = np.zeros(3, dtype=np.int64)
-        self.fused = model._fused
-        self.seabed_on = bool(np.isfinite(mesh.seabed_z))
-        self.mu, self.v_slip = (model.friction[0], model.friction[2]) if model.friction \
-            else (0.0, 1.0)
-        self.dof = mesh.dof_of_node
+        self.fixed = np.flatnonzero(~self.free)
+        n_el, n_nodes = mesh.n_elements, mesh.n_nodes
+        self.work = (self.lu, self.buf, np.zeros(n_dof), np.zeros((n_nodes, 3)),
+                     np.zeros((n_nodes, 3)), np.zeros((n_el, 3)), np.zeros((n_el, 3)))
+        f = model._fused
+        mu, v_slip = (model.friction[0], model.friction[2]) if model.friction else (0.0, 1.0)
+        self.model_args = (
+            self.free, self.band, self.bw, mesh.elements, f.props, f.laws, f.with_drag,
+            f.with_added_mass, model.node_mass, model.external,
+            bool(np.isfinite(mesh.seabed_z)), float(mesh.seabed_z), model.k_seabed,
+            model.c_seabed, model.seabed_ramp, float(mu), float(v_slip), float(coefficients.beta),
+            float(coefficients.gamma))
+        pol = policy
+        self.newton_args = (float(pol.tolerance), int(pol.max_iterations),
+                            np.inf if pol.refresh_ratio is None else float(pol.refresh_ratio),
+                            float(pol.stall_ratio), int(pol.stall_limit),
+                            int(pol.max_halvings), float(pol.stiffness_update))
         from ..waves import StillWater
 
-        zeros = np.zeros((mesh.n_elements, 3))
-        self._still = (zeros, zeros) if isinstance(model.fluid, StillWater) else None
-        self._no_forces = np.zeros((mesh.n_nodes, 3))
+        fluid = model.fluid
+        self.current = np.zeros(3)
+        self.current_ramp = 0.0
+        self.current_on = not isinstance(fluid, StillWater)
+        if self.current_on:  # a uniform current (fast_path_reason)
+            self.current = np.ascontiguousarray(fluid.velocity(np.zeros(1))[0], dtype=float)
+            self.current_ramp = float(fluid.ramp_time)
 
     def forget_tangent(self) -> None:
         """Drop the factorization (after a step cut)."""
-        self.lu_valid = False
+        self.tan[0] = 0.0
 
     def tangent_state(self) -> tuple:
         """The banded factors and their age (see :meth:`Stepper.tangent_state`)."""
-        return self.lu.copy(), self.lu_h, self.lu_age, self.lu_valid
+        return self.lu.copy(), self.tan.copy()
 
     def set_tangent_state(self, saved: tuple) -> None:
         """Restore what :meth:`tangent_state` returned."""
-        lu, self.lu_h, self.lu_age, self.lu_valid = saved
-        self.lu[...] = lu
+        self.lu[...], self.tan[...] = saved
 
     @property
     def counters(self) -> dict:
@@ -397,51 +413,79 @@ class FastStepper:
         it, res, fac = (int(v) for v in self.counts)
         return {"iterations": it, "residuals": res, "tangents": fac, "factorizations": fac}
 
-    def _fluid(self, t: float, x: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """Fluid velocity and acceleration at the element midpoints (cached zeros in still
-        water)."""
-        if self._still is not None:
-            return self._still
-        el = self.model.mesh.elements
-        mid = 0.5 * (x[el[:, 0]] + x[el[:, 1]])
-        u, a, _ = self.model.fluid.kinematics(mid, t)
-        return np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(a, dtype=float)
+    def _ramps(self, times: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """The current's ramp factor and its rate at ``times`` (zeros in still water)."""
+        if not self.current_on:
+            return np.zeros(len(times)), np.zeros(len(times))
+        from ..waves.airy import ramp_factor
 
-    def step(self, s0, h: float, constrained, point_forces):
-        """Advance from ``s0`` by ``h`` (see :meth:`Stepper.step`)."""
-        from .dynamic_model import Evaluation, MaterialState
-        from .newmark import StepState
+        both = np.array([ramp_factor(float(t), self.current_ramp) for t in times],
+                        dtype=float).reshape(-1, 2)
+        return both[:, 0].copy(), both[:, 1].copy()
+
+    def run_block(self, s0, times: FloatArray, hs: FloatArray, per_step: int,
+                  record: NDArray[np.bool_], kinematics: tuple, forces: tuple,
+                  end_elements: IntArray, end_sides: IntArray) -> Block:
+        """Advance from ``s0`` by the sub-steps ``hs`` (ending at ``times``), ``per_step``
+        to a full step, with the fixed and prescribed nodes' kinematics
+        ``(x, v, a)`` (n_sub, n_fixed, 3) and the point forces ``(nodes, values)``
+        (values (n_sub, n_forces, 3)) at those times; records after the full steps flagged
+        in ``record`` (:func:`moorline.solvers.fast_loop.advance_block`)."""
+        from .fast_loop import advance_block
 
         mesh = self.model.mesh
-        x1 = np.empty_like(s0.x)
-        v1 = np.empty_like(s0.v)
-        a1 = np.empty_like(s0.a)
-        fixed = ~self.free
-        x1[fixed], v1[fixed], a1[fixed] = constrained
-        uf, af = self._fluid(s0.t + h, s0.x)
-        forces = point_forces if point_forces is not None else self._no_forces
-        pol = self.policy
-        refresh = (not self.lu_valid) or self.lu_h != h or self.lu_age >= pol.stiffness_update
-        f = self.fused
-        m = self.model
-        ok, norm, refactored = newmark_step(
-            s0.x, s0.v, s0.a, x1, v1, a1, self.free, self.band, self.bw, mesh.elements,
-            f.props, f.laws, f.with_drag, f.with_added_mass, m.node_mass, m.external, forces,
-            uf, af,
-            self.seabed_on, float(mesh.seabed_z), m.k_seabed, m.c_seabed, m.seabed_ramp,
-            self.mu, self.v_slip, h, self.c.beta, self.c.gamma, pol.tolerance,
-            pol.max_iterations, refresh, self.lu, self.buf, self.rvec, self.trial, self.counts,
-            np.inf if pol.refresh_ratio is None else pol.refresh_ratio, pol.stall_ratio,
-            pol.stall_limit, pol.max_halvings)
-        if refactored:
-            self.lu_valid, self.lu_h, self.lu_age = True, h, 0
-        if not ok:
-            self.lu_valid = False
-            return s0, False, float(norm)
-        self.lu_age += 1
-        el_forces, tension, strain = self.buf[0].copy(), self.buf[3].copy(), self.buf[4].copy()
-        nodal = self.buf[11] + m.node_mass[:, None] * a1  # F without structural inertia
-        ev = Evaluation(nodal, self.buf[10].copy(), tension,
-                        MaterialState(strain, s0.material.maxwell), el_forces)
-        return StepState(s0.t + h, x1, v1, a1, ev.material, ev), True, float(norm)
+        x0, v0, a0 = s0.x.copy(), s0.v.copy(), s0.a.copy()
+        x1, v1, a1 = np.empty_like(x0), np.empty_like(x0), np.empty_like(x0)
+        n_el, n_nodes = mesh.n_elements, mesh.n_nodes
+        saved = (np.empty((n_el, 2, 3)), np.empty(n_el), np.empty(n_el),
+                 np.empty((n_nodes, 3)), np.empty((n_nodes, 3)))
+        n_rec = int(np.count_nonzero(record))
+        out = (np.empty((n_rec, n_nodes, 3)), np.empty((n_rec, n_nodes, 3)),
+               np.empty((n_rec, n_el)), np.empty((n_rec, len(end_elements), 3)),
+               end_elements, end_sides)
+        ramp_r, ramp_dr = self._ramps(times)
+        done, stopped, norm, n_written = advance_block(
+            x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
+            ramp_r, ramp_dr, self.current_on, self.current, self.model_args, self.newton_args,
+            self.tan, self.counts, self.work, saved, out)
+        n_sub = done * per_step + max(stopped, 0)
+        state = s0
+        if n_sub:
+            from .dynamic_model import Evaluation, MaterialState
+            from .newmark import StepState
 
+            el_forces, tension, strain, f_am, resid = saved
+            nodal = resid + self.model.node_mass[:, None] * a0  # F without structural inertia
+            ev = Evaluation(nodal, f_am, tension, MaterialState(strain, s0.material.maxwell),
+                            el_forces)
+            state = StepState(float(times[n_sub - 1]), x0, v0, a0, ev.material, ev)
+        return Block(state, int(done), int(stopped), float(norm), out[0][:n_written],
+                     out[1][:n_written], out[2][:n_written], out[3][:n_written])
+
+    def step(self, s0, h: float, constrained, point_forces):
+        """Advance from ``s0`` by ``h`` (see :meth:`Stepper.step`): a block of one step."""
+        empty = np.zeros(0, dtype=np.int64)
+        forces = (empty, np.zeros((1, 0, 3))) if point_forces is None else \
+            (np.arange(len(point_forces), dtype=np.int64), np.asarray(point_forces)[None])
+        block = self.run_block(s0, np.array([s0.t + h]), np.array([h]), 1,
+                               np.zeros(1, dtype=np.bool_),
+                               tuple(np.asarray(q, dtype=float)[None] for q in constrained),
+                               forces, empty, empty)
+        return block.state, block.steps == 1, block.norm
+
+
+@dataclass
+class Block:
+    """What :meth:`FastStepper.run_block` did: the state after the last converged sub-step,
+    the full steps done, the sub-step of the next step where it stopped (-1: none) and its
+    residual max-norm, and the records (positions, velocities, tensions, the element forces
+    at the line ends)."""
+
+    state: object
+    steps: int
+    stopped: int
+    norm: float
+    positions: FloatArray
+    velocities: FloatArray
+    tensions: FloatArray
+    end_forces: FloatArray

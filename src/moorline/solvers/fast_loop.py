@@ -1,0 +1,131 @@
+"""The compiled time loop: many steps of the compiled Newmark step
+(:func:`moorline.solvers.fast_newmark.newmark_step`) in one numba call.
+
+:func:`advance_block` advances a block of full steps, each of ``per_step`` sub-steps (the
+sub-stepping level of :func:`moorline.solvers.dynamics.simulate`), with everything that
+depends on time alone computed before the call, vectorized, and passed as arrays (the
+prescribed nodes' kinematics, the point force histories, the current's ramp at every
+sub-step). It keeps the modified-Newton bookkeeping of
+:class:`~moorline.solvers.fast_newmark.FastStepper` (refresh when the factorization is
+missing, was made for another step size or is ``stiffness_update`` steps old) and writes the
+output records of the steps flagged in ``record`` into preallocated buffers. A sub-step that
+does not converge (or ends with a non-finite residual) stops the loop with the state after the
+last converged sub-step: Python cuts that sub-step (:func:`moorline.solvers.dynamics._advance`)
+and resumes. A single step of :class:`FastStepper` is a block of one sub-step, so the Python
+path and the compiled loop run the same code.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+
+from .fast_newmark import _JIT, newmark_step
+
+
+@numba.njit(**_JIT)
+def _current(x, elements, r, dr, current, uf, af):
+    """A uniform current ``current[:3]`` ramped by ``r`` (acceleration ``dr`` times it) at
+    the element midpoints, zero above the still water level (as
+    :meth:`moorline.waves.CurrentProfile.kinematics`)."""
+    for e in range(elements.shape[0]):
+        z = 0.5 * (x[elements[e, 0], 2] + x[elements[e, 1], 2])
+        dry = z > 0.0
+        for c in range(3):
+            uf[e, c] = 0.0 if dry else r * current[c]
+            af[e, c] = 0.0 if dry else dr * current[c]
+
+
+@numba.njit(**_JIT)
+def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, ramp_r,
+              ramp_dr, current_on, current, model, newton, tan, counters, work):
+    """Sub-step ``j`` of the block from (x0, v0, a0) into (x1, v1, a1); returns
+    (converged, residual max-norm)."""
+    (free, band, bw, elements, props, laws, with_drag, with_added_mass, node_mass, external,
+     seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, beta, gamma) = model
+    (tol, max_iter, refresh_ratio, stall_ratio, stall_limit, max_halvings,
+     stiffness_update) = newton
+    lu, buf, rvec, trial, pforce, uf, af = work
+    for q in range(fixed.shape[0]):
+        n = fixed[q]
+        for c in range(3):
+            x1[n, c] = xc[j, q, c]
+            v1[n, c] = vc[j, q, c]
+            a1[n, c] = ac[j, q, c]
+    pforce[:, :] = 0.0
+    for q in range(fnodes.shape[0]):
+        for c in range(3):
+            pforce[fnodes[q], c] += fvals[j, q, c]
+    if current_on:
+        _current(x0, elements, ramp_r[j], ramp_dr[j], current, uf, af)
+    h = hs[j]
+    refresh = tan[0] == 0.0 or tan[1] != h or tan[2] >= stiffness_update
+    ok, norm, refactored = newmark_step(
+        x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
+        with_added_mass, node_mass, external, pforce, uf, af, seabed_on, seabed_z, k_sb, c_sb,
+        ramp, mu, v_slip, h, beta, gamma, tol, max_iter, refresh, lu, buf, rvec, trial,
+        counters, refresh_ratio, stall_ratio, stall_limit, max_halvings)
+    if refactored:
+        tan[0], tan[1], tan[2] = 1.0, h, 0.0
+    if not ok:
+        tan[0] = 0.0
+        return False, norm
+    tan[2] += 1.0
+    return True, norm
+
+
+@numba.njit(**_JIT)
+def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixed, fnodes,
+                  fvals, ramp_r, ramp_dr, current_on, current, model, newton, tan, counters,
+                  work, saved, out):
+    """Advance ``len(hs) // per_step`` full steps of ``per_step`` sub-steps of sizes ``hs``.
+
+    On entry ``(x0, v0, a0)`` is the state; on return the state after the last converged
+    sub-step, with its element forces, tensions, strains, added-mass forces and residual in
+    ``saved``. Per sub-step ``j``: the fixed and prescribed nodes ``fixed`` take
+    ``xc[j], vc[j], ac[j]`` (n_fixed, 3), the nodes ``fnodes`` the point forces ``fvals[j]``
+    and, with ``current_on``, the current ``current`` is ramped by ``ramp_r[j]``,
+    ``ramp_dr[j]``. After full step ``k`` with ``record[k]``, the state goes into the next
+    record of ``out = (positions, velocities, tensions, end_forces, end_elements,
+    end_sides)``: the end forces are the element forces ``[end_elements[i], end_sides[i]]``.
+    ``tan`` = (factorization valid, its step size, its age in steps).
+
+    Returns
+    -------
+    (full steps done, sub-step index in the next step where it stopped, residual max-norm
+    there (of the last sub-step when complete), records written): the loop stops at the
+    first sub-step that does not converge (index -1 when the block is complete).
+    """
+    el_forces, tension, strain, f_am, resid = saved
+    pos, vel, ten, ends, end_el, end_side = out
+    buf = work[1]
+    n_steps = hs.shape[0] // per_step
+    j = 0
+    r = 0
+    norm = 0.0
+    for k in range(n_steps):
+        for i in range(per_step):
+            ok, norm = _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes,
+                                 fvals, ramp_r, ramp_dr, current_on, current, model, newton,
+                                 tan, counters, work)
+            if not (ok and math.isfinite(norm)):
+                return k, i, norm, r
+            x0[:, :] = x1
+            v0[:, :] = v1
+            a0[:, :] = a1
+            el_forces[:, :, :] = buf[0]
+            tension[:] = buf[3]
+            strain[:] = buf[4]
+            f_am[:, :] = buf[10]
+            resid[:, :] = buf[11]
+            j += 1
+        if record[k]:
+            pos[r] = x0
+            vel[r] = v0
+            ten[r] = tension
+            for q in range(end_el.shape[0]):
+                for c in range(3):
+                    ends[r, q, c] = el_forces[end_el[q], end_side[q], c]
+            r += 1
+    return n_steps, -1, norm, r
