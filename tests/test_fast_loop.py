@@ -74,3 +74,30 @@ def test_compiled_loop_gives_the_records_of_the_step_by_step_loop(name, monkeypa
         a, b = getattr(loop, key), getattr(steps, key)
         assert a.shape == b.shape, key
         assert np.array_equal(a, b), key
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_compiled_hht_equals_the_general_stepper_on_the_numpy_kernel(name, monkeypatch):
+    """HHT-alpha (alpha = -0.1) in the compiled loop against the general stepper on the numpy
+    element kernel (the reference path: its own residual weighting, assembly and sparse LU):
+    the same states to the Newton tolerance's round-off, the same work."""
+    from moorline.solvers.dynamic_model import DynamicModel
+
+    make, settings, every = CASES[name]
+    system = make()
+    start = solve_statics(system)
+    hht = dict(settings, scheme="hht", alpha=-0.1)
+    fast = simulate(system, DynamicsSettings(**hht), initial=start, output_every=every)
+    monkeypatch.setattr(dynamics, "DynamicModel",
+                        lambda *args, **kw: DynamicModel(*args, **kw, kernel="numpy"))
+    slow = simulate(system, DynamicsSettings(**hht, fast_path=False), initial=start,
+                    output_every=every)
+    assert fast.success and slow.success
+    scale = float(np.abs(slow.positions).max())
+    assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
+    assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
+    assert fast.counters["iterations"] == slow.counters["iterations"]
+    assert fast.counters["factorizations"] == slow.counters["factorizations"]
+    # HHT is not Newmark here: its numerical damping moves the states
+    newmark = simulate(system, DynamicsSettings(**settings), initial=start, output_every=every)
+    assert not np.allclose(newmark.positions, fast.positions, rtol=0, atol=1e-5 * scale)

@@ -39,11 +39,11 @@ def _current(x, elements, r, dr, current, uf, af):
 
 @numba.njit(**_JIT)
 def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, ramp_r,
-              ramp_dr, current_on, current, model, newton, tan, counters, work):
+              ramp_dr, current_on, current, model, newton, tan, counters, work, other0):
     """Sub-step ``j`` of the block from (x0, v0, a0) into (x1, v1, a1); returns
     (converged, residual max-norm)."""
     (free, band, bw, elements, props, laws, with_drag, with_added_mass, node_mass, external,
-     seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, beta, gamma) = model
+     seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, beta, gamma, alpha) = model
     (tol, max_iter, refresh_ratio, stall_ratio, stall_limit, max_halvings,
      stiffness_update) = newton
     lu, buf, rvec, trial, pforce, uf, af = work
@@ -64,7 +64,8 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, r
     ok, norm, refactored = newmark_step(
         x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
         with_added_mass, node_mass, external, pforce, uf, af, seabed_on, seabed_z, k_sb, c_sb,
-        ramp, mu, v_slip, h, beta, gamma, tol, max_iter, refresh, lu, buf, rvec, trial,
+        ramp, mu, v_slip, h, beta, gamma, alpha, other0, tol, max_iter, refresh, lu, buf, rvec,
+        trial,
         counters, refresh_ratio, stall_ratio, stall_limit, max_halvings)
     if refactored:
         tan[0], tan[1], tan[2] = 1.0, h, 0.0
@@ -78,7 +79,7 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, r
 @numba.njit(**_JIT)
 def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixed, fnodes,
                   fvals, ramp_r, ramp_dr, current_on, current, model, newton, tan, counters,
-                  work, saved, out):
+                  work, other0, saved, out):
     """Advance ``len(hs) // per_step`` full steps of ``per_step`` sub-steps of sizes ``hs``.
 
     On entry ``(x0, v0, a0)`` is the state; on return the state after the last converged
@@ -89,7 +90,9 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
     ``ramp_dr[j]``. After full step ``k`` with ``record[k]``, the state goes into the next
     record of ``out = (positions, velocities, tensions, end_forces, end_elements,
     end_sides)``: the end forces are the element forces ``[end_elements[i], end_sides[i]]``.
-    ``tan`` = (factorization valid, its step size, its age in steps).
+    ``tan`` = (factorization valid, its step size, its age in steps). ``other0``: the nodal
+    forces without inertia at the state (HHT weights them into the next step's residual),
+    kept up to date.
 
     Returns
     -------
@@ -108,7 +111,7 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
         for i in range(per_step):
             ok, norm = _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes,
                                  fvals, ramp_r, ramp_dr, current_on, current, model, newton,
-                                 tan, counters, work)
+                                 tan, counters, work, other0)
             if not (ok and math.isfinite(norm)):
                 return k, i, norm, r
             x0[:, :] = x1
@@ -119,6 +122,10 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
             strain[:] = buf[4]
             f_am[:, :] = buf[10]
             resid[:, :] = buf[11]
+            node_mass = model[8]
+            for n in range(x0.shape[0]):
+                for c in range(3):
+                    other0[n, c] = resid[n, c] + node_mass[n] * a0[n, c] - f_am[n, c]
             j += 1
         if record[k]:
             pos[r] = x0

@@ -1,7 +1,8 @@
 """Compiled implicit step for the common case: elastic lines (constant ``EA``, tension-strain
 tables, the fibre-rope dynamic stiffness) in still water or a uniform current, on a seabed
-with contact, damping and (isotropic) friction, Newmark beta = 1/4, gamma = 1/2 with
-equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
+with contact, damping and (isotropic) friction, Newmark beta = 1/4, gamma = 1/2 or HHT-alpha
+(Hilber, Hughes and Taylor 1977: the non-inertial forces weighted ``1 + alpha`` at the new
+time and ``-alpha`` at the old) with equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
 
 It is the same algorithm as :class:`moorline.solvers.newmark.Stepper` (same residual, same
 exact tangent, same modified-Newton refresh rule, backtracking on the residual norm), moved
@@ -176,8 +177,35 @@ def _norm_inf_free(resid, band, out):
 
 
 @numba.njit(**_JIT)
-def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, cv, kzz, czz,
-              fric_c, fric_kz, fric_cz, seabed_on):
+def _residual_norm(buf, band, rvec, alpha, node_mass, a, f_am, other0):
+    """The step's residual gathered into ``rvec`` (band order) and its max-norm: Newmark's
+    ``F - M_s a`` (``buf[11]``), or with ``alpha != 0`` HHT's
+    ``(1 + alpha) (F - F_am) - alpha (F0 - F_am0) + F_am - M_s a`` (Hilber, Hughes and Taylor
+    1977; :mod:`moorline.solvers.newmark`, eq. 4.2.10 weighted), ``F`` all nodal forces
+    without structural inertia, ``F_am`` their added-mass part, ``other0 = F0 - F_am0`` at the
+    start of the step."""
+    resid = buf[11]
+    if alpha == 0.0:
+        return _norm_inf_free(resid, band, rvec)
+    m = 0.0
+    for n in range(resid.shape[0]):
+        for c in range(3):
+            k = band[n, c]
+            if k >= 0:
+                inertial = f_am[n, c] - node_mass[n] * a[n, c]
+                other = resid[n, c] + node_mass[n] * a[n, c] - f_am[n, c]
+                rvec[k] = (1 + alpha) * other - alpha * other0[n, c] + inertial
+                r = abs(rvec[k])
+                if not (r <= m):
+                    m = r if r == r else math.inf
+    return m
+
+
+@numba.njit(**_JIT)
+def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, cv, ck, kzz,
+              czz, fric_c, fric_kz, fric_cz, seabed_on):
+    """The effective tangent ``ca (M_s + M_a) + cv C + ck K`` in band storage (with HHT
+    ``ck = 1 + alpha`` and ``cv`` weighted by it, eq. 4.2.9a)."""
     ab[:, :] = 0.0
     for e in range(elements.shape[0]):
         for p in range(6):
@@ -188,7 +216,7 @@ def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, 
                 col = band[elements[e, q // 3], q % 3]
                 if col < 0:
                     continue
-                val = K[e, p, q] + cv * C[e, p, q]
+                val = ck * K[e, p, q] + cv * C[e, p, q]
                 if with_added_mass:
                     val += ca * Ma[e, p, q]
                 ab[row, col - row + bw] += val
@@ -200,12 +228,12 @@ def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, 
             ab[k, bw] += ca * node_mass[n]
         if seabed_on:
             kz = band[n, 2]
-            ab[kz, bw] += kzz[n] + cv * czz[n]
+            ab[kz, bw] += ck * kzz[n] + cv * czz[n]
             for r in range(2):
                 kr = band[n, r]
                 for s in range(2):
                     ab[kr, band[n, s] - kr + bw] += cv * fric_c[n, r, s]
-                ab[kr, kz - kr + bw] += fric_kz[n, r] + cv * fric_cz[n, r]
+                ab[kr, kz - kr + bw] += ck * fric_kz[n, r] + cv * fric_cz[n, r]
 
 
 @numba.njit(**_JIT)
@@ -223,10 +251,11 @@ def _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1):
 @numba.njit(**_JIT)
 def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
                  with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
-                 seabed_z, k_sb, c_sb, ramp, mu, v_slip, h, beta, gamma, tol, max_iter,
-                 refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
+                 seabed_z, k_sb, c_sb, ramp, mu, v_slip, h, beta, gamma, alpha, other0, tol,
+                 max_iter, refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
                  stall_limit, max_halvings):
-    """One Newmark step with modified-Newton iterations: the algorithm of
+    """One Newmark (or HHT-alpha: ``alpha`` and the non-inertial forces at the start of the
+    step ``other0``, :func:`_residual_norm`) step with modified-Newton iterations: the algorithm of
     :func:`moorline.solvers.newton.solve` (same refresh, line-search, stale-tangent and stall
     rules, constants from the same :class:`~moorline.solvers.newton.NewtonPolicy`).
 
@@ -236,7 +265,8 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
-    cv = gamma / (beta * h)
+    cv = (1 + alpha) * gamma / (beta * h)
+    ck = 1.0 + alpha
     for n in range(x1.shape[0]):
         if free[n]:
             for c in range(3):
@@ -246,7 +276,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
               node_mass, external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu,
               v_slip, refresh, buf)
     counters[1] += 1
-    norm = _norm_inf_free(buf[11], band, rvec)
+    norm = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
     have_tangent = refresh
     refactored = False
     stalled = 0
@@ -259,9 +289,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                           with_added_mass, node_mass, external, point_force, seabed_on,
                           seabed_z, k_sb, c_sb, ramp, mu, v_slip, True, buf)
                 counters[1] += 1
-                norm = _norm_inf_free(buf[11], band, rvec)
+                norm = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
             _assemble(lu, bw, band, elements, buf[6], buf[7], buf[8], with_added_mass,
-                      node_mass, ca, cv, buf[12], buf[13], buf[14], buf[15], buf[16],
+                      node_mass, ca, cv, ck, buf[12], buf[13], buf[14], buf[15], buf[16],
                       seabed_on)
             if not _band_lu(lu, bw):
                 return False, norm, refactored
@@ -274,26 +304,26 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
         dx = rvec.copy()
         _band_solve(lu, bw, dx)
         counters[0] += 1
-        alpha = 1.0
+        step = 1.0  # line-search length
         better = False
         for _ls in range(max_halvings + 1):
             for n in range(x1.shape[0]):
                 for c in range(3):
                     k = band[n, c]
-                    trial[n, c] = x1[n, c] + (alpha * dx[k] if k >= 0 else 0.0)
+                    trial[n, c] = x1[n, c] + (step * dx[k] if k >= 0 else 0.0)
             _kinematics(x0, v0, a0, trial, h, beta, gamma, free, v1, a1)
             _evaluate(trial, v1, a1, uf, af, elements, props, laws, with_drag,
                       with_added_mass, node_mass, external, point_force, seabed_on, seabed_z,
                       k_sb, c_sb, ramp, mu, v_slip, True, buf)
             counters[1] += 1
-            n_new = _norm_inf_free(buf[11], band, rvec)
+            n_new = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
             merit = 0.0
             for k in range(rvec.shape[0]):
                 merit += rvec[k] * rvec[k]
             if merit < merit0:
                 better = True
                 break
-            alpha *= 0.5
+            step *= 0.5
         if not better and not refactored:
             # a stale tangent: refresh it at the same point and retry
             refresh = True
@@ -334,7 +364,7 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
         return "viscoelastic lines, slack_damping, drag_velocity node or the numpy kernel"
     if model.mesh.has_bending:
         return "bending stiffness (EI)"
-    if scheme != "newmark" or variant != "iterative":
+    if scheme not in ("newmark", "hht") or variant != "iterative":
         return f"scheme {scheme!r} / variant {variant!r}"
     if model.has_point_hydro:
         return "points with their own drag or added mass"
@@ -379,7 +409,7 @@ class FastStepper:
             f.with_added_mass, model.node_mass, model.external,
             bool(np.isfinite(mesh.seabed_z)), float(mesh.seabed_z), model.k_seabed,
             model.c_seabed, model.seabed_ramp, float(mu), float(v_slip), float(coefficients.beta),
-            float(coefficients.gamma))
+            float(coefficients.gamma), float(coefficients.alpha))
         pol = policy
         self.newton_args = (float(pol.tolerance), int(pol.max_iterations),
                             np.inf if pol.refresh_ratio is None else float(pol.refresh_ratio),
@@ -444,10 +474,11 @@ class FastStepper:
                np.empty((n_rec, n_el)), np.empty((n_rec, len(end_elements), 3)),
                end_elements, end_sides)
         ramp_r, ramp_dr = self._ramps(times)
+        other0 = s0.evaluation.nodal - s0.evaluation.inertial  # HHT: F0 - F_am0
         done, stopped, norm, n_written = advance_block(
             x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
             ramp_r, ramp_dr, self.current_on, self.current, self.model_args, self.newton_args,
-            self.tan, self.counts, self.work, saved, out)
+            self.tan, self.counts, self.work, other0, saved, out)
         n_sub = done * per_step + max(stopped, 0)
         state = s0
         if n_sub:
