@@ -255,13 +255,17 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                  max_iter, refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
                  stall_limit, max_halvings):
     """One Newmark (or HHT-alpha: ``alpha`` and the non-inertial forces at the start of the
-    step ``other0``, :func:`_residual_norm`) step with modified-Newton iterations: the algorithm of
-    :func:`moorline.solvers.newton.solve` (same refresh, line-search, stale-tangent and stall
-    rules, constants from the same :class:`~moorline.solvers.newton.NewtonPolicy`).
+    step ``other0``, :func:`_residual_norm`) step with modified-Newton iterations: the
+    algorithm of :func:`moorline.solvers.newton.solve` (same refresh, line-search,
+    stale-tangent and stall rules, constants from the same
+    :class:`~moorline.solvers.newton.NewtonPolicy`).
 
     On entry ``x1, v1, a1`` hold the constrained nodes' kinematics at the new time (free
-    nodes are predicted here). ``lu`` holds the factored effective tangent when
-    ``refresh`` is False. ``counters`` accumulates [iterations, residuals, factorizations].
+    nodes are predicted here). Line-search trials are evaluated without the tangent blocks
+    (half the cost); the tangent is evaluated at the iterate when it is refreshed (the same
+    numbers as evaluating it with every trial, one more residual count). ``lu`` holds the
+    factored effective tangent when ``refresh`` is False. ``counters`` accumulates
+    [iterations, residuals, factorizations].
     Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
@@ -314,7 +318,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             _kinematics(x0, v0, a0, trial, h, beta, gamma, free, v1, a1)
             _evaluate(trial, v1, a1, uf, af, elements, props, laws, with_drag,
                       with_added_mass, node_mass, external, point_force, seabed_on, seabed_z,
-                      k_sb, c_sb, ramp, mu, v_slip, True, buf)
+                      k_sb, c_sb, ramp, mu, v_slip, False, buf)
             counters[1] += 1
             n_new = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
             merit = 0.0
@@ -330,7 +334,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             have_tangent = False
             _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
             continue
-        have_tangent = True
+        have_tangent = False  # trials are evaluated without it (made again when refreshed)
         if n_new > refresh_ratio * norm:
             refresh = True
         stalled = stalled + 1 if n_new > stall_ratio * norm else 0
