@@ -185,8 +185,11 @@ class Excitation:
         t = np.asarray(t, dtype=float)
         x = np.repeat(self.base[None], len(t), axis=0)
         v, a = np.zeros_like(x), np.zeros_like(x)
+        values: dict[Motion, tuple] = {}  # points moving alike (fairleads of one platform)
         for row, motion in self._moving:
-            d, dv, da = motion_values(motion, t)
+            if motion not in values:
+                values[motion] = motion_values(motion, t)
+            d, dv, da = values[motion]
             x[:, row] += d
             v[:, row] = dv
             a[:, row] = da
