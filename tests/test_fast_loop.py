@@ -101,3 +101,53 @@ def test_compiled_hht_equals_the_general_stepper_on_the_numpy_kernel(name, monke
     # HHT is not Newmark here: its numerical damping moves the states
     newmark = simulate(system, DynamicsSettings(**settings), initial=start, output_every=every)
     assert not np.allclose(newmark.positions, fast.positions, rtol=0, atol=1e-5 * scale)
+
+
+def _in_waves(waves) -> System:
+    """The buoy system in waves (with its current: a combined field); shallower fairlead so
+    that the upper elements feel the waves."""
+    from dataclasses import replace
+
+    system = _buoy_system()
+    return replace(system, environment=replace(system.environment, waves=waves))
+
+
+WAVES = {
+    "airy_wheeler": dict(kind="airy", height=6.0, period=9.0, heading_deg=20.0,
+                         stretching="wheeler"),
+    "jonswap": dict(kind="random", height=5.0, period=10.0, heading_deg=-30.0, seed=3,
+                    record_length=300.0, omega_max=2.0),
+}
+
+
+@pytest.mark.parametrize("scheme", ["newmark", "hht"])
+@pytest.mark.parametrize("name", WAVES)
+def test_compiled_loop_in_waves_equals_the_general_stepper_on_the_numpy_kernel(
+        name, scheme, monkeypatch):
+    """Airy waves (Wheeler stretching) and a JONSWAP sea, each with a uniform current, in the
+    compiled loop against the general stepper on the numpy element kernel (its wave
+    kinematics from moorline.waves): the same states to the Newton tolerance's round-off and
+    the same work."""
+    from moorline.model import Waves
+    from moorline.solvers.dynamic_model import DynamicModel
+
+    system = _in_waves(Waves(**WAVES[name]))
+    start = solve_statics(system)
+    assert start.success, start.message
+    settings = dict(duration=8.0, dt=0.05, ramp_time=2.0, scheme=scheme, alpha=-0.1)
+    fast = simulate(system, DynamicsSettings(**settings), initial=start, output_every=0.1)
+    monkeypatch.setattr(dynamics, "DynamicModel",
+                        lambda *args, **kw: DynamicModel(*args, **kw, kernel="numpy"))
+    slow = simulate(system, DynamicsSettings(**settings, fast_path=False), initial=start,
+                    output_every=0.1)
+    assert fast.success and slow.success
+    scale = float(np.abs(slow.positions).max())
+    assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
+    assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
+    assert fast.counters["iterations"] == slow.counters["iterations"]
+    assert fast.counters["factorizations"] == slow.counters["factorizations"]
+    assert np.array_equal(fast.wave_elevation, slow.wave_elevation)
+    # the waves move the lines: not the still-water run
+    calm = simulate(_buoy_system(), DynamicsSettings(**settings), initial=start,
+                    output_every=0.1)
+    assert not np.allclose(calm.positions, fast.positions, rtol=0, atol=1e-5 * scale)

@@ -82,22 +82,17 @@ def test_band_ordering_and_lu_solve_like_dense():
 
 
 CASES = sorted((Path(__file__).parents[1] / "cases").glob("*.yaml"))
-# cases run without their waves (the compiled backend takes still water or a uniform current;
-# their prescribed fairlead motion still drives them): the polyester lines' tension-strain
-# table and dynamic stiffness are what the compiled backend is checked on there
-CALM = {"polyester_taut"}
 
 
 @pytest.mark.parametrize("path", CASES, ids=[p.stem for p in CASES])
 def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_accept(
         path, monkeypatch):
-    """Every case file the compiled backend accepts (those of ``CALM`` in still water): the
-    same states after every step as the general stepper on the numpy element kernel (the
-    reference path) (2 s of its dynamics, or of a default dynamics analysis)."""
+    """Every case file the compiled backend accepts (waves included): the same states after
+    every step as the general stepper on the numpy element kernel (the reference path) (40
+    steps of its dynamics, or of a default dynamics analysis)."""
     from dataclasses import replace
 
     from moorline.io.case import load_case
-    from moorline.model import Waves
     from moorline.solvers import dynamics
     from moorline.solvers.dynamic_model import DynamicModel
     from moorline.solvers.dynamics import _fluid, _rayleigh
@@ -107,8 +102,6 @@ def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_acce
         # a body with a hydrodynamic database (its BEM would be computed just to learn this)
         pytest.skip("the compiled backend does not take bodies (a hydrodynamic database)")
     system = load_case(path)
-    if path.stem in CALM:
-        system = replace(system, environment=replace(system.environment, waves=Waves()))
     settings = next((a for a in system.analyses if isinstance(a, DynamicsSettings)),
                     DynamicsSettings())
     settings = replace(settings, duration=min(settings.duration, 40 * settings.dt))

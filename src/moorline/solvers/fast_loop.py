@@ -4,15 +4,22 @@
 :func:`advance_block` advances a block of full steps, each of ``per_step`` sub-steps (the
 sub-stepping level of :func:`moorline.solvers.dynamics.simulate`), with everything that
 depends on time alone computed before the call, vectorized, and passed as arrays (the
-prescribed nodes' kinematics, the point force histories, the current's ramp at every
-sub-step). It keeps the modified-Newton bookkeeping of
-:class:`~moorline.solvers.fast_newmark.FastStepper` (refresh when the factorization is
-missing, was made for another step size or is ``stiffness_update`` steps old) and writes the
-output records of the steps flagged in ``record`` into preallocated buffers. A sub-step that
-does not converge (or ends with a non-finite residual) stops the loop with the state after the
-last converged sub-step: Python cuts that sub-step (:func:`moorline.solvers.dynamics._advance`)
-and resumes. A single step of :class:`FastStepper` is a block of one sub-step, so the Python
-path and the compiled loop run the same code.
+prescribed nodes' kinematics, the point force histories, the ramps and phases of the waves
+and current at every sub-step; the fluid kinematics at the element midpoints, which depend
+on the positions, are evaluated with every residual,
+:func:`moorline.solvers.fast_fluid.fluid_at_midpoints`). It keeps the modified-Newton
+bookkeeping of :class:`~moorline.solvers.fast_newmark.FastStepper` (refresh when the
+factorization is missing, was made for another step size or is ``stiffness_update`` steps
+old) and writes the output records of the steps flagged in ``record`` into preallocated
+buffers. A sub-step that does not converge (or ends with a non-finite residual) stops the
+loop with the state after the last converged sub-step: Python cuts that sub-step
+(:func:`moorline.solvers.dynamics._advance`) and resumes. A single step of
+:class:`FastStepper` is a block of one sub-step, so the Python path and the compiled loop
+run the same code.
+
+numba's cache is per file: a change to a kernel this loop calls in another file
+(:mod:`~moorline.solvers.fast_newmark`, :mod:`~moorline.physics.fused`) is not seen by the
+cached loop until its own cache is dropped (``__pycache__/fast_loop*.nbi, .nbc``).
 """
 
 from __future__ import annotations
@@ -25,21 +32,8 @@ from .fast_newmark import _JIT, newmark_step
 
 
 @numba.njit(**_JIT)
-def _current(x, elements, r, dr, current, uf, af):
-    """A uniform current ``current[:3]`` ramped by ``r`` (acceleration ``dr`` times it) at
-    the element midpoints, zero above the still water level (as
-    :meth:`moorline.waves.CurrentProfile.kinematics`)."""
-    for e in range(elements.shape[0]):
-        z = 0.5 * (x[elements[e, 0], 2] + x[elements[e, 1], 2])
-        dry = z > 0.0
-        for c in range(3):
-            uf[e, c] = 0.0 if dry else r * current[c]
-            af[e, c] = 0.0 if dry else dr * current[c]
-
-
-@numba.njit(**_JIT)
-def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, ramp_r,
-              ramp_dr, current_on, current, model, newton, tan, counters, work, other0):
+def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, fluid, model,
+              newton, tan, counters, work, other0):
     """Sub-step ``j`` of the block from (x0, v0, a0) into (x1, v1, a1); returns
     (converged, residual max-norm)."""
     (free, band, bw, elements, props, laws, with_drag, with_added_mass, node_mass, external,
@@ -57,16 +51,13 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, r
     for q in range(fnodes.shape[0]):
         for c in range(3):
             pforce[fnodes[q], c] += fvals[j, q, c]
-    if current_on:
-        _current(x0, elements, ramp_r[j], ramp_dr[j], current, uf, af)
     h = hs[j]
     refresh = tan[0] == 0.0 or tan[1] != h or tan[2] >= stiffness_update
     ok, norm, refactored = newmark_step(
         x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
         with_added_mass, node_mass, external, pforce, uf, af, seabed_on, seabed_z, k_sb, c_sb,
         ramp, mu, v_slip, h, beta, gamma, alpha, other0, tol, max_iter, refresh, lu, buf, rvec,
-        trial,
-        counters, refresh_ratio, stall_ratio, stall_limit, max_halvings)
+        trial, counters, refresh_ratio, stall_ratio, stall_limit, max_halvings, fluid, j)
     if refactored:
         tan[0], tan[1], tan[2] = 1.0, h, 0.0
     if not ok:
@@ -78,18 +69,18 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, r
 
 @numba.njit(**_JIT)
 def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixed, fnodes,
-                  fvals, ramp_r, ramp_dr, current_on, current, model, newton, tan, counters,
-                  work, other0, saved, out):
+                  fvals, fluid, model, newton, tan, counters, work, other0, saved, out):
     """Advance ``len(hs) // per_step`` full steps of ``per_step`` sub-steps of sizes ``hs``.
 
     On entry ``(x0, v0, a0)`` is the state; on return the state after the last converged
     sub-step, with its element forces, tensions, strains, added-mass forces and residual in
     ``saved``. Per sub-step ``j``: the fixed and prescribed nodes ``fixed`` take
     ``xc[j], vc[j], ac[j]`` (n_fixed, 3), the nodes ``fnodes`` the point forces ``fvals[j]``
-    and, with ``current_on``, the current ``current`` is ramped by ``ramp_r[j]``,
-    ``ramp_dr[j]``. After full step ``k`` with ``record[k]``, the state goes into the next
-    record of ``out = (positions, velocities, tensions, end_forces, end_elements,
-    end_sides)``: the end forces are the element forces ``[end_elements[i], end_sides[i]]``.
+    and the elements the waves and current of ``fluid``
+    (:func:`moorline.solvers.fast_fluid.fluid_at_midpoints`). After full step ``k`` with
+    ``record[k]``, the state goes into the next record of ``out = (positions, velocities,
+    tensions, end_forces, end_elements, end_sides)``: the end forces are the element forces
+    ``[end_elements[i], end_sides[i]]``.
     ``tan`` = (factorization valid, its step size, its age in steps). ``other0``: the nodal
     forces without inertia at the state (HHT weights them into the next step's residual),
     kept up to date.
@@ -110,8 +101,7 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
     for k in range(n_steps):
         for i in range(per_step):
             ok, norm = _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes,
-                                 fvals, ramp_r, ramp_dr, current_on, current, model, newton,
-                                 tan, counters, work, other0)
+                                 fvals, fluid, model, newton, tan, counters, work, other0)
             if not (ok and math.isfinite(norm)):
                 return k, i, norm, r
             x0[:, :] = x1

@@ -1,8 +1,9 @@
 """Compiled implicit step for the common case: elastic lines (constant ``EA``, tension-strain
-tables, the fibre-rope dynamic stiffness) in still water or a uniform current, on a seabed
-with contact, damping and (isotropic) friction, Newmark beta = 1/4, gamma = 1/2 or HHT-alpha
-(Hilber, Hughes and Taylor 1977: the non-inertial forces weighted ``1 + alpha`` at the new
-time and ``-alpha`` at the old) with equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
+tables, the fibre-rope dynamic stiffness) in still water, a uniform current, Airy waves or a
+sea of linear components (no or Wheeler stretching), on a seabed with contact, damping and
+(isotropic) friction, Newmark beta = 1/4, gamma = 1/2 or HHT-alpha (Hilber, Hughes and
+Taylor 1977: the non-inertial forces weighted ``1 + alpha`` at the new time and ``-alpha`` at
+the old) with equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
 
 It is the same algorithm as :class:`moorline.solvers.newmark.Stepper` (same residual, same
 exact tangent, same modified-Newton refresh rule, backtracking on the residual norm), moved
@@ -27,6 +28,7 @@ from numpy.typing import NDArray
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from ..physics.fused import _kernel
+from .fast_fluid import fluid_at_midpoints
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -253,7 +255,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                  with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
                  seabed_z, k_sb, c_sb, ramp, mu, v_slip, h, beta, gamma, alpha, other0, tol,
                  max_iter, refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
-                 stall_limit, max_halvings):
+                 stall_limit, max_halvings, fluid, j):
     """One Newmark (or HHT-alpha: ``alpha`` and the non-inertial forces at the start of the
     step ``other0``, :func:`_residual_norm`) step with modified-Newton iterations: the
     algorithm of :func:`moorline.solvers.newton.solve` (same refresh, line-search,
@@ -265,7 +267,10 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     (half the cost); the tangent is evaluated at the iterate when it is refreshed (the same
     numbers as evaluating it with every trial, one more residual count). ``lu`` holds the
     factored effective tangent when ``refresh`` is False. ``counters`` accumulates
-    [iterations, residuals, factorizations].
+    [iterations, residuals, factorizations]. The fluid velocity and acceleration ``uf, af``
+    come from ``fluid`` at sub-step ``j`` at every evaluated state
+    (:func:`~moorline.solvers.fast_fluid.fluid_at_midpoints`, as the general stepper's
+    model evaluates them) when it has waves or a current.
     Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
@@ -276,6 +281,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             for c in range(3):
                 x1[n, c] = x0[n, c] + h * v0[n, c] + 0.5 * h * h * a0[n, c]
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
+    moving = fluid[0] or fluid[6]
+    if moving:
+        fluid_at_midpoints(x1, elements, j, fluid, uf, af)
     _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag, with_added_mass,
               node_mass, external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu,
               v_slip, refresh, buf)
@@ -289,6 +297,8 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             return True, norm, refactored
         if refresh:
             if not have_tangent:
+                if moving:
+                    fluid_at_midpoints(x1, elements, j, fluid, uf, af)
                 _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag,
                           with_added_mass, node_mass, external, point_force, seabed_on,
                           seabed_z, k_sb, c_sb, ramp, mu, v_slip, True, buf)
@@ -316,6 +326,8 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                     k = band[n, c]
                     trial[n, c] = x1[n, c] + (step * dx[k] if k >= 0 else 0.0)
             _kinematics(x0, v0, a0, trial, h, beta, gamma, free, v1, a1)
+            if moving:
+                fluid_at_midpoints(trial, elements, j, fluid, uf, af)
             _evaluate(trial, v1, a1, uf, af, elements, props, laws, with_drag,
                       with_added_mass, node_mass, external, point_force, seabed_on, seabed_z,
                       k_sb, c_sb, ramp, mu, v_slip, False, buf)
@@ -355,11 +367,34 @@ def make_buffers(n_el: int, n_nodes: int) -> tuple:
             np.zeros((n_nodes, 2)))
 
 
+def _fluid_parts(fluid):
+    """``(waves, current)`` of a fluid field the compiled step takes (linear wave components
+    and a uniform current, each or both or neither), or None when it takes no such field."""
+    from ..waves import AiryWave, CombinedField, CurrentProfile, StillWater, WaveComponents
+
+    def uniform(current) -> bool:
+        return len(set(np.atleast_1d(current.speeds))) == 1 \
+            and len(set(np.atleast_1d(current.headings_deg))) == 1
+
+    waves, current = fluid, None
+    if isinstance(fluid, StillWater):
+        return None, None
+    if isinstance(fluid, CurrentProfile):
+        waves, current = None, fluid
+    elif isinstance(fluid, CombinedField):
+        waves, current = fluid.wave, fluid.current
+    if isinstance(waves, AiryWave):
+        waves = waves.components
+    if waves is not None and not isinstance(waves, WaveComponents):
+        return None
+    if current is not None and not (isinstance(current, CurrentProfile) and uniform(current)):
+        return None
+    return waves, current
+
+
 def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
                      rayleigh: bool = False) -> str | None:
     """Why the compiled step cannot run this model (None when it can)."""
-    from ..waves import CurrentProfile, StillWater
-
     if bodies:
         return "rigid bodies"
     if rayleigh:
@@ -376,12 +411,9 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
         return "anisotropic seabed friction"
     if model.mesh.bathymetry is not None:
         return "a sloped or gridded seabed"
-    if isinstance(fluid, StillWater):
-        return None
-    if isinstance(fluid, CurrentProfile) and len(set(np.atleast_1d(fluid.speeds))) == 1 \
-            and len(set(np.atleast_1d(fluid.headings_deg))) == 1:
-        return None
-    return "waves or a sheared current"
+    if _fluid_parts(fluid) is None:
+        return "a sheared current or a fluid field other than Airy waves and a uniform current"
+    return None
 
 
 class FastStepper:
@@ -419,15 +451,15 @@ class FastStepper:
                             np.inf if pol.refresh_ratio is None else float(pol.refresh_ratio),
                             float(pol.stall_ratio), int(pol.stall_limit),
                             int(pol.max_halvings), float(pol.stiffness_update))
-        from ..waves import StillWater
-
-        fluid = model.fluid
-        self.current = np.zeros(3)
-        self.current_ramp = 0.0
-        self.current_on = not isinstance(fluid, StillWater)
-        if self.current_on:  # a uniform current (fast_path_reason)
-            self.current = np.ascontiguousarray(fluid.velocity(np.zeros(1))[0], dtype=float)
-            self.current_ramp = float(fluid.ramp_time)
+        self.waves, self.current = _fluid_parts(model.fluid)
+        if self.waves is not None:
+            c = self.waves._coef
+            self.wave_coef = np.ascontiguousarray(np.vstack([c[name] for name in (
+                "k", "kx", "ky", "a", "aw_c", "aw_s", "aw", "aw2_c", "aw2_s", "aw2", "denom")]))
+        else:
+            self.wave_coef = np.zeros((11, 0))
+        self.current_velocity = np.zeros(3) if self.current is None else \
+            np.ascontiguousarray(self.current.velocity(np.zeros(1))[0], dtype=float)
 
     def forget_tangent(self) -> None:
         """Drop the factorization (after a step cut)."""
@@ -447,15 +479,24 @@ class FastStepper:
         it, res, fac = (int(v) for v in self.counts)
         return {"iterations": it, "residuals": res, "tangents": fac, "factorizations": fac}
 
-    def _ramps(self, times: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """The current's ramp factor and its rate at ``times`` (zeros in still water)."""
-        if not self.current_on:
-            return np.zeros(len(times)), np.zeros(len(times))
+    def _fluid_inputs(self, times: FloatArray) -> tuple:
+        """What :func:`moorline.solvers.fast_loop._fluid` takes for sub-steps ending at
+        ``times``: the waves' phases ``phi - w t`` and ramps, the current's ramp."""
         from ..waves.airy import ramp_factor
 
-        both = np.array([ramp_factor(float(t), self.current_ramp) for t in times],
-                        dtype=float).reshape(-1, 2)
-        return both[:, 0].copy(), both[:, 1].copy()
+        def ramps(field) -> FloatArray:
+            if field is None:
+                return np.zeros((len(times), 2))
+            return np.array([ramp_factor(float(t), field.ramp_time) for t in times],
+                            dtype=float).reshape(-1, 2)
+
+        waves = self.waves
+        offset = np.zeros((len(times), 0)) if waves is None else \
+            waves._coef["phi"] - waves._coef["w"] * np.asarray(times)[:, None]
+        depth = math.inf if waves is None else float(waves.depth)
+        wheeler = waves is not None and waves.stretching == "wheeler"
+        return (waves is not None, self.wave_coef, depth, wheeler, offset, ramps(waves),
+                self.current is not None, self.current_velocity, ramps(self.current))
 
     def run_block(self, s0, times: FloatArray, hs: FloatArray, per_step: int,
                   record: NDArray[np.bool_], kinematics: tuple, forces: tuple,
@@ -477,12 +518,11 @@ class FastStepper:
         out = (np.empty((n_rec, n_nodes, 3)), np.empty((n_rec, n_nodes, 3)),
                np.empty((n_rec, n_el)), np.empty((n_rec, len(end_elements), 3)),
                end_elements, end_sides)
-        ramp_r, ramp_dr = self._ramps(times)
         other0 = s0.evaluation.nodal - s0.evaluation.inertial  # HHT: F0 - F_am0
         done, stopped, norm, n_written = advance_block(
             x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
-            ramp_r, ramp_dr, self.current_on, self.current, self.model_args, self.newton_args,
-            self.tan, self.counts, self.work, other0, saved, out)
+            self._fluid_inputs(times), self.model_args, self.newton_args, self.tan,
+            self.counts, self.work, other0, saved, out)
         n_sub = done * per_step + max(stopped, 0)
         state = s0
         if n_sub:
