@@ -6,6 +6,7 @@ tests/test_fast_newmark.py."""
 
 import numpy as np
 import pytest
+from backends import assert_same_run, reference_run
 
 from moorline.model import (
     Current,
@@ -79,27 +80,16 @@ def test_compiled_loop_gives_the_records_of_the_step_by_step_loop(name, monkeypa
 @pytest.mark.parametrize("name", CASES)
 def test_compiled_hht_equals_the_general_stepper_on_the_numpy_kernel(name, monkeypatch):
     """HHT-alpha (alpha = -0.1) in the compiled loop against the general stepper on the numpy
-    element kernel (the reference path: its own residual weighting, assembly and sparse LU):
-    the same states to the Newton tolerance's round-off, the same work."""
-    from moorline.solvers.dynamic_model import DynamicModel
-
+    element kernel: the same states to the Newton tolerance's round-off, the same work."""
     make, settings, every = CASES[name]
     system = make()
     start = solve_statics(system)
-    hht = dict(settings, scheme="hht", alpha=-0.1)
-    fast = simulate(system, DynamicsSettings(**hht), initial=start, output_every=every)
-    monkeypatch.setattr(dynamics, "DynamicModel",
-                        lambda *args, **kw: DynamicModel(*args, **kw, kernel="numpy"))
-    slow = simulate(system, DynamicsSettings(**hht, fast_path=False), initial=start,
-                    output_every=every)
-    assert fast.success and slow.success
-    scale = float(np.abs(slow.positions).max())
-    assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
-    assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
-    assert fast.counters["iterations"] == slow.counters["iterations"]
-    assert fast.counters["factorizations"] == slow.counters["factorizations"]
-    # HHT is not Newmark here: its numerical damping moves the states
+    hht = DynamicsSettings(**settings, scheme="hht", alpha=-0.1)
+    fast = simulate(system, hht, initial=start, output_every=every)
     newmark = simulate(system, DynamicsSettings(**settings), initial=start, output_every=every)
+    assert_same_run(fast, reference_run(system, hht, start, every, monkeypatch))
+    # HHT is not Newmark here: its numerical damping moves the states
+    scale = float(np.abs(newmark.positions).max())
     assert not np.allclose(newmark.positions, fast.positions, rtol=0, atol=1e-5 * scale)
 
 
@@ -129,25 +119,17 @@ def test_compiled_loop_in_waves_equals_the_general_stepper_on_the_numpy_kernel(
     kinematics from moorline.waves): the same states to the Newton tolerance's round-off and
     the same work."""
     from moorline.model import Waves
-    from moorline.solvers.dynamic_model import DynamicModel
 
     system = _in_waves(Waves(**WAVES[name]))
     start = solve_statics(system)
     assert start.success, start.message
-    settings = dict(duration=8.0, dt=0.05, ramp_time=2.0, scheme=scheme, alpha=-0.1)
-    fast = simulate(system, DynamicsSettings(**settings), initial=start, output_every=0.1)
-    monkeypatch.setattr(dynamics, "DynamicModel",
-                        lambda *args, **kw: DynamicModel(*args, **kw, kernel="numpy"))
-    slow = simulate(system, DynamicsSettings(**settings, fast_path=False), initial=start,
-                    output_every=0.1)
-    assert fast.success and slow.success
-    scale = float(np.abs(slow.positions).max())
-    assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
-    assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
-    assert fast.counters["iterations"] == slow.counters["iterations"]
-    assert fast.counters["factorizations"] == slow.counters["factorizations"]
+    settings = DynamicsSettings(duration=8.0, dt=0.05, ramp_time=2.0, scheme=scheme,
+                                alpha=-0.1)
+    fast = simulate(system, settings, initial=start, output_every=0.1)
+    calm = simulate(_buoy_system(), settings, initial=start, output_every=0.1)
+    slow = reference_run(system, settings, start, 0.1, monkeypatch)
+    assert_same_run(fast, slow)
     assert np.array_equal(fast.wave_elevation, slow.wave_elevation)
     # the waves move the lines: not the still-water run
-    calm = simulate(_buoy_system(), DynamicsSettings(**settings), initial=start,
-                    output_every=0.1)
+    scale = float(np.abs(slow.positions).max())
     assert not np.allclose(calm.positions, fast.positions, rtol=0, atol=1e-5 * scale)

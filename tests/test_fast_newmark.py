@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from backends import assert_same_run, reference_run
 
 from moorline.model import (
     Current,
@@ -93,7 +94,6 @@ def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_acce
     from dataclasses import replace
 
     from moorline.io.case import load_case
-    from moorline.solvers import dynamics
     from moorline.solvers.dynamic_model import DynamicModel
     from moorline.solvers.dynamics import _fluid, _rayleigh
     from moorline.solvers.fast_newmark import fast_path_reason
@@ -116,13 +116,4 @@ def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_acce
         pytest.skip(f"the compiled backend does not take this case: {reason}")
     fast = simulate(system, replace(settings, fast_path=True), initial=start,
                     output_every=settings.dt)
-    monkeypatch.setattr(dynamics, "DynamicModel",
-                        lambda *args, **kw: DynamicModel(*args, **kw, kernel="numpy"))
-    slow = simulate(system, replace(settings, fast_path=False), initial=start,
-                    output_every=settings.dt)
-    assert slow.success and fast.success
-    scale = float(np.abs(slow.positions).max())
-    assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
-    assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
-    assert fast.counters["iterations"] == slow.counters["iterations"]
-    assert fast.counters["factorizations"] == slow.counters["factorizations"]
+    assert_same_run(fast, reference_run(system, settings, start, settings.dt, monkeypatch))
