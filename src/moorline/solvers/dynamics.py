@@ -162,7 +162,9 @@ class _BlockRunner:
     step cuts: the same arithmetic), evaluates the prescribed motion and point forces there
     at once, and records the block's output. A block has one sub-stepping level: at level 0
     it lasts about :data:`BLOCK_WALL` of wall time; at a finer level it ends where the level
-    would change (ten calm steps)."""
+    would change (ten calm steps). So the writer gets records at least every
+    :data:`BLOCK_WALL` or so (more only when steps suddenly slow down, e.g. at a finer level),
+    and a SIGKILL loses no more than its :data:`~moorline.io.stream.SYNC_WALL`."""
 
     BLOCK_WALL = 0.2  # wall time of a block [s] (the writer syncs every second)
 
@@ -186,9 +188,9 @@ class _BlockRunner:
         loop = self.loop
         if loop.level:
             return min(10 - loop.calm, remaining)
-        if self.per_step_wall <= 0.0:
-            return min(64, remaining)
-        return int(min(max(self.BLOCK_WALL / self.per_step_wall, 16), 8192, remaining))
+        if self.per_step_wall <= 0.0:  # the first block: a few steps, to time them
+            return min(4, remaining)
+        return int(min(max(self.BLOCK_WALL / self.per_step_wall, 1), 8192, remaining))
 
     def _plan(self, t: float, k: int, m: int) -> tuple[FloatArray, FloatArray, NDArray]:
         """Sub-step end times and sizes, and the output flags, of full steps k+1 .. k+m
