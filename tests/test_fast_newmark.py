@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from backends import assert_same_run, reference_run
 
 from moorline.model import (
     Current,
@@ -88,23 +89,17 @@ def test_band_ordering_and_lu_solve_like_dense():
 
 
 CASES = sorted((Path(__file__).parents[1] / "cases").glob("*.yaml"))
-# cases run without their waves (the compiled backend takes still water or a uniform current;
-# their prescribed fairlead motion still drives them): the polyester lines' tension-strain
-# table and dynamic stiffness are what the compiled backend is checked on there
-CALM = {"polyester_taut"}
 
 
 @pytest.mark.parametrize("path", CASES, ids=[p.stem for p in CASES])
 def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_accept(
         path, monkeypatch):
-    """Every case file the compiled backend accepts (those of ``CALM`` in still water): the
-    same states after every step as the general stepper on the numpy element kernel (the
-    reference path) (2 s of its dynamics, or of a default dynamics analysis)."""
+    """Every case file the compiled backend accepts (waves included): the same states after
+    every step as the general stepper on the numpy element kernel (the reference path) (40
+    steps of its dynamics, or of a default dynamics analysis)."""
     from dataclasses import replace
 
     from moorline.io.case import load_case
-    from moorline.model import Waves
-    from moorline.solvers import dynamics
     from moorline.solvers.dynamic_model import DynamicModel
     from moorline.solvers.dynamics import _fluid, _rayleigh
     from moorline.solvers.fast_newmark import fast_path_reason
@@ -113,8 +108,6 @@ def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_acce
         # a body with a hydrodynamic database (its BEM would be computed just to learn this)
         pytest.skip("the compiled backend does not take bodies (a hydrodynamic database)")
     system = load_case(path)
-    if path.stem in CALM:
-        system = replace(system, environment=replace(system.environment, waves=Waves()))
     settings = next((a for a in system.analyses if isinstance(a, DynamicsSettings)),
                     DynamicsSettings())
     settings = replace(settings, duration=min(settings.duration, 40 * settings.dt))
@@ -129,13 +122,4 @@ def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_acce
         pytest.skip(f"the compiled backend does not take this case: {reason}")
     fast = simulate(system, replace(settings, fast_path=True), initial=start,
                     output_every=settings.dt)
-    monkeypatch.setattr(dynamics, "DynamicModel",
-                        lambda *args, **kw: DynamicModel(*args, **kw, kernel="numpy"))
-    slow = simulate(system, replace(settings, fast_path=False), initial=start,
-                    output_every=settings.dt)
-    assert slow.success and fast.success
-    scale = float(np.abs(slow.positions).max())
-    assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
-    assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
-    assert fast.counters["iterations"] == slow.counters["iterations"]
-    assert fast.counters["factorizations"] == slow.counters["factorizations"]
+    assert_same_run(fast, reference_run(system, settings, start, settings.dt, monkeypatch))

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import sys
 
-KERNEL_MODULES = ("moorline.physics.fused", "moorline.solvers.fast_newmark")
+KERNEL_MODULES = ("moorline.physics.fused", "moorline.solvers.fast_fluid",
+                  "moorline.solvers.fast_newmark",
+                  "moorline.solvers.fast_loop")
 """The modules holding numba kernels."""
 
 

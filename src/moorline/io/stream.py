@@ -115,8 +115,9 @@ class HistoryWriter:
         self.variables = record_variables(mesh)
         self._block_records = block_records
         self._limit = 0  # records per block, from the first record's size
-        self._pending: list[dict[str, Any]] = []
-        self._times: list[float] = []
+        self._pending: list[dict[str, Any]] = []  # blocks of records
+        self._times: list[FloatArray] = []
+        self._n_pending = 0
         append = group is not None and self.path.exists()
         start = {**attrs, "units": units or attrs.get("units", "SI"), "success": 0,
                  "complete": 0, "status": str(Status.RUNNING)}
@@ -142,28 +143,39 @@ class HistoryWriter:
         oldest record waiting is at most about :data:`SYNC_WALL` old when the output
         interval is steady, and records more than :data:`SYNC_WALL` apart are written at
         once)."""
+        self.append_block(np.array([float(t)]),
+                          {key: np.asarray(value)[None] for key, value in record.items()})
+
+    def append_block(self, times: FloatArray, records: dict[str, FloatArray]) -> None:
+        """Buffer several records at once: ``times`` (n,) and each record key stacked along
+        a first axis of length n (as the compiled time loop writes them); written by the
+        rules of :meth:`append`, the block counting as one arrival."""
+        n = len(times)
+        if n == 0:
+            return
         now = time.monotonic()
         interval, self._appended_at = now - self._appended_at, now
-        self._pending.append(record)
-        self._times.append(t)
-        self.count += 1
-        self.last_time = float(t)
+        self._pending.append(records)
+        self._times.append(np.asarray(times, dtype=float))
+        self._n_pending += n
+        self.count += n
+        self.last_time = float(times[-1])
         if not self._limit:
-            self._limit = self._records_per_block(record)
-        if (self.written == 0 or len(self._pending) >= self._limit
+            self._limit = self._records_per_block(records, n)
+        if (self.written == 0 or self._n_pending >= self._limit
                 or now - self._written_at + interval >= SYNC_WALL):
             self.flush()
 
     def flush(self) -> None:
         """Write the buffered records as one block and sync the file (signals held back)."""
-        n = len(self._pending)
+        n = self._n_pending
         if n == 0 or not self.root.isopen():
             return
         i = self.written
         names = {var.name for var in self.variables}  # the record keys written
-        block = {key: _stack([r[key] for r in self._pending])
+        block = {key: _concatenate([r[key] for r in self._pending])
                  for key in self._pending[0] if key in names}
-        times = np.array(self._times, dtype=float)
+        times = np.concatenate(self._times)
         with signals_deferred():
             for var in self.variables:
                 self._targets[var.name][i:i + n] = var.derive(block)
@@ -173,6 +185,7 @@ class HistoryWriter:
             self.written = self.count
             self._pending.clear()
             self._times.clear()
+            self._n_pending = 0
             self._written_at = self._appended_at = time.monotonic()
 
     def _write_envelope(self, times: FloatArray, tension: FloatArray) -> None:
@@ -183,10 +196,10 @@ class HistoryWriter:
         self.ds.setncattr("envelope_records", self.envelope.count)
         self.attrs["envelope_records"] = self.envelope.count
 
-    def _records_per_block(self, record: dict[str, Any]) -> int:
+    def _records_per_block(self, records: dict[str, Any], n: int) -> int:
         """``block_records`` records per block, fewer when a block would exceed
-        :data:`BLOCK_BYTES`."""
-        per_record = 8 * sum(int(np.size(value)) for value in record.values()) + 8
+        :data:`BLOCK_BYTES` (``records``: ``n`` records stacked)."""
+        per_record = 8 * sum(int(np.size(value)) for value in records.values()) // n + 8
         return max(1, min(self._block_records or BLOCK_RECORDS, BLOCK_BYTES // per_record))
 
     def close(self, attrs: dict[str, Any] | None = None) -> None:
@@ -220,13 +233,10 @@ class HistoryWriter:
                     "message": f"{reason}; {self.count} records kept{when}"})
 
 
-def _stack(values: list[Any]) -> FloatArray:
-    """Records of one key stacked along a new first axis (as ``np.array(values)``, but one
-    ``np.concatenate``: three times faster for many small arrays)."""
-    first = np.asarray(values[0])
-    if first.ndim == 0:
-        return np.array(values, dtype=float)
-    return np.concatenate(values).reshape(len(values), *first.shape).astype(float, copy=False)
+def _concatenate(blocks: list[Any]) -> FloatArray:
+    """Blocks of records of one key joined along their first (record) axis, as floats."""
+    joined = blocks[0] if len(blocks) == 1 else np.concatenate(blocks)
+    return np.asarray(joined).astype(float, copy=False)
 
 
 CHUNK_BYTES = 1 << 18

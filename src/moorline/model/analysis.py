@@ -110,7 +110,8 @@ class DynamicsSettings:
         frequencies [rad/s] (Wang, Er and Iu use 0.03).
     fast_path
         Use the compiled step (:mod:`moorline.solvers.fast_newmark`) when the model allows
-        it (elastic lines, still water or uniform current, Newmark, iterative); same results.
+        it (elastic lines; still water, a uniform current, linear waves; Newmark or HHT,
+        iterative); same results.
     envelope_start
         Time from which the output records enter the tension envelope (min, max, mean, std
         per element, :mod:`moorline.envelope`); ``None``: ``ramp_time`` (after the ramp).

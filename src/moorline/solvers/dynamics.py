@@ -2,12 +2,14 @@
 
 :func:`simulate` starts from a static equilibrium (solved here unless given; or, with ``start:
 initial``, from the case's body poses with the lines at rest in their static shape), then advances
-with :class:`~moorline.solvers.newmark.Stepper` (or its compiled backend). A step that fails to
-converge is cut in half (recursively, ``max_step_cuts`` times) with a fresh tangent; if that
-fails too, the run ends and the result says so (``success`` False, the time and the line and
-node, or body dof, with the largest residual), holding the histories computed until then.
-Output records are kept in memory and, when a writer is given, streamed to NetCDF as they are
-produced.
+with :class:`~moorline.solvers.newmark.Stepper` or its compiled backend, whose steps run in
+blocks inside one compiled loop (:mod:`moorline.solvers.fast_loop`; the time-dependent inputs
+of a block evaluated at once, its records written into preallocated arrays). A step that fails
+to converge is cut in half (recursively, ``max_step_cuts`` times) with a fresh tangent, in
+Python (the compiled loop stops there and resumes after it); if that fails too, the run ends
+and the result says so (``success`` False, the time and the line and node, or body dof, with
+the largest residual), holding the histories computed until then. Output records are kept in
+memory and, when a writer is given, streamed to NetCDF in blocks as they are produced.
 """
 
 from __future__ import annotations
@@ -35,6 +37,10 @@ from .statics import describe_dof, lines_at_rest, solve_statics
 
 FloatArray = NDArray[np.float64]
 logger = logging.getLogger(__name__)
+
+COMPILED_LOOP = True
+"""Run the steps of the compiled backend in blocks (:class:`_BlockRunner`); False: one step
+per call from Python (the same compiled step and results; for tests and profiling)."""
 
 
 def simulate(
@@ -79,38 +85,172 @@ def simulate(
                          initial.tension if isinstance(initial, StaticResult) else None)
     recorder.add(state)
     n_steps = int(round(settings.duration / settings.dt))
-    next_output, cuts = every, 0
-    level, calm = 0, 0  # sub-steps 2**level per output step while Newton struggles
+    loop = _Loop(settings, n_steps, every)
+    blocks = _BlockRunner(stepper, excitation, mesh, recorder, loop) \
+        if COMPILED_LOOP and hasattr(stepper, "run_block") else None
+    cuts, k = 0, 0  # step cuts, full steps done
+    resume = None  # where the compiled loop stopped inside a step: (sub-step, h, norm)
     failure: StepFailedError | None = None
-    for k in range(1, n_steps + 1):
-        target = k * settings.dt
-        h = (target - state.t) / 2**level
+    while k < n_steps:
+        if blocks is not None and resume is None:
+            state, k, resume = blocks.run(state, k)
+            if progress is not None:
+                progress(state.t)
+            if resume is None:
+                continue
+        # the next step in Python (with its step cuts), or the rest of the step the compiled
+        # loop stopped in
+        target = (k + 1) * settings.dt
+        first, h, norm = resume if resume is not None else (
+            0, (target - state.t) / 2**loop.level, None)
+        resume = None
         used_cuts = 0
         try:
-            for i in range(2**level):
-                step = target - state.t if i == 2**level - 1 else h
+            for i in range(first, 2**loop.level):
+                step = target - state.t if i == 2**loop.level - 1 else h
                 state, used = _advance(stepper, excitation, state, step,
-                                       settings.max_step_cuts - level, mesh)
+                                       settings.max_step_cuts - loop.level, mesh,
+                                       norm if i == first else None)
                 used_cuts += used
         except StepFailedError as exc:
             failure = exc
             break
+        k += 1
         cuts += used_cuts
-        level, calm = _adapt(level, calm, used_cuts, settings.max_step_cuts)
-        if state.t >= next_output - 1e-9 * settings.dt or k == n_steps:
+        loop.adapt(used_cuts)
+        if loop.output_due(state.t, k):
             recorder.add(state)
-            next_output += every
         if progress is not None:
             progress(state.t)
     if failure is not None:
-        if recorder.records["time"][-1] < state.t:
+        if recorder.last_time < state.t:
             recorder.add(state)  # the last completed step
-        counters = dict(stepper.counters, steps=k - 1, step_cuts=cuts)
+        counters = dict(stepper.counters, steps=k, step_cuts=cuts)
         logger.info("%s: %s", system.name, failure.message())
         return recorder.result(False, failure.message(), counters, system, asdict(settings))
     counters = dict(stepper.counters, steps=n_steps, step_cuts=cuts)
     return recorder.result(True, f"completed {n_steps} steps", counters, system,
                            asdict(settings))
+
+
+class _Loop:
+    """The step loop's schedule: the sub-stepping level (2**level sub-steps per step while
+    Newton struggles) and the output times."""
+
+    def __init__(self, settings: DynamicsSettings, n_steps: int, every: float) -> None:
+        self.dt, self.n_steps, self.every = settings.dt, n_steps, every
+        self.max_cuts = settings.max_step_cuts
+        self.level, self.calm = 0, 0
+        self.next_output = every
+
+    def adapt(self, used_cuts: int) -> None:
+        """After a full step (:func:`_adapt`)."""
+        self.level, self.calm = _adapt(self.level, self.calm, used_cuts, self.max_cuts)
+
+    def output_due(self, t: float, k: int) -> bool:
+        """Whether the state at ``t`` after full step ``k`` is an output record (and if so
+        move on to the next output time)."""
+        if t >= self.next_output - 1e-9 * self.dt or k == self.n_steps:
+            self.next_output += self.every
+            return True
+        return False
+
+
+class _BlockRunner:
+    """Runs blocks of steps in the compiled loop (:meth:`FastStepper.run_block`): plans the
+    sub-step times of a block (those the Python loop of :func:`simulate` would take without
+    step cuts: the same arithmetic), evaluates the prescribed motion and point forces there
+    at once, and records the block's output. A block has one sub-stepping level: at level 0
+    it lasts about :data:`BLOCK_WALL` of wall time; at a finer level it ends where the level
+    would change (ten calm steps). So the writer gets records at least every
+    :data:`BLOCK_WALL` or so (more only when steps suddenly slow down, e.g. at a finer level),
+    and a SIGKILL loses no more than its :data:`~moorline.io.stream.SYNC_WALL`."""
+
+    BLOCK_WALL = 0.2  # wall time of a block [s] (the writer syncs every second)
+
+    def __init__(self, stepper, excitation: Excitation, mesh: Mesh, recorder: _Recorder,
+                 loop: _Loop) -> None:
+        import time
+
+        self.stepper, self.excitation, self.recorder, self.loop = stepper, excitation, \
+            recorder, loop
+        self.clock = time.perf_counter
+        self.per_step_wall = 0.0
+        ends = [(e, side) for elements in mesh.line_elements
+                for side, e in ((0, elements[0]), (1, elements[-1]))]
+        self.end_el = np.array([e for e, _ in ends], dtype=np.int64)
+        self.end_side = np.array([side for _, side in ends], dtype=np.int64)
+        self.end_weight = 0.5 * mesh.weight_per_length[self.end_el] * mesh.length0[self.end_el]
+        self.n_lines = len(mesh.line_names)
+        self.n_bodies = len(mesh.body_names)
+
+    def _length(self, remaining: int) -> int:
+        loop = self.loop
+        if loop.level:
+            return min(10 - loop.calm, remaining)
+        if self.per_step_wall <= 0.0:  # the first block: a few steps, to time them
+            return min(4, remaining)
+        return int(min(max(self.BLOCK_WALL / self.per_step_wall, 1), 8192, remaining))
+
+    def _plan(self, t: float, k: int, m: int) -> tuple[FloatArray, FloatArray, NDArray]:
+        """Sub-step end times and sizes, and the output flags, of full steps k+1 .. k+m
+        (schedule advanced as if they all succeed; :meth:`run` rewinds it otherwise)."""
+        loop = self.loop
+        per = 2**loop.level
+        times, hs = np.empty(m * per), np.empty(m * per)
+        record = np.zeros(m, dtype=np.bool_)
+        j = 0
+        for s in range(m):
+            target = (k + s + 1) * loop.dt
+            h = (target - t) / per
+            for i in range(per):
+                step = target - t if i == per - 1 else h
+                t = t + step
+                times[j], hs[j] = t, step
+                j += 1
+        return times, hs, record
+
+    def run(self, state, k: int):
+        """Advance from ``state`` after ``k`` full steps by one block; returns the state
+        after it, the full steps done and, when it stopped inside a step, ``(sub-step, h,
+        residual norm)`` of the sub-step Python is to cut."""
+        loop = self.loop
+        m = self._length(loop.n_steps - k)
+        times, hs, record = self._plan(state.t, k, m)
+        per = 2**loop.level
+        saved_output = loop.next_output
+        for s in range(m):
+            record[s] = loop.output_due(float(times[(s + 1) * per - 1]), k + s + 1)
+        kin = self.excitation.constrained_states(times)
+        forces = (self.excitation.force_nodes, self.excitation.force_histories(times))
+        started = self.clock()
+        block = self.stepper.run_block(state, times, hs, per, record, kin, forces, self.end_el,
+                                       self.end_side)
+        done = block.steps
+        if done and not loop.level:
+            self.per_step_wall = (self.clock() - started) / done
+        # the schedule as far as the block went
+        loop.next_output = saved_output
+        for s in range(done):
+            loop.output_due(float(times[(s + 1) * per - 1]), k + s + 1)
+            loop.adapt(0)
+        n_rec = len(block.tensions)
+        if n_rec:
+            rec_steps = np.flatnonzero(record[:done])
+            rec_times = times[(rec_steps + 1) * per - 1]
+            ends = block.end_forces.copy()
+            ends[:, :, 2] -= self.end_weight
+            self.recorder.add_block(rec_times, {
+                "position": block.positions, "velocity": block.velocities,
+                "tension": block.tensions,
+                "end_force": ends.reshape(n_rec, self.n_lines, 2, 3),
+                "body_pose": np.zeros((n_rec, 0, 6)), "body_velocity": np.zeros((n_rec, 0, 6)),
+                "body_mooring_force": np.zeros((n_rec, 0, 6)),
+                "body_pin_force": np.zeros((n_rec, self.n_bodies, 3)),
+                "wave_elevation": self.recorder.elevations(rec_times)})
+        if block.stopped < 0:
+            return block.state, k + done, None
+        return block.state, k + done, (block.stopped, float(hs[done * per]), block.norm)
 
 
 def start(system: System, settings: DynamicsSettings,
@@ -275,14 +415,18 @@ class StepFailedError(Exception):
 
 
 def _advance(stepper, excitation: Excitation, state: StepState, h: float,
-             cuts_left: int, mesh: Mesh) -> tuple[StepState, int]:
-    """One step of size ``h``, halving it recursively when Newton fails."""
+             cuts_left: int, mesh: Mesh, failed: float | None = None) -> tuple[StepState, int]:
+    """One step of size ``h``, halving it recursively when Newton fails (``failed``: the
+    residual norm of an attempt already made, which failed: go straight to the cut)."""
     t1 = state.t + h
     constrained = excitation.constrained_state(t1)
     forces = excitation.point_forces(t1, mesh.n_nodes)
-    new, ok, norm = stepper.step(state, h, constrained, forces)
-    if ok and math.isfinite(norm):
-        return new, 0
+    if failed is None:
+        new, ok, norm = stepper.step(state, h, constrained, forces)
+        if ok and math.isfinite(norm):
+            return new, 0
+    else:
+        norm = failed
     if cuts_left == 0:
         raise StepFailedError(t1, _worst(stepper, state, h, constrained, forces), norm)
     stepper.forget_tangent()
@@ -312,7 +456,7 @@ def describe_unknown(mesh: Mesh, body_dof: NDArray[np.int64], dof: int) -> str:
 
 
 class _Recorder:
-    """Collects output records (and streams them when a writer is given)."""
+    """Collects output records in blocks (and streams them when a writer is given)."""
 
     def __init__(self, mesh: Mesh, writer, fluid=None,
                  static_tension: FloatArray | None = None) -> None:
@@ -321,13 +465,11 @@ class _Recorder:
         self.fluid = fluid
         self.static_tension = (np.zeros(0) if static_tension is None
                                else np.array(static_tension, dtype=float))
-        self.records: dict[str, list] = {k: [] for k in
-                                         ("time", "position", "velocity", "tension",
-                                          "end_force", "body_pose", "body_velocity",
-                                          "body_mooring_force", "body_pin_force",
-                                          "wave_elevation")}
+        self.blocks: list[dict[str, FloatArray]] = []
+        self.last_time = -math.inf
 
     def add(self, state: StepState) -> None:
+        """One record: the state."""
         record = {"position": state.x.copy(), "velocity": state.v.copy(),
                   "tension": state.evaluation.tension.copy(),
                   "end_force": _end_forces(self.mesh, state),
@@ -339,11 +481,15 @@ class _Recorder:
                   "body_pin_force": (state.pin_force.copy() if state.pin_force is not None
                                      else np.zeros((len(self.mesh.body_names), 3))),
                   "wave_elevation": self._elevation(state.t)}
-        self.records["time"].append(state.t)
-        for key, value in record.items():
-            self.records[key].append(value)
+        self.add_block(np.array([state.t]),
+                       {key: np.asarray(value)[None] for key, value in record.items()})
+
+    def add_block(self, times: FloatArray, records: dict[str, FloatArray]) -> None:
+        """Records at ``times`` (n,), each key stacked along a first axis of length n."""
+        self.blocks.append({"time": np.asarray(times, dtype=float), **records})
+        self.last_time = float(times[-1])
         if self.writer is not None:
-            self.writer.append(state.t, record)
+            self.writer.append_block(times, records)
 
     def _elevation(self, t: float) -> float:
         """Free-surface elevation at the origin (x = y = 0) [length]."""
@@ -351,9 +497,17 @@ class _Recorder:
             return 0.0
         return float(self.fluid.kinematics(np.zeros((1, 3)), t)[2][0])
 
+    def elevations(self, times: FloatArray) -> FloatArray:
+        """:meth:`_elevation` at ``times`` (zeros in still water or a current)."""
+        from ..waves import CurrentProfile, StillWater
+
+        if self.fluid is None or isinstance(self.fluid, StillWater | CurrentProfile):
+            return np.zeros(len(times))
+        return np.array([self._elevation(float(t)) for t in times])
+
     def result(self, ok: bool, message: str, counters: dict, system: System,
                settings: dict) -> DynamicResult:
-        arrays = {k: np.array(v) for k, v in self.records.items()}
+        arrays = {k: np.concatenate([b[k] for b in self.blocks]) for k in self.blocks[0]}
         return DynamicResult(ok, message, arrays["time"], arrays["position"],
                              arrays["velocity"], arrays["tension"], arrays["end_force"],
                              counters, self.mesh, system.name, system.units, settings,

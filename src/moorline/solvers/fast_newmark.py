@@ -1,8 +1,10 @@
 """Compiled implicit step for the common case: elastic lines (constant ``EA``, tension-strain
 tables, the fibre-rope dynamic stiffness, sag-corrected elements, whose ``phi`` on the flat
-seabed is computed here) in still water or a uniform current, on a seabed
-with contact, damping and (isotropic) friction, Newmark beta = 1/4, gamma = 1/2 with
-equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
+seabed is computed here) in still water, a uniform current, Airy waves or a
+sea of linear components (no or Wheeler stretching), on a seabed with contact, damping and
+(isotropic) friction, Newmark beta = 1/4, gamma = 1/2 or HHT-alpha (Hilber, Hughes and
+Taylor 1977: the non-inertial forces weighted ``1 + alpha`` at the new time and ``-alpha`` at
+the old) with equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
 
 It is the same algorithm as :class:`moorline.solvers.newmark.Stepper` (same residual, same
 exact tangent, same modified-Newton refresh rule, backtracking on the residual norm), moved
@@ -18,6 +20,7 @@ stepper.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -26,6 +29,7 @@ from numpy.typing import NDArray
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from ..physics.fused import _kernel
+from .fast_fluid import fluid_at_midpoints
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -224,8 +228,35 @@ def _norm_inf_free(resid, band, out):
 
 
 @numba.njit(**_JIT)
-def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, cv, kzz, czz,
-              fric_c, fric_kz, fric_cz, seabed_on):
+def _residual_norm(buf, band, rvec, alpha, node_mass, a, f_am, other0):
+    """The step's residual gathered into ``rvec`` (band order) and its max-norm: Newmark's
+    ``F - M_s a`` (``buf[11]``), or with ``alpha != 0`` HHT's
+    ``(1 + alpha) (F - F_am) - alpha (F0 - F_am0) + F_am - M_s a`` (Hilber, Hughes and Taylor
+    1977; :mod:`moorline.solvers.newmark`, eq. 4.2.10 weighted), ``F`` all nodal forces
+    without structural inertia, ``F_am`` their added-mass part, ``other0 = F0 - F_am0`` at the
+    start of the step."""
+    resid = buf[11]
+    if alpha == 0.0:
+        return _norm_inf_free(resid, band, rvec)
+    m = 0.0
+    for n in range(resid.shape[0]):
+        for c in range(3):
+            k = band[n, c]
+            if k >= 0:
+                inertial = f_am[n, c] - node_mass[n] * a[n, c]
+                other = resid[n, c] + node_mass[n] * a[n, c] - f_am[n, c]
+                rvec[k] = (1 + alpha) * other - alpha * other0[n, c] + inertial
+                r = abs(rvec[k])
+                if not (r <= m):
+                    m = r if r == r else math.inf
+    return m
+
+
+@numba.njit(**_JIT)
+def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, cv, ck, kzz,
+              czz, fric_c, fric_kz, fric_cz, seabed_on):
+    """The effective tangent ``ca (M_s + M_a) + cv C + ck K`` in band storage (with HHT
+    ``ck = 1 + alpha`` and ``cv`` weighted by it, eq. 4.2.9a)."""
     ab[:, :] = 0.0
     for e in range(elements.shape[0]):
         for p in range(6):
@@ -236,7 +267,7 @@ def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, 
                 col = band[elements[e, q // 3], q % 3]
                 if col < 0:
                     continue
-                val = K[e, p, q] + cv * C[e, p, q]
+                val = ck * K[e, p, q] + cv * C[e, p, q]
                 if with_added_mass:
                     val += ca * Ma[e, p, q]
                 ab[row, col - row + bw] += val
@@ -248,12 +279,12 @@ def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, 
             ab[k, bw] += ca * node_mass[n]
         if seabed_on:
             kz = band[n, 2]
-            ab[kz, bw] += kzz[n] + cv * czz[n]
+            ab[kz, bw] += ck * kzz[n] + cv * czz[n]
             for r in range(2):
                 kr = band[n, r]
                 for s in range(2):
                     ab[kr, band[n, s] - kr + bw] += cv * fric_c[n, r, s]
-                ab[kr, kz - kr + bw] += fric_kz[n, r] + cv * fric_cz[n, r]
+                ab[kr, kz - kr + bw] += ck * fric_kz[n, r] + cv * fric_cz[n, r]
 
 
 @numba.njit(**_JIT)
@@ -272,30 +303,42 @@ def _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1):
 def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
                  with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
                  seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta,
-                 gamma, tol, max_iter,
-                 refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
-                 stall_limit, max_halvings):
-    """One Newmark step with modified-Newton iterations: the algorithm of
-    :func:`moorline.solvers.newton.solve` (same refresh, line-search, stale-tangent and stall
-    rules, constants from the same :class:`~moorline.solvers.newton.NewtonPolicy`).
+                 gamma, alpha, other0, tol,
+                 max_iter, refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
+                 stall_limit, max_halvings, fluid, j):
+    """One Newmark (or HHT-alpha: ``alpha`` and the non-inertial forces at the start of the
+    step ``other0``, :func:`_residual_norm`) step with modified-Newton iterations: the
+    algorithm of :func:`moorline.solvers.newton.solve` (same refresh, line-search,
+    stale-tangent and stall rules, constants from the same
+    :class:`~moorline.solvers.newton.NewtonPolicy`).
 
     On entry ``x1, v1, a1`` hold the constrained nodes' kinematics at the new time (free
-    nodes are predicted here). ``lu`` holds the factored effective tangent when
-    ``refresh`` is False. ``counters`` accumulates [iterations, residuals, factorizations].
+    nodes are predicted here). Line-search trials are evaluated without the tangent blocks
+    (half the cost); the tangent is evaluated at the iterate when it is refreshed (the same
+    numbers as evaluating it with every trial, one more residual count). ``lu`` holds the
+    factored effective tangent when ``refresh`` is False. ``counters`` accumulates
+    [iterations, residuals, factorizations]. The fluid velocity and acceleration ``uf, af``
+    come from ``fluid`` at sub-step ``j`` at every evaluated state
+    (:func:`~moorline.solvers.fast_fluid.fluid_at_midpoints`, as the general stepper's
+    model evaluates them) when it has waves or a current.
     Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
-    cv = gamma / (beta * h)
+    cv = (1 + alpha) * gamma / (beta * h)
+    ck = 1.0 + alpha
     for n in range(x1.shape[0]):
         if free[n]:
             for c in range(3):
                 x1[n, c] = x0[n, c] + h * v0[n, c] + 0.5 * h * h * a0[n, c]
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
+    moving = fluid[0] or fluid[6]
+    if moving:
+        fluid_at_midpoints(x1, elements, j, fluid, uf, af)
     _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag, with_added_mass,
               node_mass, external, point_force, seabed_on, seabed_z, k_sb, c_sb, ramp, mu,
               v_slip, sag_on, sag_active, sag_load, refresh, buf)
     counters[1] += 1
-    norm = _norm_inf_free(buf[11], band, rvec)
+    norm = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
     have_tangent = refresh
     refactored = False
     stalled = 0
@@ -304,14 +347,16 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             return True, norm, refactored
         if refresh:
             if not have_tangent:
+                if moving:
+                    fluid_at_midpoints(x1, elements, j, fluid, uf, af)
                 _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag,
                           with_added_mass, node_mass, external, point_force, seabed_on,
                           seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load,
                           True, buf)
                 counters[1] += 1
-                norm = _norm_inf_free(buf[11], band, rvec)
+                norm = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
             _assemble(lu, bw, band, elements, buf[6], buf[7], buf[8], with_added_mass,
-                      node_mass, ca, cv, buf[12], buf[13], buf[14], buf[15], buf[16],
+                      node_mass, ca, cv, ck, buf[12], buf[13], buf[14], buf[15], buf[16],
                       seabed_on)
             if not _band_lu(lu, bw):
                 return False, norm, refactored
@@ -324,33 +369,35 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
         dx = rvec.copy()
         _band_solve(lu, bw, dx)
         counters[0] += 1
-        alpha = 1.0
+        step = 1.0  # line-search length
         better = False
         for _ls in range(max_halvings + 1):
             for n in range(x1.shape[0]):
                 for c in range(3):
                     k = band[n, c]
-                    trial[n, c] = x1[n, c] + (alpha * dx[k] if k >= 0 else 0.0)
+                    trial[n, c] = x1[n, c] + (step * dx[k] if k >= 0 else 0.0)
             _kinematics(x0, v0, a0, trial, h, beta, gamma, free, v1, a1)
+            if moving:
+                fluid_at_midpoints(trial, elements, j, fluid, uf, af)
             _evaluate(trial, v1, a1, uf, af, elements, props, laws, with_drag,
                       with_added_mass, node_mass, external, point_force, seabed_on, seabed_z,
-                      k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, True, buf)
+                      k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, False, buf)
             counters[1] += 1
-            n_new = _norm_inf_free(buf[11], band, rvec)
+            n_new = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
             merit = 0.0
             for k in range(rvec.shape[0]):
                 merit += rvec[k] * rvec[k]
             if merit < merit0:
                 better = True
                 break
-            alpha *= 0.5
+            step *= 0.5
         if not better and not refactored:
             # a stale tangent: refresh it at the same point and retry
             refresh = True
             have_tangent = False
             _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
             continue
-        have_tangent = True
+        have_tangent = False  # trials are evaluated without it (made again when refreshed)
         if n_new > refresh_ratio * norm:
             refresh = True
         stalled = stalled + 1 if n_new > stall_ratio * norm else 0
@@ -371,11 +418,34 @@ def make_buffers(n_el: int, n_nodes: int) -> tuple:
             np.zeros((n_nodes, 2)), np.zeros(n_el), np.zeros((n_el, 2, 3)))
 
 
+def _fluid_parts(fluid):
+    """``(waves, current)`` of a fluid field the compiled step takes (linear wave components
+    and a uniform current, each or both or neither), or None when it takes no such field."""
+    from ..waves import AiryWave, CombinedField, CurrentProfile, StillWater, WaveComponents
+
+    def uniform(current) -> bool:
+        return len(set(np.atleast_1d(current.speeds))) == 1 \
+            and len(set(np.atleast_1d(current.headings_deg))) == 1
+
+    waves, current = fluid, None
+    if isinstance(fluid, StillWater):
+        return None, None
+    if isinstance(fluid, CurrentProfile):
+        waves, current = None, fluid
+    elif isinstance(fluid, CombinedField):
+        waves, current = fluid.wave, fluid.current
+    if isinstance(waves, AiryWave):
+        waves = waves.components
+    if waves is not None and not isinstance(waves, WaveComponents):
+        return None
+    if current is not None and not (isinstance(current, CurrentProfile) and uniform(current)):
+        return None
+    return waves, current
+
+
 def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
                      rayleigh: bool = False) -> str | None:
     """Why the compiled step cannot run this model (None when it can)."""
-    from ..waves import CurrentProfile, StillWater
-
     if bodies:
         return "rigid bodies"
     if rayleigh:
@@ -384,7 +454,7 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
         return "viscoelastic lines, slack_damping, drag_velocity node or the numpy kernel"
     if model.mesh.has_bending:
         return "bending stiffness (EI)"
-    if scheme != "newmark" or variant != "iterative":
+    if scheme not in ("newmark", "hht") or variant != "iterative":
         return f"scheme {scheme!r} / variant {variant!r}"
     if model.has_point_hydro:
         return "points with their own drag or added mass"
@@ -392,17 +462,16 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
         return "anisotropic seabed friction"
     if model.mesh.bathymetry is not None:
         return "a sloped or gridded seabed"
-    if isinstance(fluid, StillWater):
-        return None
-    if isinstance(fluid, CurrentProfile) and len(set(np.atleast_1d(fluid.speeds))) == 1 \
-            and len(set(np.atleast_1d(fluid.headings_deg))) == 1:
-        return None
-    return "waves or a sheared current"
+    if _fluid_parts(fluid) is None:
+        return "a sheared current or a fluid field other than Airy waves and a uniform current"
+    return None
 
 
 class FastStepper:
     """The compiled backend of :class:`~moorline.solvers.newmark.Stepper`: the same step
-    (see :func:`fast_path_reason` for when it applies), run by :func:`newmark_step`."""
+    (see :func:`fast_path_reason` for when it applies), run by :func:`newmark_step` inside
+    the compiled loop :func:`moorline.solvers.fast_loop.advance_block`: :meth:`step` is a
+    block of one sub-step, :meth:`run_block` many steps."""
 
     def __init__(self, model, coefficients, policy) -> None:
         mesh = model.mesh
@@ -413,37 +482,55 @@ class FastStepper:
         self.free = mesh.free_nodes
         n_dof = int(self.free.sum()) * 3
         self.lu = np.zeros((n_dof, 2 * self.bw + 1))
-        self.lu_h, self.lu_age, self.lu_valid = np.nan, 0, False
+        self.tan = np.zeros(3)  # factorization valid, its step size, its age [steps]
         self.buf = make_buffers(mesh.n_elements, mesh.n_nodes)
-        self.rvec = np.zeros(n_dof)
-        self.trial = np.zeros((mesh.n_nodes, 3))
         self.counts = np.zeros(3, dtype=np.int64)
-        self.fused = model._fused
-        self.seabed_on = bool(np.isfinite(mesh.seabed_z))
-        self.mu, self.v_slip = (model.friction[0], model.friction[2]) if model.friction \
-            else (0.0, 1.0)
-        self.dof = mesh.dof_of_node
-        from ..waves import StillWater
+        self.fixed = np.flatnonzero(~self.free)
+        n_el, n_nodes = mesh.n_elements, mesh.n_nodes
+        self.work = (self.lu, self.buf, np.zeros(n_dof), np.zeros((n_nodes, 3)),
+                     np.zeros((n_nodes, 3)), np.zeros((n_el, 3)), np.zeros((n_el, 3)))
+        f = model._fused
+        mu, v_slip = (model.friction[0], model.friction[2]) if model.friction else (0.0, 1.0)
+        self.model_args = (
+            self.free, self.band, self.bw, mesh.elements, f.props, f.laws, f.with_drag,
+            f.with_added_mass, model.node_mass, model.external,
+            bool(np.isfinite(mesh.seabed_z)), float(mesh.seabed_z), model.k_seabed,
+            model.c_seabed, model.seabed_ramp, float(mu), float(v_slip), *self._sag(model),
+            float(coefficients.beta),
+            float(coefficients.gamma), float(coefficients.alpha))
+        pol = policy
+        self.newton_args = (float(pol.tolerance), int(pol.max_iterations),
+                            np.inf if pol.refresh_ratio is None else float(pol.refresh_ratio),
+                            float(pol.stall_ratio), int(pol.stall_limit),
+                            int(pol.max_halvings), float(pol.stiffness_update))
+        self.waves, self.current = _fluid_parts(model.fluid)
+        if self.waves is not None:
+            c = self.waves._coef
+            self.wave_coef = np.ascontiguousarray(np.vstack([c[name] for name in (
+                "k", "kx", "ky", "a", "aw_c", "aw_s", "aw", "aw2_c", "aw2_s", "aw2", "denom")]))
+        else:
+            self.wave_coef = np.zeros((11, 0))
+        self.current_velocity = np.zeros(3) if self.current is None else \
+            np.ascontiguousarray(self.current.velocity(np.zeros(1))[0], dtype=float)
 
-        zeros = np.zeros((mesh.n_elements, 3))
-        self._still = (zeros, zeros) if isinstance(model.fluid, StillWater) else None
-        self._no_forces = np.zeros((mesh.n_nodes, 3))
-        sag = model.sag
-        self.sag = (sag is not None, np.zeros(mesh.n_elements) if sag is None else sag.active,
-                    np.zeros(mesh.n_nodes) if sag is None else sag.node_load)
+    @staticmethod
+    def _sag(model) -> tuple:
+        """(on, active (n_el,), node load (n_nodes,)) of the sag correction."""
+        mesh, sag = model.mesh, model.sag
+        return (sag is not None, np.zeros(mesh.n_elements) if sag is None else sag.active,
+                np.zeros(mesh.n_nodes) if sag is None else sag.node_load)
 
     def forget_tangent(self) -> None:
         """Drop the factorization (after a step cut)."""
-        self.lu_valid = False
+        self.tan[0] = 0.0
 
     def tangent_state(self) -> tuple:
         """The banded factors and their age (see :meth:`Stepper.tangent_state`)."""
-        return self.lu.copy(), self.lu_h, self.lu_age, self.lu_valid
+        return self.lu.copy(), self.tan.copy()
 
     def set_tangent_state(self, saved: tuple) -> None:
         """Restore what :meth:`tangent_state` returned."""
-        lu, self.lu_h, self.lu_age, self.lu_valid = saved
-        self.lu[...] = lu
+        self.lu[...], self.tan[...] = saved
 
     @property
     def counters(self) -> dict:
@@ -451,51 +538,88 @@ class FastStepper:
         it, res, fac = (int(v) for v in self.counts)
         return {"iterations": it, "residuals": res, "tangents": fac, "factorizations": fac}
 
-    def _fluid(self, t: float, x: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """Fluid velocity and acceleration at the element midpoints (cached zeros in still
-        water)."""
-        if self._still is not None:
-            return self._still
-        el = self.model.mesh.elements
-        mid = 0.5 * (x[el[:, 0]] + x[el[:, 1]])
-        u, a, _ = self.model.fluid.kinematics(mid, t)
-        return np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(a, dtype=float)
+    def _fluid_inputs(self, times: FloatArray) -> tuple:
+        """What :func:`moorline.solvers.fast_loop._fluid` takes for sub-steps ending at
+        ``times``: the waves' phases ``phi - w t`` and ramps, the current's ramp."""
+        from ..waves.airy import ramp_factor
 
-    def step(self, s0, h: float, constrained, point_forces):
-        """Advance from ``s0`` by ``h`` (see :meth:`Stepper.step`)."""
-        from .dynamic_model import Evaluation, MaterialState
-        from .newmark import StepState
+        def ramps(field) -> FloatArray:
+            if field is None:
+                return np.zeros((len(times), 2))
+            return np.array([ramp_factor(float(t), field.ramp_time) for t in times],
+                            dtype=float).reshape(-1, 2)
+
+        waves = self.waves
+        offset = np.zeros((len(times), 0)) if waves is None else \
+            waves._coef["phi"] - waves._coef["w"] * np.asarray(times)[:, None]
+        depth = math.inf if waves is None else float(waves.depth)
+        wheeler = waves is not None and waves.stretching == "wheeler"
+        return (waves is not None, self.wave_coef, depth, wheeler, offset, ramps(waves),
+                self.current is not None, self.current_velocity, ramps(self.current))
+
+    def run_block(self, s0, times: FloatArray, hs: FloatArray, per_step: int,
+                  record: NDArray[np.bool_], kinematics: tuple, forces: tuple,
+                  end_elements: IntArray, end_sides: IntArray) -> Block:
+        """Advance from ``s0`` by the sub-steps ``hs`` (ending at ``times``), ``per_step``
+        to a full step, with the fixed and prescribed nodes' kinematics
+        ``(x, v, a)`` (n_sub, n_fixed, 3) and the point forces ``(nodes, values)``
+        (values (n_sub, n_forces, 3)) at those times; records after the full steps flagged
+        in ``record`` (:func:`moorline.solvers.fast_loop.advance_block`)."""
+        from .fast_loop import advance_block
 
         mesh = self.model.mesh
-        x1 = np.empty_like(s0.x)
-        v1 = np.empty_like(s0.v)
-        a1 = np.empty_like(s0.a)
-        fixed = ~self.free
-        x1[fixed], v1[fixed], a1[fixed] = constrained
-        uf, af = self._fluid(s0.t + h, s0.x)
-        forces = point_forces if point_forces is not None else self._no_forces
-        pol = self.policy
-        refresh = (not self.lu_valid) or self.lu_h != h or self.lu_age >= pol.stiffness_update
-        f = self.fused
-        m = self.model
-        ok, norm, refactored = newmark_step(
-            s0.x, s0.v, s0.a, x1, v1, a1, self.free, self.band, self.bw, mesh.elements,
-            f.props, f.laws, f.with_drag, f.with_added_mass, m.node_mass, m.external, forces,
-            uf, af,
-            self.seabed_on, float(mesh.seabed_z), m.k_seabed, m.c_seabed, m.seabed_ramp,
-            self.mu, self.v_slip, *self.sag, h, self.c.beta, self.c.gamma, pol.tolerance,
-            pol.max_iterations, refresh, self.lu, self.buf, self.rvec, self.trial, self.counts,
-            np.inf if pol.refresh_ratio is None else pol.refresh_ratio, pol.stall_ratio,
-            pol.stall_limit, pol.max_halvings)
-        if refactored:
-            self.lu_valid, self.lu_h, self.lu_age = True, h, 0
-        if not ok:
-            self.lu_valid = False
-            return s0, False, float(norm)
-        self.lu_age += 1
-        el_forces, tension, strain = self.buf[0].copy(), self.buf[3].copy(), self.buf[4].copy()
-        nodal = self.buf[11] + m.node_mass[:, None] * a1  # F without structural inertia
-        ev = Evaluation(nodal, self.buf[10].copy(), tension,
-                        MaterialState(strain, s0.material.maxwell), el_forces)
-        return StepState(s0.t + h, x1, v1, a1, ev.material, ev), True, float(norm)
+        x0, v0, a0 = s0.x.copy(), s0.v.copy(), s0.a.copy()
+        x1, v1, a1 = np.empty_like(x0), np.empty_like(x0), np.empty_like(x0)
+        n_el, n_nodes = mesh.n_elements, mesh.n_nodes
+        saved = (np.empty((n_el, 2, 3)), np.empty(n_el), np.empty(n_el),
+                 np.empty((n_nodes, 3)), np.empty((n_nodes, 3)))
+        n_rec = int(np.count_nonzero(record))
+        out = (np.empty((n_rec, n_nodes, 3)), np.empty((n_rec, n_nodes, 3)),
+               np.empty((n_rec, n_el)), np.empty((n_rec, len(end_elements), 3)),
+               end_elements, end_sides)
+        other0 = s0.evaluation.nodal - s0.evaluation.inertial  # HHT: F0 - F_am0
+        done, stopped, norm, n_written = advance_block(
+            x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
+            self._fluid_inputs(times), self.model_args, self.newton_args, self.tan,
+            self.counts, self.work, other0, saved, out)
+        n_sub = done * per_step + max(stopped, 0)
+        state = s0
+        if n_sub:
+            from .dynamic_model import Evaluation, MaterialState
+            from .newmark import StepState
 
+            el_forces, tension, strain, f_am, resid = saved
+            nodal = resid + self.model.node_mass[:, None] * a0  # F without structural inertia
+            ev = Evaluation(nodal, f_am, tension, MaterialState(strain, s0.material.maxwell),
+                            el_forces)
+            state = StepState(float(times[n_sub - 1]), x0, v0, a0, ev.material, ev)
+        return Block(state, int(done), int(stopped), float(norm), out[0][:n_written],
+                     out[1][:n_written], out[2][:n_written], out[3][:n_written])
+
+    def step(self, s0, h: float, constrained, point_forces):
+        """Advance from ``s0`` by ``h`` (see :meth:`Stepper.step`): a block of one step."""
+        empty = np.zeros(0, dtype=np.int64)
+        forces = (empty, np.zeros((1, 0, 3))) if point_forces is None else \
+            (np.arange(len(point_forces), dtype=np.int64), np.asarray(point_forces)[None])
+        block = self.run_block(s0, np.array([s0.t + h]), np.array([h]), 1,
+                               np.zeros(1, dtype=np.bool_),
+                               tuple(np.asarray(q, dtype=float)[None] for q in constrained),
+                               forces, empty, empty)
+        return block.state, block.steps == 1, block.norm
+
+
+@dataclass
+class Block:
+    """What :meth:`FastStepper.run_block` did: the state after the last converged sub-step,
+    the full steps done, the sub-step of the next step where it stopped (-1: none) and its
+    residual max-norm, and the records (positions, velocities, tensions, the element forces
+    at the line ends)."""
+
+    state: object
+    steps: int
+    stopped: int
+    norm: float
+    positions: FloatArray
+    velocities: FloatArray
+    tensions: FloatArray
+    end_forces: FloatArray

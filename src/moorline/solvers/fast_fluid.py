@@ -1,0 +1,90 @@
+"""Fluid kinematics at the element midpoints for the compiled step (numba): linear wave
+components and a uniform current, the formulas of :class:`moorline.waves.WaveComponents`
+(:mod:`moorline.waves.airy`: Airy kinematics, ``cosh k(z + h) / sinh kh`` written with
+``expm1`` for large ``kh``, no or Wheeler stretching) and
+:class:`moorline.waves.CombinedField`, one midpoint at a time. The time-dependent parts (the
+phases ``phi - w t``, the ramps) are computed per sub-step in Python
+(:meth:`moorline.solvers.fast_newmark.FastStepper.run_block`)."""
+
+from __future__ import annotations
+
+import math
+
+import numba
+
+_JIT = {"cache": True, "fastmath": False, "error_model": "numpy"}
+
+
+@numba.njit(**_JIT)
+def fluid_at_midpoints(x, elements, j, fluid, uf, af):
+    """Fluid velocity and acceleration at the element midpoints at sub-step ``j``: linear
+    (Airy) wave components and a uniform current, as
+    :meth:`moorline.waves.WaveComponents.kinematics` (no stretching: the values at
+    ``min(z, 0)``, or Wheeler stretching; zero above the instantaneous surface ``eta``; below
+    the seabed those at the seabed) plus :meth:`moorline.waves.CurrentProfile.ramped` (zero
+    above ``eta``, as :class:`moorline.waves.CombinedField`; ``eta = 0`` without waves).
+
+    ``fluid = (waves_on, coef, depth, wheeler, offset, wave_ramp, current_on, current,
+    current_ramp)``: ``coef`` rows ``k, kx, ky, a, a w cos b, a w sin b, a w, a w^2 cos b,
+    a w^2 sin b, a w^2, 1 - exp(-2 k h)`` per component (those of ``WaveComponents``),
+    ``offset[j]`` the phases ``phi - w t`` at the sub-step's time, ``wave_ramp[j]`` and
+    ``current_ramp[j]`` the ramp factors and their rates, ``current`` the current's velocity.
+    """
+    (waves_on, coef, depth, wheeler, offset, wave_ramp, current_on, current,
+     current_ramp) = fluid
+    finite = math.isfinite(depth)
+    r, dr = wave_ramp[j, 0], wave_ramp[j, 1]
+    rc, drc = current_ramp[j, 0], current_ramp[j, 1]
+    for e in range(elements.shape[0]):
+        mx = 0.5 * (x[elements[e, 0], 0] + x[elements[e, 1], 0])
+        my = 0.5 * (x[elements[e, 0], 1] + x[elements[e, 1], 1])
+        z = 0.5 * (x[elements[e, 0], 2] + x[elements[e, 1], 2])
+        u0 = u1 = u2 = a0 = a1 = a2 = 0.0
+        eta = 0.0
+        if waves_on:
+            s = 0.0
+            for i in range(coef.shape[1]):
+                s += math.cos(mx * coef[1, i] + my * coef[2, i] + offset[j, i]) * coef[3, i]
+            eta = r * s
+            zc = max(z, -depth)
+            if wheeler:
+                ze = depth * (zc - eta) / (depth + eta) if finite else zc - eta
+            else:
+                ze = zc
+            ze = min(ze, 0.0)
+            for i in range(coef.shape[1]):
+                k = coef[0, i]
+                theta = mx * coef[1, i] + my * coef[2, i] + offset[j, i]
+                ct, st = math.cos(theta), math.sin(theta)
+                ekz = math.exp(ze * k)
+                if finite:
+                    em = math.expm1(-2.0 * k * (ze + depth))
+                    cfac = ekz * (2.0 + em) / coef[10, i]
+                    sfac = -ekz * em / coef[10, i]
+                else:
+                    cfac = sfac = ekz
+                u0 += cfac * ct * coef[4, i]
+                u1 += cfac * ct * coef[5, i]
+                u2 += sfac * st * coef[6, i]
+                a0 += cfac * st * coef[7, i]
+                a1 += cfac * st * coef[8, i]
+                a2 -= sfac * ct * coef[9, i]
+            if dr != 0.0:
+                a0, a1, a2 = r * a0 + dr * u0, r * a1 + dr * u1, r * a2 + dr * u2
+            else:
+                a0, a1, a2 = r * a0, r * a1, r * a2
+            u0, u1, u2 = r * u0, r * u1, r * u2
+        wet = z <= eta
+        if current_on and wet:
+            u0 += rc * current[0]
+            u1 += rc * current[1]
+            u2 += rc * current[2]
+            a0 += drc * current[0]
+            a1 += drc * current[1]
+            a2 += drc * current[2]
+        uf[e, 0] = u0 if wet else 0.0
+        uf[e, 1] = u1 if wet else 0.0
+        uf[e, 2] = u2 if wet else 0.0
+        af[e, 0] = a0 if wet else 0.0
+        af[e, 1] = a1 if wet else 0.0
+        af[e, 2] = a2 if wet else 0.0
