@@ -107,6 +107,37 @@ def test_normal_plane_expectations_against_a_fine_grid_and_monte_carlo():
     assert np.all(np.abs(g1[0, :2, :2] - (ma * np.eye(2) + mo)) <= 4 * (sa + so) + 1e-12)
 
 
+@pytest.mark.parametrize("W,chol", [
+    # a line in a current: the fluctuation a thousandth of the mean flow (the OC3 lines on
+    # the seabed in a 1 m/s current); the old polar rule about the origin sampled the
+    # needle-shaped peak every 0.025 rad for a width of 0.001 rad and gave zero drag
+    ((0.8, -0.6), ((2e-3, 0.0), (1e-3, 5e-4))),
+    ((0.05, 0.02), ((2e-3, 0.0), (1e-3, 5e-4))),  # 20 standard deviations out
+    ((1.0, 0.0), ((1e-2, 0.0), (0.0, 1e-5))),  # elongated: axis ratio 1000
+])
+def test_normal_plane_expectations_with_a_strong_mean_flow(W, chol):
+    """The mean flow far outside the fluctuation (Mahalanobis distance 20 to 10^6): against
+    an 801^2 trapezoidal grid over the Gaussian (the integrand is smooth there: relative
+    1e-8) and 2 x 10^5 samples (4 standard errors)."""
+    W3, chol = np.array([*W, 0.0]), np.array(chol)
+    cov = np.zeros((3, 3))
+    cov[:2, :2] = chol @ chol.T
+    f, g = dl.vector_expectations(W3[None], cov[None], PLANE[None])
+    xi = np.linspace(-9, 9, 801)
+    X1, X2 = np.meshgrid(xi, xi, indexing="ij")
+    wt = np.exp(-0.5 * (X1**2 + X2**2))
+    wt /= wt.sum()
+    w = W3[:2] + np.stack([X1, X2], -1) @ chol.T
+    n = np.linalg.norm(w, axis=-1)
+    grid_f = np.einsum("ij,ij,ijk->k", wt, n, w)
+    grid_g = (wt * n).sum() * np.eye(2) + np.einsum("ij,ijk,ijl->kl", wt / n, w, w)
+    assert np.allclose(f[0, :2], grid_f, rtol=1e-8, atol=1e-8 * np.abs(grid_f).max())
+    assert np.allclose(g[0, :2, :2], grid_g, rtol=1e-8, atol=1e-8 * np.abs(grid_g).max())
+    (mf, sf), (ma, sa), (mo, so) = _mc(W3[:2], chol, 200_000, 14)
+    assert np.all(np.abs(f[0, :2] - mf) <= 4 * sf + 1e-14)
+    assert np.all(np.abs(g[0, :2, :2] - (ma * np.eye(2) + mo)) <= 4 * (sa + so) + 1e-14)
+
+
 def test_point_expectations_against_monte_carlo():
     """Three axes (a buoy): Gauss-Hermite against 2x10^6 samples, within 4 standard errors
     plus the quadrature's own error at the kink (1.5e-3 relative: at zero mean against the
