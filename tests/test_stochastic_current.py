@@ -235,6 +235,16 @@ def test_the_waves_mean_drag_against_the_time_domain(in_current):
     assert excess_fd[0] == pytest.approx(mean_td[0] - steady[0], rel=0.05)
 
 
+def test_a_linearization_that_does_not_converge_ends_the_mean_state_loop():
+    """Fail fast: the linearization about the current-only state stops at its cap (2
+    iterations for a tolerance of 1e-12) and no further statics are solved."""
+    r = solve_stochastic(_current_riser(), StochasticSettings(max_iterations=2,
+                                                              tolerance=1e-12))
+    assert not r.success and r.iterations == 2
+    assert r.counters["mean_state_iterations"] == 0
+    assert "did not converge in 2 iterations" in r.message and "statics 0" in r.message
+
+
 def test_zero_mean_formula_about_the_current_state_fails(in_current, monkeypatch):
     """Borgman's zero-mean gain used about the current's static state (the current ignored
     in the linearization) misses the time domain by far more than the tolerance."""

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import sys
 
-KERNEL_MODULES = ("moorline.physics.fused", "moorline.solvers.fast_newmark")
+KERNEL_MODULES = ("moorline.physics.fused", "moorline.solvers.fast_newmark",
+                  "moorline.solvers.frequency_sweep")
 """The modules holding numba kernels."""
 
 
