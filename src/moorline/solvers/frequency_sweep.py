@@ -45,9 +45,9 @@ RESIDUAL_TOL = 1.0e-9
 @numba.njit(**_JIT)
 def _sweep(kb, mb, cb, omega, F, rank, bw, extra_i, extra_j, extra_v, out, residual):
     """Per frequency ``w``: ``ab = kb - w^2 mb + i w cb`` plus ``extra_v[w]`` at band
-    positions ``(extra_i, extra_j)``, LU without pivoting, solve for ``F[w]`` (unknown ``i``
-    at band row ``rank[i]``) into ``out[w]``, and ``residual[w] = |ab x - b| / |b|`` with the
-    unfactored ``ab`` (inf at a zero pivot)."""
+    positions ``(extra_i, extra_j)``, LU without pivoting, solve for ``F[:, w]`` (unknown
+    ``i`` at band row ``rank[i]``) into ``out[:, w]``, and ``residual[w] = |ab x - b| /
+    |b|`` with the unfactored ``ab`` (inf at a zero pivot)."""
     n, width = kb.shape
     ab = np.empty((n, width), dtype=np.complex128)
     a0 = np.empty((n, width), dtype=np.complex128)
@@ -62,7 +62,7 @@ def _sweep(kb, mb, cb, omega, F, rank, bw, extra_i, extra_j, extra_v, out, resid
             a0[extra_i[e], extra_j[e]] += extra_v[f, e]
         ab[:, :] = a0
         for i in range(n):
-            rhs[rank[i]] = F[f, i]
+            rhs[rank[i]] = F[i, f]
         if not _band_lu(ab, bw):
             residual[f] = np.inf
             continue
@@ -76,7 +76,7 @@ def _sweep(kb, mb, cb, omega, F, rank, bw, extra_i, extra_j, extra_v, out, resid
             r2 += s.real * s.real + s.imag * s.imag
             b2 += rhs[i].real * rhs[i].real + rhs[i].imag * rhs[i].imag
         for i in range(n):
-            out[f, i] = x[rank[i]]
+            out[i, f] = x[rank[i]]
         residual[f] = np.sqrt(r2 / b2) if b2 > 0.0 else (0.0 if r2 == 0.0 else np.inf)
 
 
@@ -133,18 +133,20 @@ class FrequencySweep:
               extra_values: ComplexArray | None = None) -> ComplexArray:
         """``U`` (n_w, n) for the damping ``C`` (n, n) [N s/m], forces ``F`` (n_w, n) and
         the per-frequency terms ``extra_values`` (n_w, n_extra) at the positions given at
-        construction."""
+        construction. ``U`` is the transpose of a C-ordered (n, n_w) array, as ``F`` best
+        is (no copy then)."""
         self._order(C)
         n_w, n = len(omega), self.K.shape[0]
         rank, bw = self.rank, self.bw
         cb = _band(C, rank, bw)
         values = (np.zeros((n_w, 0), dtype=complex) if extra_values is None
                   else np.ascontiguousarray(extra_values, dtype=complex))
-        U = np.zeros((n_w, n), dtype=complex)
+        out = np.zeros((n, n_w), dtype=complex)  # frequency last, like the loads
         residual = np.empty(n_w)
         _sweep(self.kb, self.mb, cb, np.ascontiguousarray(omega, dtype=float),
-               np.ascontiguousarray(F, dtype=complex), rank, bw, self.extra_band[0],
-               self.extra_band[1], values, U, residual)
+               np.ascontiguousarray(np.asarray(F, dtype=complex).T), rank, bw,
+               self.extra_band[0], self.extra_band[1], values, out, residual)
+        U = out.T
         bad = ~(residual <= RESIDUAL_TOL)  # NaN too
         for f in np.flatnonzero(bad):
             U[f] = solve_sparse(self.matrix(C, omega[f], values[f]).tocsc(), F[f])

@@ -150,9 +150,9 @@ def _drag_blocks(t: FloatArray, mesh: Mesh, rho: float, sigma_n: FloatArray,
 
 
 def _apply_blocks(blocks: FloatArray, H: ComplexArray) -> ComplexArray:
-    """``blocks[e] @ H[w, e]`` (n_w, n_el * 3) for blocks (n_el, 3, 3), ``H`` (n_w, n_el,
-    3)."""
-    return np.matmul(blocks[None], H[..., None]).reshape(len(H), -1)
+    """``blocks[e] @ H[e, :, w]`` (n_el * 3, n_w) for blocks (n_el, 3, 3) and ``H`` (n_el,
+    3, n_w), frequency last."""
+    return np.matmul(blocks, H).reshape(-1, H.shape[-1])
 
 
 def _node_pairs(block: FloatArray) -> FloatArray:
@@ -263,25 +263,21 @@ class _LinearModel:
 
     def forces(self, nodal: ComplexArray | None, body_forces: ComplexArray,
                out: ComplexArray) -> ComplexArray:
-        """``out`` (n_w, n_u) plus the generalized forces of node forces (n_w, n_nodes, 3; or
-        ``None``) and body forces (n_w, n_bodies, 6)."""
+        """``out`` (n_u, n_w: frequency last) plus the generalized forces of node forces
+        (n_w, n_nodes, 3; or ``None``) and body forces (n_w, n_bodies, 6)."""
         if nodal is not None:
-            out = out + _batch(self.nodes_of.T, nodal.reshape(len(nodal), -1))
+            out = out + self.nodes_of.T @ nodal.reshape(len(nodal), -1).T
         for i, d in enumerate(self.body_dof):
-            out[:, d:d + 6] += body_forces[:, i]
+            out[d:d + 6] += body_forces[:, i].T
         return out
 
     def split(self, solution: ComplexArray) -> tuple[ComplexArray, ComplexArray]:
         """Node displacements (n_w, n_nodes, 3) and body motions (n_w, n_bodies, 6)."""
-        nodes = _batch(self.nodes_of, solution).reshape(len(solution), self.mesh.n_nodes, 3)
+        nodes = np.ascontiguousarray((self.nodes_of @ solution.T).T).reshape(
+            len(solution), self.mesh.n_nodes, 3)
         bodies = np.stack([solution[:, d:d + 6] for d in self.body_dof], axis=1) \
             if len(self.body_dof) else np.zeros((solution.shape[0], 0, 6), dtype=complex)
         return nodes, bodies
-
-
-def _batch(matrix: sp.spmatrix, X: ComplexArray) -> ComplexArray:
-    """``matrix`` applied to every row of ``X`` (n_w, n): (n_w, m)."""
-    return np.ascontiguousarray((matrix @ X.T).T)
 
 
 def _covariance(parts: tuple[FloatArray, FloatArray], power: FloatArray) -> FloatArray:
@@ -613,7 +609,9 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
     n_w = len(omega)
     mid_of = model.midpoint_map()  # element midpoint displacements from the unknowns
     load_of = (2.0 * mid_of.T).tocsr()  # half of an element's load to each of its nodes
-    inertia = _batch(load_of, _apply_blocks(_inertia_blocks(t, mesh, rho), H_a))
+    H_v_last = np.ascontiguousarray(H_v.transpose(1, 2, 0))  # (n_el, 3, n_w)
+    inertia = load_of @ _apply_blocks(_inertia_blocks(t, mesh, rho),
+                                      np.ascontiguousarray(H_a.transpose(1, 2, 0)))
     bodies = model.body_kinematics(omega, current)
     points = _PointWaves(mesh, x0, omega, env, rho, current)
     response = _Response(model.K, model.M, settings, omega, model, sea.spectrum.omega_p)
@@ -623,13 +621,12 @@ def _linearize(system: System, settings: StochasticSettings, statics: StaticResu
     plane = np.eye(3) - t[:, :, None] * t[:, None, :]
 
     def forces(drag: FloatArray, gain_p: FloatArray, gain_b: FloatArray) -> ComplexArray:
-        per_node = _apply_blocks(drag * (0.5 * mesh.length0)[:, None, None], H_v)
+        """Generalized forces (n_w, n_u), the transpose of a frequency-last array."""
+        per_node = _apply_blocks(drag * (0.5 * mesh.length0)[:, None, None], H_v_last)
         return model.forces(points.forces(gain_p), bodies.excitation(gain_b),
-                            inertia + _batch(load_of, per_node))
+                            inertia + load_of @ per_node).T
 
-    # the fluid velocity at the midpoints, frequency last: (n_el, 3, n_w)
-    v_re = np.ascontiguousarray(H_v.real.transpose(1, 2, 0))
-    v_im = np.ascontiguousarray(H_v.imag.transpose(1, 2, 0))
+    v_re, v_im = H_v_last.real.copy(), H_v_last.imag.copy()
 
     def relative(solution: ComplexArray | None) -> FloatArray:
         """Covariance of the relative velocity ``V - i omega U_mid`` at the midpoints,
