@@ -38,6 +38,19 @@ def _mc(mean: np.ndarray, chol: np.ndarray, n: int, seed: int):
     return (f.mean(0), se(f)), (norm.mean(), se(norm)), (outer.mean(0), se(outer))
 
 
+def _grid(mean: np.ndarray, chol: np.ndarray, n: int):
+    """``E[|w| w]`` and ``E[|w| I + w w^T / |w|]`` of ``w = mean + chol xi`` (two axes) by
+    the trapezoidal rule on an ``n^2`` grid of ``xi`` over [-9, 9]^2."""
+    xi = np.linspace(-9, 9, n)
+    X1, X2 = np.meshgrid(xi, xi, indexing="ij")
+    wt = np.exp(-0.5 * (X1**2 + X2**2))
+    wt /= wt.sum()
+    w = mean + np.stack([X1, X2], -1) @ chol.T
+    norm = np.linalg.norm(w, axis=-1)
+    return (np.einsum("ij,ij,ijk->k", wt, norm, w),
+            (wt * norm).sum() * np.eye(2) + np.einsum("ij,ijk,ijl->kl", wt / norm, w, w))
+
+
 @pytest.mark.parametrize("U,sigma", [(0.0, 1.0), (0.4, 1.0), (-1.3, 0.7), (3.0, 1.0)])
 def test_scalar_expectations_against_monte_carlo(U, sigma):
     """Closed forms against 10^6 samples: within 4 standard errors of the sample mean."""
@@ -87,14 +100,7 @@ def test_normal_plane_expectations_against_a_fine_grid_and_monte_carlo():
     cov = np.zeros((3, 3))
     cov[:2, :2] = chol @ chol.T
     f, g = dl.vector_expectations(W[None], cov[None], PLANE[None])
-    xi = np.linspace(-9, 9, 3601)
-    X1, X2 = np.meshgrid(xi, xi, indexing="ij")
-    wt = np.exp(-0.5 * (X1**2 + X2**2))
-    wt /= wt.sum()
-    w = W[:2] + np.stack([X1, X2], -1) @ chol.T
-    n = np.linalg.norm(w, axis=-1)
-    grid_f = np.einsum("ij,ij,ijk->k", wt, n, w)
-    grid_g = (wt * n).sum() * np.eye(2) + np.einsum("ij,ijk,ijl->kl", wt / n, w, w)
+    grid_f, grid_g = _grid(W[:2], chol, 3601)
     assert np.allclose(f[0, :2], grid_f, rtol=1e-6)
     assert np.allclose(g[0, :2, :2], grid_g, rtol=1e-6)
     (mf, sf), (ma, sa), (mo, so) = _mc(W[:2], chol, 1_000_000, 11)
@@ -123,14 +129,7 @@ def test_normal_plane_expectations_with_a_strong_mean_flow(W, chol):
     cov = np.zeros((3, 3))
     cov[:2, :2] = chol @ chol.T
     f, g = dl.vector_expectations(W3[None], cov[None], PLANE[None])
-    xi = np.linspace(-9, 9, 801)
-    X1, X2 = np.meshgrid(xi, xi, indexing="ij")
-    wt = np.exp(-0.5 * (X1**2 + X2**2))
-    wt /= wt.sum()
-    w = W3[:2] + np.stack([X1, X2], -1) @ chol.T
-    n = np.linalg.norm(w, axis=-1)
-    grid_f = np.einsum("ij,ij,ijk->k", wt, n, w)
-    grid_g = (wt * n).sum() * np.eye(2) + np.einsum("ij,ijk,ijl->kl", wt / n, w, w)
+    grid_f, grid_g = _grid(W3[:2], chol, 801)
     assert np.allclose(f[0, :2], grid_f, rtol=1e-8, atol=1e-8 * np.abs(grid_f).max())
     assert np.allclose(g[0, :2, :2], grid_g, rtol=1e-8, atol=1e-8 * np.abs(grid_g).max())
     (mf, sf), (ma, sa), (mo, so) = _mc(W3[:2], chol, 200_000, 14)
