@@ -19,7 +19,10 @@ they are: nothing here is tuned to a target, and no test asserts on them.
   fairleads: the frequency-domain analysis against moorline's time domain in the same sea
   (run over 200 s, 40 s with --quick, and its time scaled to 3 h: its cost per simulated
   second is steady), the time ratio and the tension standard deviation of the fairlead
-  element of line 1 from each.
+  element of line 1 from each (and the heave std of its mid node: the wave response of the
+  held lines is about 0.1 mm, the tension std a few N on 1.8 MN). The frequency domain is
+  timed after a first call (which loads the compiled band solver from numba's disk cache);
+  that first call is printed too.
   Target: >= 100x, and the frequency domain under 1 s.
 * P4: time per step of one OC3 line at 100 and 1000 elements under the P1 motion (ramped, and
   unramped: whether it fails). Target: 1000/100 <= 12.
@@ -404,9 +407,12 @@ def p3(quick: bool) -> list[Line]:
         base.environment, waves=sea))
     static = solve_statics(system)
     np.ones((256, 256)) @ np.ones((256, 256))  # start the BLAS thread pool before timing
+    # the first call in a process also loads the compiled band solver (numba, from its disk
+    # cache) and scipy.integrate (the JONSWAP normalization): timed and printed apart
     start = time.perf_counter()
     fd = solve_stochastic(system, StochasticSettings(), static)
-    t_fd = time.perf_counter() - start
+    t_first = time.perf_counter() - start
+    t_fd = best_of(lambda: solve_stochastic(system, StochasticSettings(), static), 3)
     # the time domain costs ~1 s per simulated second here (6,480 wave components at every
     # node and iteration): it is run over a part of the record and its time scaled to 3 h
     td_duration = 40.0 if quick else 200.0
@@ -419,16 +425,29 @@ def p3(quick: bool) -> list[Line]:
     keep = td.time >= 20.0  # after the 10 s ramp and its transient
     std_td = float(np.std(td.tension[keep, top]))
     std_fd = float(fd.tension_std[top])
+    # the lines' response to the waves alone is tiny (fairleads held, the lines below 70 m):
+    # displacements of 0.1 mm, tension std of a few N on 1.8 MN. The two domains' tension
+    # std differ by about 2.3x, not explained yet (60 s of time domain: 99 % of its variance
+    # in the wave band; Newton tolerance 1e-10 instead of 1e-6: 9.5 -> 8.1 N; BA 0 or a lumped
+    # mass in the frequency domain change little) while the displacement stds agree within a
+    # few % (t = 20-60 s): both are printed
+    mid = base.lines["line1"].segments // 2  # line 1's mid node
+    x_td = float(np.std(td.positions[keep, mid, 2]))
+    x_fd = float(fd.displacement_std[mid, 2])
     scaled = f" (run over {td_duration:g} s of the 3-hour sea, its time scaled to 3 h)"
     print(f"  frequency domain {t_fd:.2f} s ({fd.iterations} linearization iterations, "
-          f"{len(fd.omega)} frequencies); time domain {t_td:.1f} s at dt 0.05 s{scaled}")
+          f"{len(fd.omega)} frequencies, {fd.counters['dofs']} unknowns; first call in the "
+          f"process {t_first:.2f} s); time domain {t_td:.1f} s at dt 0.05 s{scaled}")
     print(f"  tension std, fairlead element of line 1: frequency domain {std_fd:.4g} N, "
-          f"time domain {std_td:.4g} N (t = 20 to {td_duration:g} s: a short sample)")
+          f"time domain {std_td:.4g} N (t = 20 to {td_duration:g} s: a short sample); "
+          f"heave std of line 1's mid node {x_fd:.4g} m and {x_td:.4g} m")
     ratio = t_td / t_fd
     return [Line("P3", "time domain / frequency domain", ratio, ">= 100",
                  verdict(ratio, 100.0, at_most=False),
-                 f"tension std {std_fd:.4g} N (FD) vs {std_td:.4g} N (TD)"),
-            Line("P3", "frequency domain, 3-hour sea [s]", t_fd, "< 1 s", verdict(t_fd, 1.0))]
+                 f"tension std {std_fd:.4g} N (FD) vs {std_td:.4g} N (TD); mid-node heave "
+                 f"std {x_fd:.3g} vs {x_td:.3g} m"),
+            Line("P3", "frequency domain, 3-hour sea [s]", t_fd, "< 1 s", verdict(t_fd, 1.0),
+                 f"first call in the process {t_first:.2f} s (loads the compiled kernel)")]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -534,6 +553,17 @@ def write_study(folder: Path, segments: int, duration: float) -> Path:
     return path
 
 
+def _cases_wall(out: Path) -> float | None:
+    """Sum of the cases' wall times (column ``elapsed``) of a study's ``table.csv``."""
+    import csv
+
+    tables = list(out.glob("*/table.csv"))
+    if not tables:
+        return None
+    with tables[0].open() as f:
+        return sum(float(row["elapsed"]) for row in csv.DictReader(f))
+
+
 def p6(quick: bool) -> list[Line]:
     header("P6: moorline sweep, 16 cases, serial / 1 Dask worker / 2 Dask workers")
     try:
@@ -556,7 +586,14 @@ def p6(quick: bool) -> list[Line]:
             print(f"  {label:<10}: {run.wall:6.1f} s wall, {run.cpu:6.1f} s CPU (exit "
                   f"{run.returncode})" + ("" if run.returncode == 0 else
                                           f" {run.stderr.strip()[-200:]}"))
+        cases_wall = _cases_wall(folder / "serial")
     ok = all(r.returncode == 0 for r in times.values())
+    if ok and cases_wall is not None:
+        fixed = times["serial"].wall - cases_wall
+        bound = times["serial"].wall / (fixed + cases_wall / 2)
+        print(f"  serial: {cases_wall:.1f} s in the 16 cases, {fixed:.1f} s outside them "
+              f"(start-up, imports, compiled kernels, table writes, plot): with no Dask "
+              f"overhead at all two workers could reach {bound:.2f}x (Amdahl)")
     s2 = times["serial"].wall / times["2 workers"].wall if ok else None
     w2 = times["1 worker"].wall / times["2 workers"].wall if ok else None
     print(f"  16 cases ({segments} segments, {duration:g} s each); throughput ratios on the "

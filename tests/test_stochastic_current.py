@@ -38,6 +38,19 @@ def _mc(mean: np.ndarray, chol: np.ndarray, n: int, seed: int):
     return (f.mean(0), se(f)), (norm.mean(), se(norm)), (outer.mean(0), se(outer))
 
 
+def _grid(mean: np.ndarray, chol: np.ndarray, n: int):
+    """``E[|w| w]`` and ``E[|w| I + w w^T / |w|]`` of ``w = mean + chol xi`` (two axes) by
+    the trapezoidal rule on an ``n^2`` grid of ``xi`` over [-9, 9]^2."""
+    xi = np.linspace(-9, 9, n)
+    X1, X2 = np.meshgrid(xi, xi, indexing="ij")
+    wt = np.exp(-0.5 * (X1**2 + X2**2))
+    wt /= wt.sum()
+    w = mean + np.stack([X1, X2], -1) @ chol.T
+    norm = np.linalg.norm(w, axis=-1)
+    return (np.einsum("ij,ij,ijk->k", wt, norm, w),
+            (wt * norm).sum() * np.eye(2) + np.einsum("ij,ijk,ijl->kl", wt / norm, w, w))
+
+
 @pytest.mark.parametrize("U,sigma", [(0.0, 1.0), (0.4, 1.0), (-1.3, 0.7), (3.0, 1.0)])
 def test_scalar_expectations_against_monte_carlo(U, sigma):
     """Closed forms against 10^6 samples: within 4 standard errors of the sample mean."""
@@ -87,14 +100,7 @@ def test_normal_plane_expectations_against_a_fine_grid_and_monte_carlo():
     cov = np.zeros((3, 3))
     cov[:2, :2] = chol @ chol.T
     f, g = dl.vector_expectations(W[None], cov[None], PLANE[None])
-    xi = np.linspace(-9, 9, 3601)
-    X1, X2 = np.meshgrid(xi, xi, indexing="ij")
-    wt = np.exp(-0.5 * (X1**2 + X2**2))
-    wt /= wt.sum()
-    w = W[:2] + np.stack([X1, X2], -1) @ chol.T
-    n = np.linalg.norm(w, axis=-1)
-    grid_f = np.einsum("ij,ij,ijk->k", wt, n, w)
-    grid_g = (wt * n).sum() * np.eye(2) + np.einsum("ij,ijk,ijl->kl", wt / n, w, w)
+    grid_f, grid_g = _grid(W[:2], chol, 3601)
     assert np.allclose(f[0, :2], grid_f, rtol=1e-6)
     assert np.allclose(g[0, :2, :2], grid_g, rtol=1e-6)
     (mf, sf), (ma, sa), (mo, so) = _mc(W[:2], chol, 1_000_000, 11)
@@ -105,6 +111,30 @@ def test_normal_plane_expectations_against_a_fine_grid_and_monte_carlo():
     (mf, sf), (ma, sa), (mo, so) = _mc(W[:2], np.array([[0.6], [0.0]]), 1_000_000, 12)
     assert np.all(np.abs(f1[0, :2] - mf) <= 4 * sf + 1e-12)
     assert np.all(np.abs(g1[0, :2, :2] - (ma * np.eye(2) + mo)) <= 4 * (sa + so) + 1e-12)
+
+
+@pytest.mark.parametrize("W,chol", [
+    # a line in a current: the fluctuation a thousandth of the mean flow (the OC3 lines on
+    # the seabed in a 1 m/s current); the old polar rule about the origin sampled the
+    # needle-shaped peak every 0.025 rad for a width of 0.001 rad and gave zero drag
+    ((0.8, -0.6), ((2e-3, 0.0), (1e-3, 5e-4))),
+    ((0.05, 0.02), ((2e-3, 0.0), (1e-3, 5e-4))),  # 20 standard deviations out
+    ((1.0, 0.0), ((1e-2, 0.0), (0.0, 1e-5))),  # elongated: axis ratio 1000
+])
+def test_normal_plane_expectations_with_a_strong_mean_flow(W, chol):
+    """The mean flow far outside the fluctuation (Mahalanobis distance 20 to 10^6): against
+    an 801^2 trapezoidal grid over the Gaussian (the integrand is smooth there: relative
+    1e-8) and 2 x 10^5 samples (4 standard errors)."""
+    W3, chol = np.array([*W, 0.0]), np.array(chol)
+    cov = np.zeros((3, 3))
+    cov[:2, :2] = chol @ chol.T
+    f, g = dl.vector_expectations(W3[None], cov[None], PLANE[None])
+    grid_f, grid_g = _grid(W3[:2], chol, 801)
+    assert np.allclose(f[0, :2], grid_f, rtol=1e-8, atol=1e-8 * np.abs(grid_f).max())
+    assert np.allclose(g[0, :2, :2], grid_g, rtol=1e-8, atol=1e-8 * np.abs(grid_g).max())
+    (mf, sf), (ma, sa), (mo, so) = _mc(W3[:2], chol, 200_000, 14)
+    assert np.all(np.abs(f[0, :2] - mf) <= 4 * sf + 1e-14)
+    assert np.all(np.abs(g[0, :2, :2] - (ma * np.eye(2) + mo)) <= 4 * (sa + so) + 1e-14)
 
 
 def test_point_expectations_against_monte_carlo():
@@ -202,6 +232,16 @@ def test_the_waves_mean_drag_against_the_time_domain(in_current):
     excess_fd = lin.increment.sum(axis=0)
     assert excess_fd[0] > 0.02 * steady[0]  # the waves add 3 % to the current's drag
     assert excess_fd[0] == pytest.approx(mean_td[0] - steady[0], rel=0.05)
+
+
+def test_a_linearization_that_does_not_converge_ends_the_mean_state_loop():
+    """Fail fast: the linearization about the current-only state stops at its cap (2
+    iterations for a tolerance of 1e-12) and no further statics are solved."""
+    r = solve_stochastic(_current_riser(), StochasticSettings(max_iterations=2,
+                                                              tolerance=1e-12))
+    assert not r.success and r.iterations == 2
+    assert r.counters["mean_state_iterations"] == 0
+    assert "did not converge in 2 iterations" in r.message and "statics 0" in r.message
 
 
 def test_zero_mean_formula_about_the_current_state_fails(in_current, monkeypatch):

@@ -574,7 +574,15 @@ def sweep(study: Path, out: Path, workers: int | None, scheduler: str | None, as
     failed.
     """
     _configure_logging(verbose)
-    from .sweep import dask_mapper, eta_text, load_study, run_study, study_cases, write_study
+    from .sweep import (
+        dask_mapper,
+        eta_text,
+        load_study,
+        run_study,
+        study_cases,
+        warm_up,
+        write_study,
+    )
 
     spec = load_study(study)
     directory = out / _safe_name(spec.name, study.stem)
@@ -597,7 +605,8 @@ def sweep(study: Path, out: Path, workers: int | None, scheduler: str | None, as
         mapper: Callable[..., Any] = counted
         if workers is not None or scheduler is not None:
             try:
-                mapper, close = dask_mapper(scheduler, workers)
+                mapper, close = dask_mapper(scheduler, workers,
+                                            warm=lambda: warm_up(spec))
             except MoorlineError as exc:
                 _fail(f"{study}: {exc}", EXIT_BAD_INPUT)
         try:

@@ -321,8 +321,13 @@ def run_stochastic(settings: Any, context: RunContext, label: str) -> Outcome:
     statics result: group ``label`` of the results file and ``stochastic.png``."""
     from .solvers.stochastic import solve_stochastic
 
-    return _solve_and_write("stochastic", "stochastic response", lambda: solve_stochastic(
-        context.system, settings, _statics_of(context)), context, label)
+    def solve() -> Any:
+        started = time.monotonic()
+        result = solve_stochastic(context.system, settings, _statics_of(context))
+        _note_compilation(time.monotonic() - started, context.quiet)  # the banded sweep
+        return result
+
+    return _solve_and_write("stochastic", "stochastic response", solve, context, label)
 
 
 def run_harmonic(settings: Any, context: RunContext, label: str) -> Outcome:

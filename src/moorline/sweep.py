@@ -68,6 +68,7 @@ import importlib
 import itertools
 import logging
 import math
+import sys
 import time
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
@@ -622,7 +623,8 @@ def _duration(seconds: float) -> str:
 
 
 def dask_mapper(scheduler: str | None = None, workers: int | None = None,
-                progress: Callable[[int, int], None] | None = None):
+                progress: Callable[[int, int], None] | None = None,
+                warm: Callable[[], None] | None = None):
     """A ``map``-like callable that runs the cases on Dask, and a function that closes the
     client (and the local cluster).
 
@@ -636,12 +638,20 @@ def dask_mapper(scheduler: str | None = None, workers: int | None = None,
         Local worker processes (default: the machine's cores).
     progress
         Called with (cases done, cases) as results arrive.
+    warm
+        Called in this process before a local cluster starts (e.g. :func:`warm_up`: the
+        solver modules imported and the compiled kernels loaded). On Linux the local workers
+        are forked from this process (``distributed.worker.multiprocessing-method: fork``),
+        so they start with all of that instead of importing moorline and loading numba's
+        kernels each (seconds per worker, the bulk of the Dask overhead of a small study).
 
     Returns
     -------
     mapper, close
         ``mapper(function, items)`` yields the results as they finish (in any order: each
-        :func:`run_one` row names its parameters); call ``close()`` when done.
+        :func:`run_one` row names its parameters); the items go to the workers in batches
+        (about four per worker), each returning its list of rows; call ``close()`` when
+        done.
 
     Raises
     ------
@@ -650,6 +660,7 @@ def dask_mapper(scheduler: str | None = None, workers: int | None = None,
         reached.
     """
     try:
+        import dask
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:
         raise MoorlineError("running a study on Dask needs dask.distributed: install "
@@ -659,19 +670,29 @@ def dask_mapper(scheduler: str | None = None, workers: int | None = None,
         if scheduler:
             client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
         else:
-            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+            if warm is not None:
+                warm()
+            method = "fork" if sys.platform.startswith("linux") else "spawn"
+            with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+                cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+                                       processes=True, dashboard_address=None)
             client = Client(cluster)
     except (OSError, TimeoutError) as exc:
         raise MoorlineError(f"cannot reach the Dask scheduler {scheduler!r}: {exc}") from None
 
     def mapper(function: Callable, items: Iterable) -> Iterator[Any]:
         items = list(items)
-        futures = client.map(function, items, pure=False)
-        for done, future in enumerate(as_completed(futures), start=1):
-            if progress is not None:
-                progress(done, len(items))
-            yield future.result()
+        n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
+        size = max(1, len(items) // (4 * n_workers))
+        batches = [items[k:k + size] for k in range(0, len(items), size)]
+        futures = client.map(partial(_run_batch, function), batches, pure=False)
+        done = 0
+        for future in as_completed(futures):
+            for row in future.result():
+                done += 1
+                if progress is not None:
+                    progress(done, len(items))
+                yield row
 
     def close() -> None:
         client.close()
@@ -679,6 +700,36 @@ def dask_mapper(scheduler: str | None = None, workers: int | None = None,
             cluster.close()
 
     return mapper, close
+
+
+def _run_batch(function: Callable, items: list) -> list:
+    """``function`` over a batch of items on one worker."""
+    return [function(item) for item in items]
+
+
+def warm_up(study: Study) -> None:
+    """Import the solvers and load their compiled kernels by running the study's first case
+    for two time steps (its result is discarded); a failure is left to the case itself."""
+    from .model import DynamicsSettings, StaticsSettings
+    from .solvers.dynamics import simulate
+    from .solvers.statics import solve_statics
+
+    cases = study_cases(study)
+    if not cases:
+        return
+    try:
+        system, static = build(study, cases[0][1])
+        if static is None:
+            static = solve_statics(system, dataclasses.replace(system.first(StaticsSettings),
+                                                               **study.statics))
+        if study.dynamics and static.success:
+            fields = {k: v for k, v in study.dynamics.items() if k != "output_every"}
+            settings = DynamicsSettings(**fields)
+            simulate(system, dataclasses.replace(settings, duration=2 * settings.dt),
+                     initial=static)
+    except (MoorlineError, RuntimeError, ValueError) as exc:
+        logger.info("study %s: warm-up case failed (%s); the workers start cold", study.name,
+                    exc)
 
 
 def _table(study: Study, cases: list[tuple[str, dict[str, Any]]],
@@ -751,4 +802,4 @@ def write_study(table: xr.Dataset, directory: str | Path) -> list[Path]:
 
 __all__ = ["Quantity", "Study", "build", "eta_text", "gather", "load_study", "parse_quantity",
            "run_one", "run_study", "set_path", "statistic", "steady_window", "study_cases",
-           "study_from_dict", "write_study", "write_table"]
+           "study_from_dict", "warm_up", "write_study", "write_table"]

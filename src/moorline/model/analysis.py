@@ -290,7 +290,8 @@ class StochasticSettings:
         ``foss`` (mode superposition with Foss's decoupling, the source's) or ``direct``
         (the full linear system solved at every frequency).
     n_modes
-        Modes superposed by ``foss``; 0: all.
+        Modes superposed by ``foss``; 0: all, by solving the full system at every frequency
+        (the same result as Foss's sum over every mode, :mod:`moorline.solvers.stochastic`).
     max_iterations, tolerance
         Of the statistical drag linearization: stop when no standard deviation of the
         relative velocity changes by more than ``tolerance`` (relative; the source: 0.01).

@@ -24,8 +24,10 @@ current in its plane): one-dimensional, the closed form, ``E[|w| w] = E[X|X|] e`
 ``G = E|X| (Pi + e e^T)`` (the fluctuation's axis ``e``; note ``E|X|``, not ``2 E|X|``, across
 it: Tuah's zero-mean ``B_DL (I - t t^T)`` takes ``(8/pi)^(1/2) sigma_n`` in both normal
 directions). One axis with the mean off it: a dense trapezoidal rule. Two axes (a cable's
-normal plane): polar coordinates about the origin, the radial integrals in closed form
-(truncated Gaussian moments), the trapezoidal rule over the angle (exponential convergence).
+normal plane): polar coordinates of the whitened variable about the origin, the radial
+integrals in closed form (truncated Gaussian moments), the trapezoidal rule over the angle
+(exponential convergence) on the window of angles the Gaussian occupies (a mean flow much
+larger than the fluctuation concentrates it on a needle of width ``sigma / |W|``).
 Three axes (a point): tensor Gauss-Hermite quadrature (16 points per axis: ``|w|`` has a
 kink at the origin, an error of order 1e-3 at zero mean, less with a current).
 """
@@ -42,6 +44,9 @@ from scipy.special import erf
 FloatArray = NDArray[np.float64]
 
 _SQRT_2_PI = math.sqrt(2.0 / math.pi)
+#: Mahalanobis distance of the mean beyond which the plane rule integrates over a window of
+#: angles only (:func:`_plane_expectations`).
+_WINDOW = 10.0
 
 
 def scalar_expectations(mean: FloatArray, sigma: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -146,29 +151,41 @@ def _truncated_moments(mu: FloatArray, s: FloatArray) -> tuple[FloatArray, Float
 
 def _plane_expectations(W: FloatArray, axes: FloatArray, sig: FloatArray
                         ) -> tuple[FloatArray, float, FloatArray]:
-    """The same for a Gaussian over a plane (axes (3, 2), standard deviations ``sig``): in
-    polar coordinates ``w = r n(theta)`` about the origin (where ``|w|`` has its kink) the
-    density is ``exp(-(A r^2 - 2 B r + C) / 2) / (2 pi s1 s2)``, the radial integrals
-    ``int r^k exp(...) dr`` (``k = 2`` for ``E|w|`` and ``E[w w^T/|w|]``, ``3`` for
-    ``E[|w| w]``) are truncated Gaussian moments in closed form, and the remaining integrand
-    is smooth and periodic in ``theta``: the trapezoidal rule converges exponentially (its
-    points: 16 per unit axis ratio, at least 256; the
-    trapezoidal error on a peak of width ``h`` sampled every ``h / 2.5`` is ``~exp(-120)``)."""
-    m = axes.T @ W  # the mean in the principal axes
+    """The same for a Gaussian over a plane (axes (3, 2), standard deviations ``sig``), in
+    polar coordinates of the whitened variable: ``w = axes (sig * z)``, ``z`` standard normal
+    about ``m = (axes^T W) / sig`` (at Mahalanobis distance ``d = |m|`` from the origin, where
+    ``|w|`` has its kink), ``z = r (cos phi, sin phi)``, ``v(phi) = axes (sig * (cos phi, sin
+    phi))``, ``|w| = r |v|``. The density is ``exp(-(r^2 - 2 b r + d^2) / 2) / (2 pi)``,
+    ``b = m . (cos phi, sin phi)``; the radial integrals ``int r^k exp(...) dr`` (``k = 2``
+    for ``E|w|`` and ``E[w w^T/|w|]``, ``3`` for ``E[|w| w]``) are truncated moments of
+    ``N(b, 1)`` in closed form, and the remaining integrand is smooth and periodic in ``phi``:
+    the trapezoidal rule converges exponentially. Its peak has width ``1 / d`` in ``phi``
+    whatever the axis ratio (in the unwhitened angle it has ``sig_min / |W|``: a mean flow much
+    larger than the fluctuation, a line in a current, is a needle), and beyond
+    ``|phi - phi_m| = asin(10 / d)`` every ray passes 10 standard deviations from the mean
+    (density below ``exp(-50)`` of the peak): for ``d > 10`` the rule covers that window
+    only. Points: 8 per unit of ``width * max(d, ratio)`` (``ratio = sig_max / sig_min``: the
+    scale on which ``v(phi)`` turns near the minor axis), at least 256."""
+    m = (axes.T @ W) / sig  # the whitened mean
+    d = float(np.hypot(m[0], m[1]))
     ratio = float(sig.max() / sig.min())
-    n_theta = int(min(max(256, 16 * ratio), 1 << 14))
-    theta = 2.0 * math.pi * np.arange(n_theta) / n_theta
-    c, s = np.cos(theta), np.sin(theta)
-    A = (c / sig[0]) ** 2 + (s / sig[1]) ** 2
-    B = m[0] * c / sig[0] ** 2 + m[1] * s / sig[1] ** 2
-    C = float((m[0] / sig[0]) ** 2 + (m[1] / sig[1]) ** 2)
-    sd = 1.0 / np.sqrt(A)
-    m2, m3 = _truncated_moments(B / A, sd)
-    common = (np.exp(-0.5 * (C - B * B / A)) * math.sqrt(2.0 * math.pi) * sd
-              / (2.0 * math.pi * sig[0] * sig[1]) * (2.0 * math.pi / n_theta))
-    dirs = np.outer(c, axes[:, 0]) + np.outer(s, axes[:, 1])  # (n_theta, 3)
-    return (((common * m3)[:, None] * dirs).sum(axis=0), float((common * m2).sum()),
-            np.einsum("q,qi,qj->ij", common * m2, dirs, dirs))
+    if d > _WINDOW:
+        half = math.asin(_WINDOW / d)
+        width = 2.0 * half
+        n = int(min(max(256, 8 * width * max(d, ratio)), 1 << 16))
+        phi = math.atan2(m[1], m[0]) + half * ((2.0 * np.arange(n) + 1.0) / n - 1.0)
+    else:
+        width = 2.0 * math.pi
+        n = int(min(max(256, 8 * width * max(d, ratio)), 1 << 16))
+        phi = width * np.arange(n) / n
+    c, s = np.cos(phi), np.sin(phi)
+    b = m[0] * c + m[1] * s
+    m2, m3 = _truncated_moments(b, np.ones_like(b))
+    common = np.exp(-0.5 * (d * d - b * b)) / math.sqrt(2.0 * math.pi) * (width / n)
+    v = np.outer(c * sig[0], axes[:, 0]) + np.outer(s * sig[1], axes[:, 1])  # (n, 3)
+    rho = np.sqrt(np.sum(v * v, axis=1))
+    return (((common * m3 * rho)[:, None] * v).sum(axis=0), float((common * m2 * rho).sum()),
+            np.einsum("q,qi,qj->ij", common * m2 / rho, v, v))
 
 
 def _hermite_expectations(W: FloatArray, axes: FloatArray, order: int
