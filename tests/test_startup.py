@@ -78,6 +78,17 @@ def test_run_without_plots_needs_neither_xarray_nor_matplotlib(tmp_path: Path) -
 
 
 @pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")
+def test_modes_writes_its_group_without_xarray(tmp_path: Path) -> None:
+    """``modes --no-plots``: the modal group written from numpy with netCDF4 (scipy for the
+    eigenvalues), no xarray, pandas or matplotlib."""
+    loaded = _loaded_by_cli("modes", "cases/oc3_line.yaml", "--n", "3", "--no-plots", "--json",
+                            "-q", "--out", str(tmp_path))
+    assert loaded == {"scipy", "netCDF4"}
+    assert (tmp_path / "oc3-line" / "results.nc").is_file()
+    assert not list((tmp_path / "oc3-line").glob("*.png"))
+
+
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")
 def test_reading_an_si_case_without_unit_strings_does_not_import_pint() -> None:
     loaded = _loaded_after("from moorline.io.case import load_case\n"
                            "load_case('cases/oc3_line.yaml')")
