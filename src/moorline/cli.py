@@ -46,6 +46,7 @@ from .runners import (
     _RunInterruptedError,
 )
 from .signals import Terminated, handle_signals
+from .threads import one_blas_thread
 
 logger = logging.getLogger(__name__)
 
@@ -62,6 +63,13 @@ class _Cli(click.Group):
     def invoke(self, ctx: click.Context) -> Any:
         with handle_signals():
             return self._invoke(ctx)
+
+    def resolve_command(self, ctx: click.Context, args: list[str]) -> Any:
+        """The command to run; OpenBLAS is set to one thread for it before anything imports
+        numpy (:func:`moorline.threads.one_blas_thread`)."""
+        name, command, rest = super().resolve_command(ctx, args)
+        one_blas_thread(name)
+        return name, command, rest
 
     def _invoke(self, ctx: click.Context) -> Any:
         try:
