@@ -78,6 +78,21 @@ def test_run_without_plots_needs_neither_xarray_nor_matplotlib(tmp_path: Path) -
     assert list((tmp_path / "plots" / "oc3-line").glob("*.png"))
 
 
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_dynamics.yaml").is_file(), reason="no case file")
+def test_a_run_the_compiled_step_cannot_take_does_not_import_numba(tmp_path: Path) -> None:
+    """Viscoelastic lines: the general stepper with the numpy kernels; deciding so does not
+    load numba (moorline.solvers.fast_path)."""
+    case = tmp_path / "visco.yaml"
+    text = (ROOT / "cases" / "oc3_dynamics.yaml").read_text(encoding="utf-8")
+    text = re.sub(r"duration: *[0-9.]+", "duration: 0.5", text)
+    case.write_text(text.replace("    material: elastic",
+                                 "    material: viscoelastic\n    EA1: 2.0e8\n    tau: 1.0"),
+                    encoding="utf-8")
+    loaded = _loaded_by_cli("run", str(case), "--no-plots", "-q", "--out", str(tmp_path))
+    assert loaded == {"scipy", "netCDF4"}
+    assert "viscoelastic" in case.read_text(encoding="utf-8")
+
+
 @pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")
 def test_modes_writes_its_group_without_xarray(tmp_path: Path) -> None:
     """``modes --no-plots``: the modal group written from numpy with netCDF4 (scipy for the
