@@ -14,7 +14,8 @@ they are: nothing here is tuned to a target, and no test asserts on them.
   statics`` (whole processes, from the case file) against ``moorpy_drive.py`` (MoorPy's import,
   building from its input file, ``solveEquilibrium`` and ``getCoupledStiffnessA``); the same in
   this process (building from input included on both sides); one line at 20, 100 and 1000
-  segments (:mod:`bench_statics`). Target: within 2x of MoorPy.
+  segments (:mod:`bench_statics`, which also runs alone). Both codes' children run with
+  compiled bytecode and OpenBLAS on one thread. Target: within 2x of MoorPy.
 * P3: a 3-hour JONSWAP sea (Hs 6 m, Tp 10 s, gamma 3.3) on the three lines held at their
   fairleads: the frequency-domain analysis against moorline's time domain in the same sea
   (run over 200 s, 40 s with --quick, and its time scaled to 3 h: its cost per simulated
@@ -51,10 +52,8 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import math
 import os
-import sys
 import tempfile
 import time
 from dataclasses import dataclass
@@ -63,7 +62,6 @@ from pathlib import Path
 import bench_p1
 import numpy as np
 from bench_common import (
-    ROOT,
     best_cpu,
     best_of,
     best_process,
@@ -228,162 +226,28 @@ def moorline_stepping(segments: int, dt: float, duration: float, repeat: int) ->
 # P2
 
 
-MOORPY_DECK = """--------------------- MoorDyn Input File ------------------------------------
-OC3-Hywind three lines, the fairleads on one coupled body (moorline bench_all P2)
----------------------- LINE TYPES -----------------------------------
-TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx
-(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)
-chain {d!r} {m!r} {ea!r} -0.8 0 1.6 1.0 0.05 0.0
----------------------- BODIES ---------------------------------------
-ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* Ca*
-(#) (word) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m^2) (m^3) (m^2) (-)
-1 Coupled 0 0 0 0 0 0 0 0 0 0 0 0
----------------------- POINTS ---------------------------------------
-ID Attachment X Y Z Mass Volume CdA Ca
-(#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)
-{points}
----------------------- LINES ----------------------------------------
-ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs
-(#) (name) (#) (#) (m) (-) (-)
-{lines}
----------------------- OPTIONS --------------------------------------
-{g!r} g
-{rho!r} rho
-{depth!r} depth
---------------------- need this line -------------------------------
-"""
-
-
-def write_moorpy_deck(path: Path) -> Path:
-    """The OC3 three lines as a MoorDyn-format file for MoorPy, fairleads on body 1."""
-    from moorline.verification.oc3_line import DEPTH, DIAMETER, EA, LENGTH, MASS, RHO, G
-    from moorline.verification.oc3_system import oc3_three_lines
-
-    system = oc3_three_lines(20)
-    ids = {name: k for k, name in enumerate(system.points, start=1)}
-    points = "\n".join(
-        f"{ids[n]} {'Body1' if p.kind == 'prescribed' else 'Fixed'} "
-        + " ".join(repr(float(c)) for c in p.position) + " 0 0 0 0"
-        for n, p in system.points.items())
-    lines = "\n".join(f"{k} chain {ids[ln.end_a]} {ids[ln.end_b]} {LENGTH!r} 20 -"
-                      for k, ln in enumerate(system.lines.values(), start=1))
-    path.write_text(MOORPY_DECK.format(d=DIAMETER, m=MASS, ea=EA, points=points, lines=lines,
-                                       g=G, rho=RHO, depth=DEPTH))
-    return path
-
-
-def write_statics_case(path: Path) -> Path:
-    """``cases/oc3_offset.yaml`` reduced to its statics (the OC3 three lines, 20 segments)."""
-    import yaml
-
-    case = yaml.safe_load((ROOT / "cases" / "oc3_offset.yaml").read_text())
-    case["analyses"] = [a for a in case["analyses"] if a["kind"] == "statics"]
-    case["name"] = "p2"
-    path.write_text(yaml.safe_dump(case, sort_keys=False))
-    return path
-
-
 def p2(quick: bool, repeat: int) -> list[Line]:
+    """P2 (:mod:`bench_statics`): the three lines whole process and in process, one line."""
+    import bench_statics
+
     header("P2: OC3 three-line statics and the platform 6x6, against MoorPy")
+    r = bench_statics.three_lines(repeat)
+    bench_statics.print_three_lines(r)
     out: list[Line] = []
-    try:
-        import moorpy  # noqa: F401
-        have_moorpy = True
-    except ImportError:
-        have_moorpy = False
-        print("  MoorPy is not installed: moorline only")
-    with tempfile.TemporaryDirectory(prefix="p2-") as tmp:
-        folder = Path(tmp)
-        case = write_statics_case(folder / "p2.yaml")
-        env = python_env()
-        stiff = best_process(moorline_command("stiffness", str(case), "--reference", "0,0,0",
-                                              "--json"), repeat, cwd=folder, env=env)
-        statics = best_process(moorline_command("statics", str(case), "--out",
-                                                str(folder / "out"), "--json"), repeat,
-                               cwd=folder, env=env)
-        k_ml = _k11(stiff_json(case, folder, env))
-        print(f"  moorline stiffness --json (statics + 6x6): {stiff.cpu:.2f} s CPU, "
-              f"{stiff.wall:.2f} s wall; K11 {fmt(k_ml, '.1f')} N/m")
-        print(f"  moorline statics --json (statics, results.nc, summary): {statics.cpu:.2f} s "
-              f"CPU, {statics.wall:.2f} s wall")
-        mp = None
-        if have_moorpy:
-            deck = write_moorpy_deck(folder / "moorpy.dat")
-            args = [sys.executable, str(HERE / "moorpy_drive.py"), str(deck)]
-            mp = best_process(args, repeat, cwd=folder, env=env)
-            import subprocess
-
-            mp_out = json.loads(subprocess.run(args, cwd=folder, env=env, capture_output=True,
-                                               text=True, check=True).stdout)
-            print(f"  MoorPy (import, build from input, solveEquilibrium, "
-                  f"getCoupledStiffnessA): {mp.cpu:.2f} s CPU, {mp.wall:.2f} s wall; K11 "
-                  f"{mp_out['K11']:.1f} N/m")
-            for what, run in (("stiffness", stiff), ("statics", statics)):
-                ratio = run.cpu / mp.cpu
-                out.append(Line("P2", f"moorline {what} / MoorPy, whole process", ratio,
-                                "<= 2", verdict(ratio, 2.0),
-                                f"{run.cpu:.2f} vs {mp.cpu:.2f} s CPU"))
-            _p2_in_process(case, deck, repeat, out)
-    rows = __import__("bench_statics").one_line((20, 100) if quick else (20, 100, 1000),
-                                                3 if quick else 5)
-    print(f"\n  one OC3 line (in process): {'elements':>8} {'moorline [ms]':>14} "
-          f"{'iterations':>10} {'MoorPy [ms]':>12} {'ratio':>7}")
-    for r in rows:
-        ratio = r["moorline"] / r["moorpy"] if r["moorpy"] else None
-        print(f"  {'':27}{r['elements']:8d} {1e3 * r['moorline']:14.2f} {r['iterations']:10d} "
-              f"{fmt(None if r['moorpy'] is None else 1e3 * r['moorpy'], '12.2f'):>12} "
-              f"{fmt(ratio, '7.2f'):>7}")
-    print("  (MoorPy solves a line as one closed-form catenary whatever its segment count; "
-          "moorline the finite-element equilibrium of all nodes)")
+    if r.moorpy is not None:
+        for what, run in (("stiffness", r.stiffness), ("statics", r.statics)):
+            ratio = run.cpu / r.moorpy.cpu
+            out.append(Line("P2", f"moorline {what} / MoorPy, whole process", ratio, "<= 2",
+                            verdict(ratio, 2.0), f"{run.cpu:.2f} vs {r.moorpy.cpu:.2f} s CPU"))
+    if r.in_process is not None and r.in_process_moorpy:
+        ratio = r.in_process / r.in_process_moorpy
+        out.append(Line("P2", "moorline / MoorPy, in process", ratio, "<= 2",
+                        verdict(ratio, 2.0),
+                        f"{1e3 * r.in_process:.1f} vs {1e3 * r.in_process_moorpy:.1f} ms"))
+    print()
+    bench_statics.print_one_line(bench_statics.one_line((20, 100) if quick else (20, 100, 1000),
+                                                        3 if quick else 5))
     return out
-
-
-def stiff_json(case: Path, folder: Path, env: dict[str, str]) -> dict:
-    import subprocess
-
-    done = subprocess.run(moorline_command("stiffness", str(case), "--reference", "0,0,0",
-                                           "--json"), cwd=folder, env=env, capture_output=True,
-                          text=True)
-    return json.loads(done.stdout) if done.returncode == 0 else {}
-
-
-def _k11(data: dict) -> float | None:
-    try:
-        return float(data["stiffness"][0][0])
-    except (KeyError, IndexError, TypeError):
-        return None
-
-
-def _p2_in_process(case: Path, deck: Path, repeat: int, out: list[Line]) -> None:
-    """Build from input + statics + 6x6 in this process, both codes (imports done)."""
-    import contextlib
-    import io
-
-    import moorpy
-
-    from moorline.io import load_case
-    from moorline.solvers.statics import solve_statics
-    from moorline.solvers.stiffness import group_stiffness
-
-    def ours() -> None:
-        system = load_case(case)
-        fair = [n for n, p in system.points.items() if p.kind == "prescribed"]
-        group_stiffness(solve_statics(system), fair, np.zeros(3))
-
-    def theirs() -> None:
-        with contextlib.redirect_stdout(io.StringIO()):
-            ms = moorpy.System(file=str(deck))
-            ms.initialize()
-            ms.solveEquilibrium()
-            ms.getCoupledStiffnessA()
-
-    ours()
-    theirs()
-    t_ml, t_mp = best_of(ours, max(repeat, 3)), best_of(theirs, max(repeat, 3))
-    print(f"  in process (build from input + statics + 6x6): moorline {1e3 * t_ml:.1f} ms, "
-          f"MoorPy {1e3 * t_mp:.1f} ms, ratio {t_ml / t_mp:.2f}")
-    out.append(Line("P2", "moorline / MoorPy, in process", t_ml / t_mp, "<= 2",
-                    verdict(t_ml / t_mp, 2.0), f"{1e3 * t_ml:.1f} vs {1e3 * t_mp:.1f} ms"))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -149,7 +149,7 @@ def test_dynamic_residual_carries_bending_and_its_tangent(kernel: str) -> None:
 
 
 def test_compiled_time_step_refuses_bending() -> None:
-    from moorline.solvers.fast_newmark import fast_path_reason
+    from moorline.solvers.fast_path import fast_path_reason
 
     model = DynamicModel(discretize(_bent_system()), StillWater(), kernel="numba")
     assert fast_path_reason(model, StillWater(), "newmark", "iterative") == \

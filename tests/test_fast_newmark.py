@@ -102,7 +102,7 @@ def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_acce
     from moorline.io.case import load_case
     from moorline.solvers.dynamic_model import DynamicModel
     from moorline.solvers.dynamics import _fluid, _rayleigh
-    from moorline.solvers.fast_newmark import fast_path_reason
+    from moorline.solvers.fast_path import fast_path_reason
 
     if "hydrodynamics:" in path.read_text(encoding="utf-8"):
         # a body with a hydrodynamic database (its BEM would be computed just to learn this)

@@ -165,3 +165,38 @@ def test_read_plain_gives_back_what_was_written(plain_results: dict, kind: str,
         np.testing.assert_array_equal(got.values, var.values, err_msg=name)
     assert back.attrs.keys() == plain.attrs.keys()
     xr.testing.assert_identical(back.to_xarray(), _reread(tmp_path / "r.nc", kind))
+    assert list(back.to_xarray().variables) == list(_reread(tmp_path / "r.nc", kind).variables)
+
+
+@pytest.mark.skipif(not (Path(__file__).parents[1] / "cases" / "oc3_dynamics.yaml").is_file(),
+                    reason="no case file")
+def test_modes_rewrites_the_other_groups_as_xarray_did(tmp_path: Path) -> None:
+    """``moorline modes`` replacing the modal group of a run's results rewrites the file: the
+    other groups (a statics and a streamed dynamics group) are read back with netCDF4 alone
+    (read_plain) and written again, giving the groups that xarray's read-back written by the
+    same writer gives (the former path), variable order included."""
+    import re
+    import shutil
+
+    from click.testing import CliRunner
+
+    from moorline.cli import cli
+    from moorline.io.writers import write_group
+
+    text = (Path(__file__).parents[1] / "cases" / "oc3_dynamics.yaml").read_text("utf-8")
+    case = tmp_path / "short.yaml"
+    case.write_text(re.sub(r"duration: *[0-9.]+", "duration: 0.5", text), encoding="utf-8")
+    out = tmp_path / "out"
+    args = [str(case), "--out", str(out), "-q"]
+    assert CliRunner().invoke(cli, ["run", *args, "--no-plots"]).exit_code == 0
+    results = out / "oc3-dynamics" / "results.nc"
+    shutil.copy(results, tmp_path / "run.nc")
+    for n in ("3", "2"):  # the second replaces the first's modal group
+        done = CliRunner().invoke(cli, ["modes", *args, "--n", n, "--no-plots", "--json"])
+        assert done.exit_code == 0, done.output
+    assert not list((out / "oc3-dynamics").glob("*.png"))
+    for group in ("statics", "dynamics"):
+        expected = tmp_path / f"{group}.nc"
+        write_group(_reread(tmp_path / "run.nc", group), expected, group)
+        assert _structure(results, group) == _structure(expected, group)
+    assert _reread(results, "modal").sizes["mode"] == 2

@@ -10,6 +10,7 @@ the compiled time step; matplotlib only when plotting).
 
 from __future__ import annotations
 
+import os
 import re
 import subprocess
 import sys
@@ -77,6 +78,32 @@ def test_run_without_plots_needs_neither_xarray_nor_matplotlib(tmp_path: Path) -
     assert list((tmp_path / "plots" / "oc3-line").glob("*.png"))
 
 
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_dynamics.yaml").is_file(), reason="no case file")
+def test_a_run_the_compiled_step_cannot_take_does_not_import_numba(tmp_path: Path) -> None:
+    """Viscoelastic lines: the general stepper with the numpy kernels; deciding so does not
+    load numba (moorline.solvers.fast_path)."""
+    case = tmp_path / "visco.yaml"
+    text = (ROOT / "cases" / "oc3_dynamics.yaml").read_text(encoding="utf-8")
+    text = re.sub(r"duration: *[0-9.]+", "duration: 0.5", text)
+    case.write_text(text.replace("    material: elastic",
+                                 "    material: viscoelastic\n    EA1: 2.0e8\n    tau: 1.0"),
+                    encoding="utf-8")
+    loaded = _loaded_by_cli("run", str(case), "--no-plots", "-q", "--out", str(tmp_path))
+    assert loaded == {"scipy", "netCDF4"}
+    assert "viscoelastic" in case.read_text(encoding="utf-8")
+
+
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")
+def test_modes_writes_its_group_without_xarray(tmp_path: Path) -> None:
+    """``modes --no-plots``: the modal group written from numpy with netCDF4 (scipy for the
+    eigenvalues), no xarray, pandas or matplotlib."""
+    loaded = _loaded_by_cli("modes", "cases/oc3_line.yaml", "--n", "3", "--no-plots", "--json",
+                            "-q", "--out", str(tmp_path))
+    assert loaded == {"scipy", "netCDF4"}
+    assert (tmp_path / "oc3-line" / "results.nc").is_file()
+    assert not list((tmp_path / "oc3-line").glob("*.png"))
+
+
 @pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")
 def test_reading_an_si_case_without_unit_strings_does_not_import_pint() -> None:
     loaded = _loaded_after("from moorline.io.case import load_case\n"
@@ -128,3 +155,48 @@ def test_compiled_kernels_counts_cache_misses(monkeypatch: pytest.MonkeyPatch) -
     assert kernel_cache.compiled_kernels() == (1, "/cache")
     fake.a = dispatcher(0, 1)
     assert kernel_cache.compiled_kernels()[0] == 0
+
+
+def _threads_after(args: list[str], env: dict[str, str]) -> tuple[str, int]:
+    """``OPENBLAS_NUM_THREADS`` and the number of threads of a fresh process after ``moorline
+    ARGS`` ran in it (Linux: /proc/self/status)."""
+    code = (f"import os, sys\nsys.argv = ['moorline', *{args!r}]\n"
+            "from moorline.cli import main\n"
+            "try:\n    main()\nexcept SystemExit as exc:\n    assert not exc.code, exc.code\n"
+            "threads = [int(t.split()[1]) for t in open('/proc/self/status')"
+            " if t.startswith('Threads:')][0]\n"
+            "print('BLAS', os.environ.get('OPENBLAS_NUM_THREADS'), threads)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=ROOT, timeout=300, env=env)
+    assert out.returncode == 0, out.stderr
+    value, threads = out.stdout.rsplit("BLAS", 1)[1].split()
+    return value, int(threads)
+
+
+@pytest.mark.skipif(not Path("/proc/self/status").is_file(), reason="needs Linux /proc")
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")
+def test_a_command_runs_openblas_on_one_thread_unless_told(tmp_path: Path) -> None:
+    """The statics process has one thread (no OpenBLAS pool started by numpy or scipy); a
+    thread count the user set is kept."""
+    from moorline.threads import THREAD_VARIABLES
+
+    env = {k: v for k, v in os.environ.items() if k not in THREAD_VARIABLES}
+    args = ["statics", "cases/oc3_line.yaml", "--json", "-q", "--out", str(tmp_path)]
+    assert _threads_after(args, env) == ("1", 1)
+    assert _threads_after(args, {**env, "OPENBLAS_NUM_THREADS": "2"})[0] == "2"
+
+
+def test_one_blas_thread_leaves_an_imported_numpy_and_bem_alone(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from moorline.threads import THREAD_VARIABLES, one_blas_thread
+
+    for name in THREAD_VARIABLES:  # set, then removed: restored as they were afterwards
+        monkeypatch.setenv(name, "0")
+        monkeypatch.delenv(name)
+    assert "numpy" in sys.modules  # pytest imported it: OpenBLAS is loaded already
+    assert not one_blas_thread("statics")
+    monkeypatch.delitem(sys.modules, "numpy")
+    assert not one_blas_thread("bem")
+    assert "OPENBLAS_NUM_THREADS" not in os.environ
+    assert one_blas_thread("statics")
+    assert os.environ["OPENBLAS_NUM_THREADS"] == "1"

@@ -46,6 +46,7 @@ from .runners import (
     _RunInterruptedError,
 )
 from .signals import Terminated, handle_signals
+from .threads import one_blas_thread
 
 logger = logging.getLogger(__name__)
 
@@ -62,6 +63,13 @@ class _Cli(click.Group):
     def invoke(self, ctx: click.Context) -> Any:
         with handle_signals():
             return self._invoke(ctx)
+
+    def resolve_command(self, ctx: click.Context, args: list[str]) -> Any:
+        """The command to run; OpenBLAS is set to one thread for it before anything imports
+        numpy (:func:`moorline.threads.one_blas_thread`)."""
+        name, command, rest = super().resolve_command(ctx, args)
+        one_blas_thread(name)
+        return name, command, rest
 
     def _invoke(self, ctx: click.Context) -> Any:
         try:
@@ -295,14 +303,16 @@ def _finish(case: Path, context: RunContext, summary: dict[str, Any], as_json: b
               help="Number of lowest modes (default: the case's modal analysis, else 10).")
 @_out_option
 @_json_option
+@click.option("--plots/--no-plots", "plots", default=True,
+              help="Draw mode_shapes.png (default: yes); --no-plots writes the numbers only.")
 @_common_options
-def modes(case: Path, n_modes: int | None, out: Path, as_json: bool, quiet: bool,
+def modes(case: Path, n_modes: int | None, out: Path, as_json: bool, plots: bool, quiet: bool,
           verbose: bool) -> None:
     """Natural frequencies and mode shapes of CASE about its static equilibrium.
 
     Prints index, omega [rad/s], period [s], frequency [Hz] and dominant direction of each
     mode; adds group modal to DIR/<case>/results.nc (replacing an older modal group, keeping
-    the others) and writes mode_shapes.png.
+    the others) and writes mode_shapes.png (not with --no-plots).
     """
     import dataclasses
 
@@ -314,15 +324,17 @@ def modes(case: Path, n_modes: int | None, out: Path, as_json: bool, quiet: bool
     settings = system.first(ModalSettings)
     if n_modes is not None:
         settings = dataclasses.replace(settings, n_modes=n_modes, band=None)
-    context = _context(system, case, out, quiet)
+    context = _context(system, case, out, quiet, plots=plots)
     modal = KINDS["modal"]
+    files: list[Path] = []
     with _status(f"solving the modes of {system.name} ...", quiet) as update:
         result = solve_modes(system, settings)
         update("writing results ...")
-        ds = result.to_xarray()
+        ds = result.to_plain()
         _replace_group(context, ds, "modal")
-        update("plotting ...")
-        files = modal.plot_group(ds, context.directory)
+        if plots:
+            update("plotting ...")
+            files = modal.plot_group(ds.to_xarray(), context.directory)
     if as_json:
         from .io.writers import summary_json
 
@@ -336,10 +348,12 @@ def modes(case: Path, n_modes: int | None, out: Path, as_json: bool, quiet: bool
 
 def _replace_group(context: RunContext, ds: Any, group: str) -> None:
     """Add ``ds`` as ``group`` to the results file, keeping its other groups; an existing
-    ``group`` is replaced (NetCDF cannot delete a group: the file is rewritten)."""
+    ``group`` is replaced (NetCDF cannot delete a group: the file is rewritten, the other
+    groups read back with netCDF4 alone, :func:`~moorline.io.netcdf_read.read_plain`)."""
     import netCDF4
 
-    from .io.writers import read_group, result_groups, start_results, write_group
+    from .io.netcdf_read import read_plain
+    from .io.writers import result_groups, start_results, write_group
 
     path = context.results
     if not path.exists():
@@ -348,7 +362,7 @@ def _replace_group(context: RunContext, ds: Any, group: str) -> None:
                              "complete": 1, "status": "complete"})
     elif group in result_groups(path):
         groups = [name for name in result_groups(path) if name and name != group]
-        keep = {name: read_group(path, name) for name in groups}
+        keep = {name: read_plain(path, name) for name in groups}
         with netCDF4.Dataset(path, "r") as root:
             attrs = {key: root.getncattr(key) for key in root.ncattrs()}
         start_results(path, {**attrs, "analyses": ""})

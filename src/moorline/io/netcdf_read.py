@@ -31,8 +31,7 @@ def read_plain(path: str | Path, group: str = "") -> PlainDataset:
     with netCDF4.Dataset(Path(path), "r") as root:
         source = root[group] if group else root
         coord_names = set(str(getattr(source, "coordinates", "")).split())
-        data: dict[str, PlainVariable] = {}
-        coords: dict[str, PlainVariable] = {}
+        variables: dict[str, PlainVariable] = {}
         for name, var in source.variables.items():
             var.set_auto_maskandscale(False)
             attrs = {k: var.getncattr(k) for k in var.ncattrs()}
@@ -42,10 +41,12 @@ def read_plain(path: str | Path, group: str = "") -> PlainDataset:
                 values = np.asarray(values, dtype=object).astype(str)
             elif attrs.get("dtype") == "bool":
                 values = np.asarray(values).astype(bool)
-            plain = PlainVariable(var.dimensions, values,
-                                  {k: v for k, v in attrs.items() if k not in _ENCODING})
-            (coords if name in var.dimensions else data)[name] = plain
+            variables[name] = PlainVariable(var.dimensions, values,
+                                            {k: v for k, v in attrs.items() if k not in _ENCODING})
+            if name in var.dimensions:
+                coord_names.add(name)
         attrs = {k: source.getncattr(k) for k in source.ncattrs() if k != "coordinates"}
-    for name in [n for n in data if n in coord_names]:
-        coords[name] = data.pop(name)
+    # data variables, then coordinates, each in file order (as xarray.open_dataset)
+    data = {n: v for n, v in variables.items() if n not in coord_names}
+    coords = {n: v for n, v in variables.items() if n in coord_names}
     return PlainDataset(data, coords, attrs)

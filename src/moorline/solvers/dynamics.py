@@ -295,7 +295,7 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     """The time stepper of the settings: the compiled backend when the model allows it, else
     the general one (the same algorithm; lines, points and bodies). ``start``: the state the
     run starts from (the bodies' exciting-force phases refer to it)."""
-    from .fast_newmark import FastStepper, fast_path_reason
+    from .fast_path import fast_path_reason
 
     coefficients = Coefficients.for_scheme(settings.scheme, settings.alpha)
     policy = NewtonPolicy(tolerance=tolerance, max_iterations=settings.max_iterations,
@@ -305,6 +305,8 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     reason = fast_path_reason(model, fluid, settings.scheme, settings.variant, has_bodies,
                               rayleigh is not None)
     if reason is None and settings.fast_path:
+        from .fast_newmark import FastStepper  # imports numba: only when it runs
+
         return FastStepper(model, coefficients, policy)
     logger.info("general stepper (compiled step not used: %s)", reason or "disabled")
     bodies = BodyModel(model.mesh, fluid, start.bodies if start is not None else None) \

@@ -30,6 +30,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from ..physics.fused import _kernel
 from .fast_fluid import fluid_at_midpoints
+from .fast_path import fluid_parts
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -418,60 +419,12 @@ def make_buffers(n_el: int, n_nodes: int) -> tuple:
             np.zeros((n_nodes, 2)), np.zeros(n_el), np.zeros((n_el, 2, 3)))
 
 
-def _fluid_parts(fluid):
-    """``(waves, current)`` of a fluid field the compiled step takes (linear wave components
-    and a uniform current, each or both or neither), or None when it takes no such field."""
-    from ..waves import AiryWave, CombinedField, CurrentProfile, StillWater, WaveComponents
-
-    def uniform(current) -> bool:
-        return len(set(np.atleast_1d(current.speeds))) == 1 \
-            and len(set(np.atleast_1d(current.headings_deg))) == 1
-
-    waves, current = fluid, None
-    if isinstance(fluid, StillWater):
-        return None, None
-    if isinstance(fluid, CurrentProfile):
-        waves, current = None, fluid
-    elif isinstance(fluid, CombinedField):
-        waves, current = fluid.wave, fluid.current
-    if isinstance(waves, AiryWave):
-        waves = waves.components
-    if waves is not None and not isinstance(waves, WaveComponents):
-        return None
-    if current is not None and not (isinstance(current, CurrentProfile) and uniform(current)):
-        return None
-    return waves, current
-
-
-def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
-                     rayleigh: bool = False) -> str | None:
-    """Why the compiled step cannot run this model (None when it can)."""
-    if bodies:
-        return "rigid bodies"
-    if rayleigh:
-        return "Rayleigh damping"
-    if model._fused is None:
-        return "viscoelastic lines, slack_damping, drag_velocity node or the numpy kernel"
-    if model.mesh.has_bending:
-        return "bending stiffness (EI)"
-    if scheme not in ("newmark", "hht") or variant != "iterative":
-        return f"scheme {scheme!r} / variant {variant!r}"
-    if model.has_point_hydro:
-        return "points with their own drag or added mass"
-    if model.friction is not None and model.friction[0] != model.friction[1]:
-        return "anisotropic seabed friction"
-    if model.mesh.bathymetry is not None:
-        return "a sloped or gridded seabed"
-    if _fluid_parts(fluid) is None:
-        return "a sheared current or a fluid field other than Airy waves and a uniform current"
-    return None
-
-
 class FastStepper:
     """The compiled backend of :class:`~moorline.solvers.newmark.Stepper`: the same step
-    (see :func:`fast_path_reason` for when it applies), run by :func:`newmark_step` inside
-    the compiled loop :func:`moorline.solvers.fast_loop.advance_block`: :meth:`step` is a
-    block of one sub-step, :meth:`run_block` many steps."""
+    (see :func:`~moorline.solvers.fast_path.fast_path_reason` for when it applies), run by
+    :func:`newmark_step` inside the compiled loop
+    :func:`moorline.solvers.fast_loop.advance_block`: :meth:`step` is a block of one
+    sub-step, :meth:`run_block` many steps."""
 
     def __init__(self, model, coefficients, policy) -> None:
         mesh = model.mesh
@@ -503,7 +456,7 @@ class FastStepper:
                             np.inf if pol.refresh_ratio is None else float(pol.refresh_ratio),
                             float(pol.stall_ratio), int(pol.stall_limit),
                             int(pol.max_halvings), float(pol.stiffness_update))
-        self.waves, self.current = _fluid_parts(model.fluid)
+        self.waves, self.current = fluid_parts(model.fluid)
         if self.waves is not None:
             c = self.waves._coef
             self.wave_coef = np.ascontiguousarray(np.vstack([c[name] for name in (

@@ -1,0 +1,61 @@
+"""When the compiled time step (:mod:`moorline.solvers.fast_newmark`) can run a model.
+
+Kept apart from the compiled step so that deciding does not import numba: a model the
+compiled step cannot run (bodies, viscoelastic lines, bending...) takes the general stepper
+without loading it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["fast_path_reason", "fluid_parts"]
+
+
+def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
+                     rayleigh: bool = False) -> str | None:
+    """Why the compiled step cannot run this model (None when it can)."""
+    if bodies:
+        return "rigid bodies"
+    if rayleigh:
+        return "Rayleigh damping"
+    if model._fused is None:
+        return "viscoelastic lines, slack_damping, drag_velocity node or the numpy kernel"
+    if model.mesh.has_bending:
+        return "bending stiffness (EI)"
+    if scheme not in ("newmark", "hht") or variant != "iterative":
+        return f"scheme {scheme!r} / variant {variant!r}"
+    if model.has_point_hydro:
+        return "points with their own drag or added mass"
+    if model.friction is not None and model.friction[0] != model.friction[1]:
+        return "anisotropic seabed friction"
+    if model.mesh.bathymetry is not None:
+        return "a sloped or gridded seabed"
+    if fluid_parts(fluid) is None:
+        return "a sheared current or a fluid field other than Airy waves and a uniform current"
+    return None
+
+
+def fluid_parts(fluid):
+    """``(waves, current)`` of a fluid field the compiled step takes (linear wave components
+    and a uniform current, each or both or neither), or None when it takes no such field."""
+    from ..waves import AiryWave, CombinedField, CurrentProfile, StillWater, WaveComponents
+
+    def uniform(current) -> bool:
+        return len(set(np.atleast_1d(current.speeds))) == 1 \
+            and len(set(np.atleast_1d(current.headings_deg))) == 1
+
+    waves, current = fluid, None
+    if isinstance(fluid, StillWater):
+        return None, None
+    if isinstance(fluid, CurrentProfile):
+        waves, current = None, fluid
+    elif isinstance(fluid, CombinedField):
+        waves, current = fluid.wave, fluid.current
+    if isinstance(waves, AiryWave):
+        waves = waves.components
+    if waves is not None and not isinstance(waves, WaveComponents):
+        return None
+    if current is not None and not (isinstance(current, CurrentProfile) and uniform(current)):
+        return None
+    return waves, current
