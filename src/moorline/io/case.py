@@ -490,7 +490,7 @@ def _check_resolved_periods(spec: CaseSpec, dt: float, field: str,
 
 def _check_sag(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
     """Sag-corrected lines (:mod:`moorline.physics.sag`): elastic line types without a
-    fibre-rope dynamic stiffness, and no linearized analysis."""
+    fibre-rope dynamic stiffness, and no linearized analysis but the modal one."""
     for name, line in spec.lines.items():
         if line.element != "sag_corrected":
             continue
@@ -500,7 +500,7 @@ def _check_sag(spec: CaseSpec, fail: Callable[[str, str], None]) -> None:
             fail(f"sag-corrected elements need an elastic line type without EAd; line type "
                  f"{line.type!r} has {what}", f"lines.{name}.element")
         for k, analysis in enumerate(spec.analyses or ()):
-            if analysis.kind in ("modal", "strumming", "stochastic", "harmonic"):
+            if analysis.kind in ("strumming", "stochastic", "harmonic"):
                 fail(sag_refusal(name, analysis.kind), f"analyses[{k}].kind")
             if analysis.kind == "dynamics":
                 # measured on the OC3 10 s surge (README): the sag of the weight alone moves

@@ -1,8 +1,9 @@
 """Which laws the linearized analyses (modal, strumming, stochastic, harmonic balance) can
 take: the ``static_dynamic`` rope (:mod:`moorline.physics.static_dynamic`, MoorDyn's mean-load
-dependent viscoelastic model), the ``syrope`` rope (:mod:`moorline.physics.syrope`) and the
-sag-corrected element (:mod:`moorline.physics.sag`) are modelled in statics and the time
-domain only. A case file refuses such an analysis at load; this guard refuses the same call
+dependent viscoelastic model) and the ``syrope`` rope (:mod:`moorline.physics.syrope`) are
+modelled in statics and the time domain only, the sag-corrected element
+(:mod:`moorline.physics.sag`) in those and the modal analysis. A case file refuses such an
+analysis at load; this guard refuses the same call
 made through the Python API, instead of silently linearizing with another law."""
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ def refuse_unlinearized(system: System, analysis: str) -> None:
                             f"{analysis} analysis (not linearized)",
                             field=f"line_types.{names[0]}.material")
     sagging = [n for n, line in system.lines.items() if line.element == "sag_corrected"]
-    if sagging:
+    if sagging and analysis != "modal":  # modal: the symmetric part of the tangent
         raise CaseError(sag_refusal(", ".join(sagging), analysis),
                         field=f"lines.{sagging[0]}.element")
 
@@ -32,5 +33,5 @@ def refuse_unlinearized(system: System, analysis: str) -> None:
 def sag_refusal(lines: str, analysis: str) -> str:
     """The message refusing an ``analysis`` of sag-corrected ``lines``."""
     return (f"line {lines} has sag-corrected elements (element: sag_corrected), modelled in "
-            f"statics and the time domain only: no {analysis} analysis (not linearized; use "
-            "element: straight)")
+            f"statics, modal analysis and the time domain only: no {analysis} analysis (not "
+            "linearized; use element: straight)")
