@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from moordyn_surge import moordyn_fair_tensions
 
 from moorline.errors import CaseError
 from moorline.io.moordyn import read_moordyn
@@ -269,8 +270,7 @@ def test_taut_line_with_mass_against_moordyn(tmp_path):
     they differ by 1.9e-4 of the tension (7.6e-5 with moorline at 0.0025 s): the axial modes
     (period about 0.04 s) that the start excites are resolved by MoorDyn and filtered by
     moorline's step; tolerance 5e-4."""
-    moordyn = pytest.importorskip("moordyn")
-    from moorline.compare.moordyn_runner import silenced_fd
+    pytest.importorskip("moordyn")
     from moorline.io.moordyn import write_moordyn
     from moorline.model import Line, Point, System
 
@@ -295,15 +295,7 @@ def test_taut_line_with_mass_against_moordyn(tmp_path):
                    output_every=dt)
     assert run.success, run.message
     path = write_moordyn(system, tmp_path / "taut.dat", 1.0e-4)
-    theirs = []
-    with silenced_fd(1):
-        md = moordyn.Create(str(path))
-        moordyn.Init_NoIC(md, [x(0.0), 0.0, -50.0], [0.0, 0.0, 0.0])
-        line = moordyn.GetLine(md, 1)
-        for t in times[:-1]:
-            moordyn.Step(md, [x(t), 0.0, -50.0], [(x(t + dt) - x(t)) / dt, 0.0, 0.0], t, dt)
-            theirs.append(moordyn.GetLineFairTen(line))
-        moordyn.Close(md)
+    theirs = moordyn_fair_tensions(path, x, -50.0, times[:-1], dt)
     t_theirs = times[1:]
     ours = np.interp(t_theirs - 0.5e-4, run.time, run.tension[:, -1])
     keep = t_theirs >= 5.0

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from moordyn_surge import moordyn_fair_tensions
 
 from moorline.errors import CaseError
 from moorline.io.moordyn import read_moordyn, write_moordyn
@@ -246,8 +247,7 @@ def test_single_segment_decks_against_moordyn(tmp_path, case, x0, z, lag):
     discretizations, and the start: the decks' Tmean0 are 1.9e-4 and 5.2e-4 off the working
     curve's tension at their geometry, which the dynamic branch turns into 5e-5 and 1.6e-4 of
     the tension, decaying with the creep); tolerance 3e-4."""
-    moordyn = pytest.importorskip("moordyn")
-    from moorline.compare.moordyn_runner import silenced_fd
+    pytest.importorskip("moordyn")
 
     if case == "md_syrope":
         shutil.copytree(RTEST, tmp_path / case)
@@ -257,17 +257,7 @@ def test_single_segment_decks_against_moordyn(tmp_path, case, x0, z, lag):
     x = _motion(x0)
     dt, duration = 0.1, 170.0
     n = round(duration / dt)
-    theirs = []
-    with silenced_fd(1):
-        md = moordyn.Create(str(deck))
-        moordyn.Init_NoIC(md, [x(0.0), 0.0, z], [0.0, 0.0, 0.0])
-        line = moordyn.GetLine(md, 1)
-        for k in range(n):
-            t = k * dt
-            moordyn.Step(md, [x(t), 0.0, z], [(x(t + dt) - x(t)) / dt, 0.0, 0.0], t, dt)
-            theirs.append(moordyn.GetLineFairTen(line))
-        moordyn.Close(md)
-    theirs = np.array(theirs)
+    theirs = moordyn_fair_tensions(deck, x, z, dt * np.arange(n), dt)
     system = read_moordyn(deck)
     times = dt * np.arange(n + 1)
     motion = Motion(kind="table", times=tuple(times),
@@ -294,8 +284,7 @@ def test_written_taut_line_with_mass_against_moordyn(tmp_path):
     back) after 5 s: measured 4.4e-5 of the tension (the axial modes, period about 0.1 s,
     that the start excites are resolved by MoorDyn and filtered by moorline's step: 0.9 % in
     the first second); tolerance 3e-4."""
-    moordyn = pytest.importorskip("moordyn")
-    from moorline.compare.moordyn_runner import silenced_fd
+    pytest.importorskip("moordyn")
     from moorline.model import Line, Point, System
     from moorline.physics.syrope import rope_of
 
@@ -323,15 +312,7 @@ def test_written_taut_line_with_mass_against_moordyn(tmp_path):
                    initial=solve_statics(system), output_every=dt)
     assert run.success, run.message
     path = write_moordyn(system, tmp_path / "taut.dat", 1.0e-4)
-    theirs = []
-    with silenced_fd(1):
-        md = moordyn.Create(str(path))
-        moordyn.Init_NoIC(md, [x(0.0), 0.0, -50.0], [0.0, 0.0, 0.0])
-        line = moordyn.GetLine(md, 1)
-        for t in times[:-1]:
-            moordyn.Step(md, [x(t), 0.0, -50.0], [(x(t + dt) - x(t)) / dt, 0.0, 0.0], t, dt)
-            theirs.append(moordyn.GetLineFairTen(line))
-        moordyn.Close(md)
+    theirs = moordyn_fair_tensions(path, x, -50.0, times[:-1], dt)
     t_theirs = times[1:]
     ours = np.interp(t_theirs - 0.5e-4, run.time, run.tension[:, -1])
     keep = t_theirs >= 5.0

@@ -92,6 +92,7 @@ from .moordyn_visco import viscoelastic_line_type
 from .schema import check_number
 from .seafloor import read_seafloor
 from .strain_table import read_strain_table
+from .tokens import is_number
 from .topology import geometry_problem
 
 logger = logging.getLogger(__name__)
@@ -480,10 +481,10 @@ def _parse_line_types(sec: _Section, reader: _Reader) -> tuple[dict[str, LineTyp
             visco = viscoelastic_line_type(tok[2], tok[3], fail)
         if visco is not None:  # EA_s|EA_d[|...] with BA_s[|BA_d]: numbers checked there
             tok = [*tok[:2], "1", "0", *tok[4:]]
-        if not _is_number(tok[3]):
+        if not is_number(tok[3]):
             raise reader.fail(f"BA/-zeta {tok[3]!r}: only a constant BA is supported (no "
                               "damping tables)", row, sec.title)
-        table = None if _is_number(tok[2]) else _ea_table(tok[2], row, sec.title, reader)
+        table = None if is_number(tok[2]) else _ea_table(tok[2], row, sec.title, reader)
         values = [_number(t, f"column {i + 2}", row, sec.title, reader)
                   for i, t in enumerate(tok) if i != 2 or table is None]
         if table is not None:
@@ -514,14 +515,6 @@ def _ea_table(token: str, row: _Row, section: str, reader: _Reader) -> StrainTab
         return StrainTable(read_strain_table(Path(reader.file).parent / token))
     except ValueError as exc:
         raise reader.fail(f"EA table {token!r}: {exc}", row, section) from None
-
-
-def _is_number(token: str) -> bool:
-    try:
-        float(token)
-    except ValueError:
-        return False
-    return True
 
 
 def _row_name(row: _Row, default: str, taken: Mapping[str, object], section: str,
@@ -685,11 +678,11 @@ def _parse_options(sec: _Section, reader: _Reader) -> tuple[dict[str, str], dict
         raw[key] = value
         low = key.lower()
         if low in _UNSUPPORTED_OPTIONS:
-            if not (_is_number(value) and float(value) == 0):
+            if not (is_number(value) and float(value) == 0):
                 raise reader.fail(f"option {key} = {value}: {_UNSUPPORTED_OPTIONS[low]} are not "
                                   "supported", row, sec.title)
         elif low in _DROPPED_OPTIONS:
-            if not (_is_number(value) and float(value) == 0):
+            if not (is_number(value) and float(value) == 0):
                 reader.warn(f"option {key} = {value} (line {row.lineno}): "
                             f"{_DROPPED_OPTIONS[low]} are not read and are dropped")
         elif low in _PHYSICAL_OPTIONS:
@@ -725,7 +718,7 @@ def _seafloor(raw: Mapping[str, str], path: Path, environment: Environment,
               reader: _Reader) -> Environment:
     """The deck's ``SeafloorFile`` as the seabed's bathymetry (unchanged without one)."""
     value = next((v for k, v in raw.items() if k.lower() == "seafloorfile"), None)
-    if value is None or (_is_number(value) and float(value) == 0):
+    if value is None or (is_number(value) and float(value) == 0):
         return environment
     folder = path.resolve().parent
     parts = Path(value).parts

@@ -24,6 +24,7 @@ import numpy as np
 from ..model import Line, LineType, System
 from ..physics.syrope import FORMS, SyropeRope, reference_stiffness, rope_of
 from .files import MAX_TABLE_BYTES, file_problem
+from .tokens import is_number
 
 _HEADER_LINES = 3  # MoorDyn-C read_curve skips the first three lines of a curve file
 
@@ -95,7 +96,7 @@ def read_moordyn_curve(path: Path, fail: Callable[[str], Exception],
         raise fail(f"cannot read the curve file {str(path)!r}: {problem}")
     lines = path.read_text(encoding="utf-8", errors="replace").splitlines()
     skipped = lines[_HEADER_LINES - 1].split() if len(lines) >= _HEADER_LINES else []
-    if len(skipped) >= 2 and all(_is_number(t) for t in skipped[:2]):
+    if len(skipped) >= 2 and all(is_number(t) for t in skipped[:2]):
         warn(f"curve file {path.name}: line {_HEADER_LINES} ({lines[_HEADER_LINES - 1].strip()!r})"
              f" is skipped as a header, as MoorDyn-C reads curve files (three header lines)")
     rows = []
@@ -103,7 +104,7 @@ def read_moordyn_curve(path: Path, fail: Callable[[str], Exception],
         tokens = line.split()
         if not tokens:
             continue
-        if len(tokens) < 2 or not all(_is_number(t) for t in tokens[:2]):
+        if len(tokens) < 2 or not all(is_number(t) for t in tokens[:2]):
             raise fail(f"curve file {path.name}, line {number}: not a strain and a tension: "
                        f"{line.strip()!r}")
         rows.append([float(tokens[0]), float(tokens[1])])
@@ -181,9 +182,3 @@ def _number(token: str, what: str, fail: Callable[[str], Exception]) -> float:
     return value
 
 
-def _is_number(token: str) -> bool:
-    try:
-        float(token)
-    except ValueError:
-        return False
-    return True
