@@ -133,3 +133,27 @@ def test_compiled_loop_in_waves_equals_the_general_stepper_on_the_numpy_kernel(
     # the waves move the lines: not the still-water run
     scale = float(np.abs(slow.positions).max())
     assert not np.allclose(calm.positions, fast.positions, rtol=0, atol=1e-5 * scale)
+
+
+def test_compiled_loop_with_slack_damping_equals_the_general_stepper(monkeypatch, caplog):
+    """``slack_damping`` (MoorDyn's dashpot kept in slack elements) on the compiled loop
+    against the general stepper on the numpy element kernel, on the OC3 surge case whose
+    grounded elements go slack: the same states to the Newton tolerance's
+    round-off and the same work; the option changes the run."""
+    import logging
+
+    make, settings, every = CASES["oc3_surge"]
+    settings = dict(settings, duration=15.0)
+    system = make()
+    start = solve_statics(system)
+    on = DynamicsSettings(**settings, slack_damping=True)
+    with caplog.at_level(logging.INFO, logger="moorline"):
+        fast = simulate(system, on, initial=start, output_every=every)
+    assert "general stepper" not in caplog.text  # the compiled loop ran it
+    slow = reference_run(system, on, start, every, monkeypatch)
+    assert_same_run(fast, slow)
+    assert np.any(slow.tension < 0)  # slack elements (where the kept dashpot pushes)
+    default = simulate(system, DynamicsSettings(**settings), initial=start,
+                       output_every=every)
+    scale = float(np.abs(fast.tension).max())
+    assert not np.allclose(default.tension, fast.tension, rtol=0, atol=1e-4 * scale)

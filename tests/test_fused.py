@@ -262,3 +262,22 @@ def test_element_subset_and_functional_form():
                                atol=RTOL * np.abs(f).max())
     axial_c = np.zeros_like(dF_dv)  # BA = 0: no dashpot
     np.testing.assert_allclose(drag.C, axial_c - dF_dv, rtol=0, atol=RTOL * np.abs(dF_dv).max())
+
+
+@pytest.mark.parametrize("mode", ["mixed", "slack", "band"])
+def test_slack_damping_equals_numpy(mode):
+    """``slack_damping`` (the dashpot kept whole in slack elements, MoorDyn's law) in the
+    compiled kernel against the numpy path, with damping and a ramped current; the dashpot
+    then acts in the slack elements (the tensions differ from the blended default's)."""
+    mesh = discretize(_system())
+    fluid = FLUIDS["ramped"]
+    ref = DynamicModel(mesh, fluid, kernel="numpy", slack_damping=True)
+    new = DynamicModel(mesh, fluid, kernel="numba", slack_damping=True)
+    blended = DynamicModel(mesh, fluid, kernel="numba")
+    assert new.kernel == "numba"
+    x, v, a = _configuration(mesh, mode, 11)
+    material = ref.initial_material(x)
+    for tangent in (True, False):
+        args = (x, v, a, 3.0, material, 0.1, tangent)
+        _assert_same(ref.evaluate(*args), new.evaluate(*args))
+    assert not np.allclose(blended.evaluate(*args).tension, new.evaluate(*args).tension)

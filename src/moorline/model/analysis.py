@@ -117,7 +117,8 @@ class DynamicsSettings:
         per element, :mod:`moorline.envelope`); ``None``: ``ramp_time`` (after the ramp).
     slack_damping, drag_velocity
         MoorDyn's choices where moorline's differ (:class:`~moorline.solvers.dynamic_model.
-        DynamicModel`; both run on the numpy path): ``slack_damping`` keeps the axial dashpot
+        DynamicModel`; ``drag_velocity: node`` runs on the numpy path, ``slack_damping`` on
+        the compiled one too): ``slack_damping`` keeps the axial dashpot
         ``BA`` in slack elements; ``drag_velocity: node`` evaluates each node's share of an
         element's drag at the node's own velocity instead of the element's mean velocity
         (``element``). They change the slack, grounded part of a line most (issue 16, the

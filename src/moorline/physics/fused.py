@@ -15,7 +15,8 @@ slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
   offset in its law); the tension with the smooth slack band and its slope
   (:func:`moorline.physics.element.axial_tension`), linear ``EA`` or a tabulated
   tension-strain law (:class:`TableLaws`); the Kelvin-Voigt
-  damping ``BA * share(strain) * strain_rate`` (blended in over the slack band); the nodal
+  damping ``BA * share(strain) * strain_rate`` (blended in over the slack band, or whole in
+  every element with ``slack_damping``, a row of the packed properties); the nodal
   forces
   (:func:`moorline.physics.element.nodal_forces`); with ``tangent`` the blocks ``K``
   (geometric + material + the non-symmetric rotation term of the dashpot) and ``C`` (the
@@ -73,8 +74,8 @@ BoolArray = NDArray[np.bool_]
 _TINY = float(np.finfo(float).tiny)
 
 # rows of the packed per-element property array
-_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET, _W = range(13)
-_N_PROPS = 13
+_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET, _W, _KEEP = range(14)
+_N_PROPS = 14
 
 
 class ElementLoads(NamedTuple):
@@ -94,7 +95,8 @@ class ElementLoads(NamedTuple):
     strain
         ``l / L0 - 1`` (without the strain offset), (n_el,).
     taut
-        ``strain - offset > -smoothing``: where the dashpot acts, (n_el,).
+        ``strain - offset > -smoothing``: where the dashpot acts (everywhere with
+        ``slack_damping``), (n_el,).
     K, C, Ma
         ``-dF/dx``, ``-dF/dv``, ``-dF/da`` element blocks (n_el, 6, 6); ``None`` unless
         ``tangent`` (and, for ``Ma``, ``with_added_mass``).
@@ -287,8 +289,12 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
                                   coef, end_slope)
             # the model converts dT/dl to dT/deps and back (DynamicModel._axial_tension)
             dT_dl = ((slope / L0) * L0) / L0
-        # Kelvin-Voigt dashpot, blended in over the slack band (element.dashpot_share)
-        if s_band > 0:
+        # Kelvin-Voigt dashpot, blended in over the slack band (element.dashpot_share), or
+        # kept whole in slack elements (DynamicModel slack_damping: share 1, dshare 0)
+        if props[_KEEP, e] != 0.0:
+            share = 1.0
+            dshare = 0.0
+        elif s_band > 0:
             share = min(max((strain + s_band) / (2 * s_band), 0.0), 1.0)
             dshare = 1.0 / (2 * s_band) if -s_band < strain < s_band else 0.0
         else:
@@ -498,15 +504,17 @@ def pack_properties(
     n_el: int, length0: ArrayLike, EA: ArrayLike, slack_ratio: ArrayLike,
     smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike, Cd: ArrayLike, Ct: ArrayLike,
     Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike, offset: ArrayLike | None = None,
-    weight_per_length: ArrayLike | None = None,
+    weight_per_length: ArrayLike | None = None, slack_damping: ArrayLike = False,
 ) -> FloatArray:
-    """Per-element properties (scalars broadcast) packed into one (13, n_el) array, in the
+    """Per-element properties (scalars broadcast) packed into one (14, n_el) array, in the
     row order the kernel reads them (the last rows: the strain offset and the submerged weight
-    per length of the sag correction, ``None``: 0)."""
+    per length of the sag correction, ``None``: 0; 1 where the dashpot is kept whole in slack
+    elements, ``slack_damping``, else 0)."""
     props = np.empty((_N_PROPS, n_el))
     for row, value in enumerate((length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct,
                                  Ca, Cat, rho, 0.0 if offset is None else offset,
-                                 0.0 if weight_per_length is None else weight_per_length)):
+                                 0.0 if weight_per_length is None else weight_per_length,
+                                 np.asarray(slack_damping, dtype=float))):
         props[row] = _per_element(value, n_el)
     return props
 
@@ -590,6 +598,10 @@ class FusedLoads:
         The sag correction (:class:`moorline.physics.sag.SagCorrection`, its ``phi`` taken
         at every call's positions) and the elements' submerged weight per length; ``None``:
         straight elements.
+    slack_damping
+        Keep the Kelvin-Voigt dashpot whole in slack elements (share 1 at every strain,
+        MoorDyn's law; :class:`~moorline.solvers.dynamic_model.DynamicModel`'s option), a
+        bool or one per element; default: blended off over the slack band.
     """
 
     def __init__(
@@ -599,14 +611,15 @@ class FusedLoads:
         laws: StrainLaws | None = None, offset: ArrayLike | None = None,
         with_drag: bool | None = None, with_added_mass: bool | None = None,
         reuse_buffers: bool = False, sag: SagCorrection | None = None,
-        weight_per_length: ArrayLike | None = None,
+        weight_per_length: ArrayLike | None = None, slack_damping: ArrayLike = False,
     ) -> None:
         self.elements = np.ascontiguousarray(elements, dtype=np.int64)
         n_el = self.elements.shape[0]
         self.n_el = n_el
         self.n_nodes = int(n_nodes)
         self.props = pack_properties(n_el, length0, EA, slack_ratio, smoothing, BA, diameter,
-                                     Cd, Ct, Ca, Cat, rho, offset, weight_per_length)
+                                     Cd, Ct, Ca, Cat, rho, offset, weight_per_length,
+                                     slack_damping)
         self.sag = sag
         self._no_sag = (np.zeros(n_el), np.zeros((n_el, 2, 3)))
         self.laws = TableLaws.of(laws, n_el)
