@@ -135,18 +135,22 @@ def test_compiled_loop_in_waves_equals_the_general_stepper_on_the_numpy_kernel(
     assert not np.allclose(calm.positions, fast.positions, rtol=0, atol=1e-5 * scale)
 
 
-def test_compiled_loop_with_slack_damping_equals_the_general_stepper(monkeypatch, caplog):
-    """``slack_damping`` (MoorDyn's dashpot kept in slack elements) on the compiled loop
+@pytest.mark.parametrize("options", [{"slack_damping": True}, {"drag_velocity": "node"},
+                                     {"slack_damping": True, "drag_velocity": "node"}])
+def test_compiled_loop_with_moordyn_options_equals_the_general_stepper(options, monkeypatch,
+                                                                       caplog):
+    """MoorDyn's choices (``slack_damping``: the dashpot kept in slack elements;
+    ``drag_velocity: node``: each node's drag at its own velocity) on the compiled loop
     against the general stepper on the numpy element kernel, on the OC3 surge case whose
-    grounded elements go slack: the same states to the Newton tolerance's
-    round-off and the same work; the option changes the run."""
+    grounded elements go slack: the same states to the Newton tolerance's round-off and the
+    same work; the options change the run."""
     import logging
 
     make, settings, every = CASES["oc3_surge"]
     settings = dict(settings, duration=15.0)
     system = make()
     start = solve_statics(system)
-    on = DynamicsSettings(**settings, slack_damping=True)
+    on = DynamicsSettings(**settings, **options)
     with caplog.at_level(logging.INFO, logger="moorline"):
         fast = simulate(system, on, initial=start, output_every=every)
     assert "general stepper" not in caplog.text  # the compiled loop ran it

@@ -264,20 +264,28 @@ def test_element_subset_and_functional_form():
     np.testing.assert_allclose(drag.C, axial_c - dF_dv, rtol=0, atol=RTOL * np.abs(dF_dv).max())
 
 
+MOORDYN_OPTIONS = {"slack_damping": {"slack_damping": True},
+                   "node_drag": {"drag_velocity": "node"},
+                   "both": {"slack_damping": True, "drag_velocity": "node"}}
+
+
+@pytest.mark.parametrize("options", MOORDYN_OPTIONS)
 @pytest.mark.parametrize("mode", ["mixed", "slack", "band"])
-def test_slack_damping_equals_numpy(mode):
-    """``slack_damping`` (the dashpot kept whole in slack elements, MoorDyn's law) in the
-    compiled kernel against the numpy path, with damping and a ramped current; the dashpot
-    then acts in the slack elements (the tensions differ from the blended default's)."""
+def test_moordyn_options_equal_numpy(mode, options):
+    """MoorDyn's choices in the compiled kernel against the numpy path, with damping, added
+    mass and a ramped current: ``slack_damping`` (the dashpot kept whole in slack elements)
+    and ``drag_velocity: node`` (each node's drag share at its own velocity); each changes
+    the loads (not the default's)."""
     mesh = discretize(_system())
     fluid = FLUIDS["ramped"]
-    ref = DynamicModel(mesh, fluid, kernel="numpy", slack_damping=True)
-    new = DynamicModel(mesh, fluid, kernel="numba", slack_damping=True)
-    blended = DynamicModel(mesh, fluid, kernel="numba")
+    kw = MOORDYN_OPTIONS[options]
+    ref = DynamicModel(mesh, fluid, kernel="numpy", **kw)
+    new = DynamicModel(mesh, fluid, kernel="numba", **kw)
+    default = DynamicModel(mesh, fluid, kernel="numba")
     assert new.kernel == "numba"
     x, v, a = _configuration(mesh, mode, 11)
     material = ref.initial_material(x)
     for tangent in (True, False):
         args = (x, v, a, 3.0, material, 0.1, tangent)
         _assert_same(ref.evaluate(*args), new.evaluate(*args))
-    assert not np.allclose(blended.evaluate(*args).tension, new.evaluate(*args).tension)
+    assert not np.allclose(default.evaluate(*args).nodal, new.evaluate(*args).nodal)

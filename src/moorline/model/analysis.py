@@ -117,12 +117,11 @@ class DynamicsSettings:
         per element, :mod:`moorline.envelope`); ``None``: ``ramp_time`` (after the ramp).
     slack_damping, drag_velocity
         MoorDyn's choices where moorline's differ (:class:`~moorline.solvers.dynamic_model.
-        DynamicModel`; ``drag_velocity: node`` runs on the numpy path, ``slack_damping`` on
-        the compiled one too): ``slack_damping`` keeps the axial dashpot
-        ``BA`` in slack elements; ``drag_velocity: node`` evaluates each node's share of an
-        element's drag at the node's own velocity instead of the element's mean velocity
-        (``element``). They change the slack, grounded part of a line most (issue 16, the
-        OC3 minimum tension: ``benchmarks/min_tension_study.py``).
+        DynamicModel`; both run in the compiled kernel and loop): ``slack_damping`` keeps
+        the axial dashpot ``BA`` in slack elements; ``drag_velocity: node`` evaluates each
+        node's share of an element's drag at the node's own velocity instead of the
+        element's mean velocity (``element``). They change the slack, grounded part of a
+        line most (issue 16, the OC3 minimum tension: ``benchmarks/min_tension_study.py``).
     start
         What the run starts from: ``statics`` (the static equilibrium, solved unless a
         preceding statics analysis gives it) or ``initial``: the bodies at rest at the poses

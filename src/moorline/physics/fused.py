@@ -25,7 +25,8 @@ slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
   per element) and the extra blocks of :func:`~moorline.physics.sag.sag_blocks`, ``phi`` and
   its node derivatives given by the caller;
 * Morison drag on the relative velocity at the midpoint, normal and tangential, with its
-  exact derivatives (:func:`moorline.physics.hydro.drag_forces`);
+  exact derivatives (:func:`moorline.physics.hydro.drag_forces`), or each node's half at
+  that node's own velocity (``node_drag``, :func:`moorline.physics.hydro.nodal_drag_forces`);
 * added mass ``M_a``, the added-mass force ``-M_a a`` and its position derivative, and the
   fluid-inertia force with its position derivative
   (:func:`moorline.physics.hydro.added_mass_blocks`,
@@ -74,8 +75,9 @@ BoolArray = NDArray[np.bool_]
 _TINY = float(np.finfo(float).tiny)
 
 # rows of the packed per-element property array
-_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET, _W, _KEEP = range(14)
-_N_PROPS = 14
+(_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET, _W, _KEEP,
+ _NODE_DRAG) = range(15)
+_N_PROPS = 15
 
 
 class ElementLoads(NamedTuple):
@@ -245,6 +247,29 @@ def _sag_law(length, L0, EA, s_band, sr, offset, w, nz, phi, k, start, breaks, c
     return T, scale, -scale * length * g_q / g, -scale * length * g_phi / g, weight2
 
 
+@numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _drag_share(u0, u1, u2, t, cn, ct, inv_l, du_dv):
+    """One node's share of an element's drag at the relative velocity ``u``
+    (:func:`moorline.physics.hydro._drag_share`, same order of operations): the force, ``w``
+    (``u``'s normal part) and the coefficients of its derivatives, the velocity block
+    ``t (hb t^T) + w (cw w^T) + hc I`` (``u`` changing by ``du_dv`` times the velocity) and
+    the position block (``x2``) ``projector(alpha, t, p) + w (cx w^T)``."""
+    s = u0 * t[0] + u1 * t[1] + u2 * t[2]
+    w = (u0 - s * t[0], u1 - s * t[1], u2 - s * t[2])
+    un = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+    abs_s = abs(s)
+    a_n = cn * un
+    a_t = ct * abs_s * s
+    fd = (a_n * w[0] + a_t * t[0], a_n * w[1] + a_t * t[1], a_n * w[2] + a_t * t[2])
+    inv = 1.0 / un if un > 0.0 else 0.0
+    cnw = cn * un
+    beta = 2.0 * ct * abs_s - cnw
+    alpha = s * (ct * abs_s - cnw) * inv_l
+    p = (beta * inv_l * w[0], beta * inv_l * w[1], beta * inv_l * w[2])
+    return (fd, w, du_dv * beta, du_dv * cn * inv, du_dv * cnw, alpha, p,
+            -cn * s * inv * inv_l)
+
+
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
 def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, with_drag,
             with_added_mass, el_forces, total, f_am, tension, strain_out, taut_out, K, C, Ma,
@@ -316,25 +341,31 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
             el_forces[e, 1, c] = -f[c]
         fn = (-f[0], -f[1], -f[2])  # accumulated totals of node 1 (f) and node 2 (fn)
 
-        # ---- Morison drag (hydro.drag_forces) ----
-        w = zero3
-        s = cn = ct = un = abs_s = 0.0
+        # ---- Morison drag: at the element's mean velocity, the same share on both nodes
+        # (hydro.drag_forces), or each node's share at its own velocity (_NODE_DRAG,
+        # hydro.nodal_drag_forces); the derivative coefficients of node 1's (0) and 2's (1)
+        inv_l = 1.0 / lc
+        node_drag = props[_NODE_DRAG, e] != 0.0
+        w0 = w1 = p0d = p1d = zero3
+        hb0 = cw0 = hc0 = al0 = cx0 = hb1 = cw1 = hc1 = al1 = cx1 = 0.0
         if with_drag:
-            u0 = uf[e, 0] - 0.5 * (v[i, 0] + v[j, 0])
-            u1 = uf[e, 1] - 0.5 * (v[i, 1] + v[j, 1])
-            u2 = uf[e, 2] - 0.5 * (v[i, 2] + v[j, 2])
-            s = u0 * t[0] + u1 * t[1] + u2 * t[2]
-            w = (u0 - s * t[0], u1 - s * t[1], u2 - s * t[2])
-            un = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-            abs_s = abs(s)
             half = 0.25 * props[_RHO, e] * L0 * props[_DIAM, e]
             cn = half * props[_CD, e]
             ct = half * np.pi * props[_CT, e]
-            a_n = cn * un
-            a_t = ct * abs_s * s
-            fd = (a_n * w[0] + a_t * t[0], a_n * w[1] + a_t * t[1], a_n * w[2] + a_t * t[2])
+            if node_drag:
+                fd, w0, hb0, cw0, hc0, al0, p0d, cx0 = _drag_share(
+                    uf[e, 0] - v[i, 0], uf[e, 1] - v[i, 1], uf[e, 2] - v[i, 2], t, cn, ct,
+                    inv_l, -1.0)
+                fd1, w1, hb1, cw1, hc1, al1, p1d, cx1 = _drag_share(
+                    uf[e, 0] - v[j, 0], uf[e, 1] - v[j, 1], uf[e, 2] - v[j, 2], t, cn, ct,
+                    inv_l, -1.0)
+            else:
+                fd, w0, hb0, cw0, hc0, al0, p0d, cx0 = _drag_share(
+                    uf[e, 0] - 0.5 * (v[i, 0] + v[j, 0]), uf[e, 1] - 0.5 * (v[i, 1] + v[j, 1]),
+                    uf[e, 2] - 0.5 * (v[i, 2] + v[j, 2]), t, cn, ct, inv_l, -0.5)
+                fd1 = fd
             f = (f[0] + fd[0], f[1] + fd[1], f[2] + fd[2])
-            fn = (fn[0] + fd[0], fn[1] + fd[1], fn[2] + fd[2])
+            fn = (fn[0] + fd1[0], fn[1] + fd1[1], fn[2] + fd1[2])
 
         # ---- fluid inertia and added mass (hydro.fluid_inertia_forces, added_mass_blocks) --
         m = mca = dc = sf = 0.0
@@ -381,17 +412,6 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
         damping = BA * share / (L0 * length)
         cdash = BA * share / L0
         tr = (dv0 - ndv * t[0], dv1 - ndv * t[1], dv2 - ndv * t[2])
-        # drag coefficients of dF/dv (same on the four node-node blocks) and dF/dx2 (= -dF/dx1)
-        inv = 1.0 / un if un > 0.0 else 0.0
-        inv_l = 1.0 / lc
-        cnw = cn * un
-        beta = 2.0 * ct * abs_s - cnw
-        hb = -0.5 * beta
-        cw = -0.5 * cn * inv
-        hcnw = 0.5 * cnw
-        alpha_d = s * (ct * abs_s - cnw) * inv_l
-        pd = (beta * inv_l * w[0], beta * inv_l * w[1], beta * inv_l * w[2])
-        cx = -cn * s * inv * inv_l
         # fluid inertia through t, and the added-mass force -M_a(x) a_k of node k through t
         # (hydro.fluid_inertia_forces, hydro.added_mass_position_derivative)
         cf = dc / lc
@@ -436,19 +456,28 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
                 c10 = -cc
                 c11 = cc
                 if with_drag:
-                    # the position blocks are [-g, g] in every row: subtracting adds g to x1's
-                    g = _projector(alpha_d, t, pd, r, c) + w[r] * (cx * w[c])
+                    # the position blocks are [-g, g] in a node's rows: subtracting adds g to
+                    # x1's; dF/dv: the same block d on the four node-node blocks, or (node
+                    # drag) each node's own on its diagonal block
+                    g = _projector(al0, t, p0d, r, c) + w0[r] * (cx0 * w0[c])
+                    d = t[r] * (hb0 * t[c]) + w0[r] * (cw0 * w0[c])
+                    if r == c:
+                        d = d + hc0
                     k00 = k00 + g
                     k01 = k01 - g
+                    c00 = c00 - d
+                    if node_drag:
+                        g = _projector(al1, t, p1d, r, c) + w1[r] * (cx1 * w1[c])
+                        d1 = t[r] * (hb1 * t[c]) + w1[r] * (cw1 * w1[c])
+                        if r == c:
+                            d1 = d1 + hc1
+                        c11 = c11 - d1
+                    else:
+                        c01 = c01 - d
+                        c10 = c10 - d
+                        c11 = c11 - d
                     k10 = k10 + g
                     k11 = k11 - g
-                    d = t[r] * (hb * t[c]) + w[r] * (cw * w[c])
-                    if r == c:
-                        d = d - hcnw
-                    c00 = c00 - d
-                    c01 = c01 - d
-                    c10 = c10 - d
-                    c11 = c11 - d
                 if with_added_mass:
                     g = _projector(alpha_i, t, pi_, r, c)
                     g0 = _projector(alpha_0, t, p0, r, c)
@@ -505,16 +534,19 @@ def pack_properties(
     smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike, Cd: ArrayLike, Ct: ArrayLike,
     Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike, offset: ArrayLike | None = None,
     weight_per_length: ArrayLike | None = None, slack_damping: ArrayLike = False,
+    node_drag: ArrayLike = False,
 ) -> FloatArray:
-    """Per-element properties (scalars broadcast) packed into one (14, n_el) array, in the
+    """Per-element properties (scalars broadcast) packed into one (15, n_el) array, in the
     row order the kernel reads them (the last rows: the strain offset and the submerged weight
     per length of the sag correction, ``None``: 0; 1 where the dashpot is kept whole in slack
-    elements, ``slack_damping``, else 0)."""
+    elements, ``slack_damping``, else 0; 1 where each node's drag share is at its own
+    velocity, ``node_drag``, else 0)."""
     props = np.empty((_N_PROPS, n_el))
     for row, value in enumerate((length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct,
                                  Ca, Cat, rho, 0.0 if offset is None else offset,
                                  0.0 if weight_per_length is None else weight_per_length,
-                                 np.asarray(slack_damping, dtype=float))):
+                                 np.asarray(slack_damping, dtype=float),
+                                 np.asarray(node_drag, dtype=float))):
         props[row] = _per_element(value, n_el)
     return props
 
@@ -602,6 +634,11 @@ class FusedLoads:
         Keep the Kelvin-Voigt dashpot whole in slack elements (share 1 at every strain,
         MoorDyn's law; :class:`~moorline.solvers.dynamic_model.DynamicModel`'s option), a
         bool or one per element; default: blended off over the slack band.
+    node_drag
+        Each node's share of an element's drag at that node's own velocity
+        (:func:`moorline.physics.hydro.nodal_drag_forces`, MoorDyn's node-based drag; the
+        model's ``drag_velocity: node``) instead of at the element's mean velocity
+        (:func:`~moorline.physics.hydro.drag_forces`); a bool or one per element.
     """
 
     def __init__(
@@ -612,6 +649,7 @@ class FusedLoads:
         with_drag: bool | None = None, with_added_mass: bool | None = None,
         reuse_buffers: bool = False, sag: SagCorrection | None = None,
         weight_per_length: ArrayLike | None = None, slack_damping: ArrayLike = False,
+        node_drag: ArrayLike = False,
     ) -> None:
         self.elements = np.ascontiguousarray(elements, dtype=np.int64)
         n_el = self.elements.shape[0]
@@ -619,7 +657,7 @@ class FusedLoads:
         self.n_nodes = int(n_nodes)
         self.props = pack_properties(n_el, length0, EA, slack_ratio, smoothing, BA, diameter,
                                      Cd, Ct, Ca, Cat, rho, offset, weight_per_length,
-                                     slack_damping)
+                                     slack_damping, node_drag)
         self.sag = sag
         self._no_sag = (np.zeros(n_el), np.zeros((n_el, 2, 3)))
         self.laws = TableLaws.of(laws, n_el)

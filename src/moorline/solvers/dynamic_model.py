@@ -93,7 +93,7 @@ class DynamicModel:
         ``element``: an element's drag at the mean of its node velocities, half to each node
         (:func:`moorline.physics.hydro.drag_forces`); ``node``: each node's half at its own
         velocity (:func:`moorline.physics.hydro.nodal_drag_forces`, MoorDyn's node-based
-        drag; it runs on the numpy path). ``slack_damping`` runs on either kernel.
+        drag). Both options run on either kernel.
     """
 
     def __init__(self, mesh: Mesh, fluid, viscoelastic_update: str = "exponential",
@@ -137,7 +137,7 @@ class DynamicModel:
         self.slack_damping = bool(slack_damping)
         self._drag = hydro.nodal_drag_forces if drag_velocity == "node" else hydro.drag_forces
         self._fused = None
-        if kernel == "numba" and not self.any_viscoelastic and drag_velocity == "element":
+        if kernel == "numba" and not self.any_viscoelastic:
             from ..physics import fused  # imports numba only when used
 
             laws = m.strain_laws if m.strain_laws is not None and m.strain_laws.active else None
@@ -145,7 +145,8 @@ class DynamicModel:
                 m.elements, m.n_nodes, m.length0, m.EA, m.slack_ratio, m.slack_smoothing, m.BA,
                 m.diameter, m.Cd, m.Ct, m.Ca, m.Cat, self.rho, laws, m.strain_offset,
                 with_drag=self.has_drag, with_added_mass=self.has_added_mass, sag=self.sag,
-                weight_per_length=m.weight_per_length, slack_damping=self.slack_damping)
+                weight_per_length=m.weight_per_length, slack_damping=self.slack_damping,
+                node_drag=drag_velocity == "node")
             self._midpoints = fused.midpoints
         self.kernel = "numba" if self._fused is not None else "numpy"
 

@@ -20,7 +20,7 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
     if rayleigh:
         return "Rayleigh damping"
     if model._fused is None:
-        return "viscoelastic lines, drag_velocity node or the numpy kernel"
+        return "viscoelastic lines or the numpy kernel"
     if model.mesh.has_bending:
         return "bending stiffness (EI)"
     if scheme not in ("newmark", "hht") or variant != "iterative":
