@@ -73,6 +73,13 @@ quadratic drag linearized the same way per direction.
 Free points with their own hydrodynamics (buoys, clump weights: volume, added mass, drag
 area) get the fluid inertia and the linearized drag of the time domain.
 
+Left out (the time domain has them): the lines' axial dashpot ``BA`` (in ``C`` and in the
+tension; on the OC3 chain, ``BA = 0.8 L0 (EA m)^(1/2)``, its tension is ``omega BA / EA``,
+about 1 % at 0.8 rad/s, of the elastic part and in quadrature with it), and the
+superharmonics of the quadratic drag, which in the time domain ring lightly damped modes
+above the wave band (``benchmarks/bench_all.py`` P3: most of the OC3 fairlead tension's
+time-domain variance, a few N, at 1-3 rad/s; within the wave band the two agree).
+
 Current (beyond the source, which assumes zero-mean flow): with a steady current ``U(x)`` the
 relative velocity is ``U + u'``, ``u'`` zero-mean Gaussian, and each quadratic drag law is
 replaced by its mean plus the mean-square-optimal linear term about the mean,
