@@ -274,18 +274,9 @@ def p3_riser() -> str:
     """The frequency domain against the time domain where the response is meaningful: the
     mid-water riser of ``moorline verify stochastic-riser`` (top 5 m below the surface, Hs 3 m;
     tension std about 400 N on 25 kN), two 256 s records, the second compared."""
-    from moorline.model import DynamicsSettings, StochasticSettings
-    from moorline.solvers.dynamics import simulate
-    from moorline.solvers.statics import solve_statics
-    from moorline.solvers.stochastic import solve_stochastic
-    from moorline.verification import stochastic_riser as riser
+    from bench_frequency import riser_runs
 
-    system = riser.riser_system()
-    static = solve_statics(system)
-    fd = solve_stochastic(system, StochasticSettings(), static)
-    td = simulate(system, DynamicsSettings(duration=2 * riser.RECORD, dt=riser.DT,
-                                           ramp_time=20.0), initial=static, output_every=riser.DT)
-    second = td.time >= riser.RECORD - 1e-9
+    static, fd, _, td, _, second = riser_runs()
     top = static.mesh.n_elements - 1
     std_td, std_fd = float(np.std(td.tension[second, top])), float(fd.tension_std[top])
     print(f"  riser (meaningful response): top-element tension std frequency domain "
