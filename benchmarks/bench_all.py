@@ -322,7 +322,7 @@ def p3(quick: bool) -> list[Line]:
     std_td = float(np.std(td.tension[keep, top]))
     std_fd = float(fd.tension_std[top])
     # The held lines (below 70 m) respond to the waves by 0.1 mm, a few N on 0.9 MN. Over
-    # 200 s most of the time domain's tension variance (84 %) lies at 1-3 rad/s, above the
+    # 200 s most of the time domain's tension variance (83 %) lies at 1-3 rad/s, above the
     # waves that reach the line (a 1.6 rad/s wave decays by exp(-k z) ~ 1e-8 at 70 m), at the
     # line's natural frequencies (1.08, 1.61, 2.60 rad/s): lightly damped modes rung by the
     # superharmonics of the quadratic drag (gone with Cd = Ct = 0) and by the Newton residual
