@@ -21,9 +21,14 @@ they are: nothing here is tuned to a target, and no test asserts on them.
   (run over 200 s, 40 s with --quick, and its time scaled to 3 h: its cost per simulated
   second is steady), the time ratio and the tension standard deviation of the fairlead
   element of line 1 from each (and the heave std of its mid node: the wave response of the
-  held lines is about 0.1 mm, the tension std a few N on 1.8 MN). The frequency domain is
-  timed after a first call (which loads the compiled band solver from numba's disk cache);
-  that first call is printed too.
+  held lines is about 0.1 mm, the tension std a few N on 0.9 MN). Most of the time domain's
+  tension variance there lies above the wave band, at the line's lightly damped natural
+  frequencies (rung by the quadratic drag's superharmonics and the Newton residual, which
+  the linear analysis leaves out), so the tension std is also compared within the band
+  holding 99 % of the frequency domain's variance, on the same realization and window; and
+  on a case with a meaningful response, the riser of ``moorline verify stochastic-riser``
+  (tension std ~400 N on 25 kN). The frequency domain is timed after a first call (which
+  loads the compiled band solver from numba's disk cache); that first call is printed too.
   Target: >= 100x, and the frequency domain under 1 s.
 * P4: time per step of one OC3 line at 100 and 1000 elements under the P1 motion (ramped, and
   unramped: whether it fails). Target: 1000/100 <= 12.
@@ -254,6 +259,33 @@ def p2(quick: bool, repeat: int) -> list[Line]:
 # P3
 
 
+def in_band_std(series: np.ndarray, dt: float, omega_max: float) -> tuple[float, float]:
+    """Standard deviation of a record's content at ``0 < omega <= omega_max`` [rad/s] (its
+    one-sided periodogram summed over that band, Parseval) and the share of its variance
+    above the band."""
+    y = series - series.mean()
+    omega = 2.0 * math.pi * np.fft.rfftfreq(len(y), dt)
+    power = 2.0 * np.abs(np.fft.rfft(y)) ** 2 / len(y) ** 2
+    band = (omega > 0.0) & (omega <= omega_max)
+    return float(np.sqrt(power[band].sum())), float(power[~band].sum() / power.sum())
+
+
+def p3_riser() -> str:
+    """The frequency domain against the time domain where the response is meaningful: the
+    mid-water riser of ``moorline verify stochastic-riser`` (top 5 m below the surface, Hs 3 m;
+    tension std about 400 N on 25 kN), two 256 s records, the second compared."""
+    from bench_frequency import riser_runs
+
+    static, fd, _, td, _, second = riser_runs()
+    top = static.mesh.n_elements - 1
+    std_td, std_fd = float(np.std(td.tension[second, top])), float(fd.tension_std[top])
+    print(f"  riser (meaningful response): top-element tension std frequency domain "
+          f"{std_fd:.4g} N, time domain {std_td:.4g} N ({100 * (std_fd / std_td - 1):+.1f} %; "
+          f"static {static.tension[top] / 1e3:.1f} kN; the statistical linearization of the "
+          "drag is expected about 10 % low, moorline verify stochastic-riser)")
+    return f"riser tension std {std_fd:.4g} N (FD) vs {std_td:.4g} N (TD)"
+
+
 def p3(quick: bool) -> list[Line]:
     from moorline.model import DynamicsSettings, StochasticSettings, Waves
     from moorline.solvers.dynamics import simulate
@@ -289,12 +321,20 @@ def p3(quick: bool) -> list[Line]:
     keep = td.time >= 20.0  # after the 10 s ramp and its transient
     std_td = float(np.std(td.tension[keep, top]))
     std_fd = float(fd.tension_std[top])
-    # the lines' response to the waves alone is tiny (fairleads held, the lines below 70 m):
-    # displacements of 0.1 mm, tension std of a few N on 1.8 MN. The two domains' tension
-    # std differ by about 2.3x, not explained yet (60 s of time domain: 99 % of its variance
-    # in the wave band; Newton tolerance 1e-10 instead of 1e-6: 9.5 -> 8.1 N; BA 0 or a lumped
-    # mass in the frequency domain change little) while the displacement stds agree within a
-    # few % (t = 20-60 s): both are printed
+    # The held lines (below 70 m) respond to the waves by 0.1 mm, a few N on 0.9 MN. Over
+    # 200 s most of the time domain's tension variance (83 %) lies at 1-3 rad/s, above the
+    # waves that reach the line (a 1.6 rad/s wave decays by exp(-k z) ~ 1e-8 at 70 m), at the
+    # line's natural frequencies (1.08, 1.61, 2.60 rad/s): lightly damped modes rung by the
+    # superharmonics of the quadratic drag (gone with Cd = Ct = 0) and by the Newton residual
+    # (tolerance 1e-10: a third less of it), which the linearized frequency domain leaves
+    # out by construction; dt 0.025 s changes nothing. Within the band that holds 99 % of the
+    # frequency domain's tension variance, the two agree: compared on the same realization
+    # and window (the frequency domain's series of this sea, same seed and phases).
+    var_fd = np.abs(fd.tension_transfer[:, top]) ** 2 * fd.wave_spectrum * fd.d_omega
+    omega_band = float(fd.omega[np.searchsorted(np.cumsum(var_fd) / var_fd.sum(), 0.99)])
+    band_td, above = in_band_std(td.tension[keep, top], 0.05, omega_band)
+    window = np.interp(td.time[keep], fd.time, fd.tension[:, top])
+    band_fd, _ = in_band_std(window, 0.05, omega_band)
     mid = base.lines["line1"].segments // 2  # line 1's mid node
     x_td = float(np.std(td.positions[keep, mid, 2]))
     x_fd = float(fd.displacement_std[mid, 2])
@@ -303,13 +343,17 @@ def p3(quick: bool) -> list[Line]:
           f"{len(fd.omega)} frequencies, {fd.counters['dofs']} unknowns; first call in the "
           f"process {t_first:.2f} s); time domain {t_td:.1f} s at dt 0.05 s{scaled}")
     print(f"  tension std, fairlead element of line 1: frequency domain {std_fd:.4g} N, "
-          f"time domain {std_td:.4g} N (t = 20 to {td_duration:g} s: a short sample); "
-          f"heave std of line 1's mid node {x_fd:.4g} m and {x_td:.4g} m")
+          f"time domain {std_td:.4g} N (t = 20 to {td_duration:g} s: a short sample), "
+          f"{100 * above:.0f} % of its variance above {omega_band:.2f} rad/s (the line's "
+          f"lightly damped modes); at 0-{omega_band:.2f} rad/s time domain {band_td:.4g} N, "
+          f"frequency domain's series over the same window {band_fd:.4g} N; heave std of "
+          f"line 1's mid node {x_fd:.4g} m and {x_td:.4g} m")
+    riser_note = p3_riser()
     ratio = t_td / t_fd
     return [Line("P3", "time domain / frequency domain", ratio, ">= 100",
                  verdict(ratio, 100.0, at_most=False),
-                 f"tension std {std_fd:.4g} N (FD) vs {std_td:.4g} N (TD); mid-node heave "
-                 f"std {x_fd:.3g} vs {x_td:.3g} m"),
+                 f"OC3 tension std {std_fd:.4g} N (FD) vs {std_td:.4g} N (TD), in the wave band "
+                 f"{band_fd:.4g} vs {band_td:.4g} N; {riser_note}"),
             Line("P3", "frequency domain, 3-hour sea [s]", t_fd, "< 1 s", verdict(t_fd, 1.0),
                  f"first call in the process {t_first:.2f} s (loads the compiled kernel)")]
 

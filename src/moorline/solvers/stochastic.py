@@ -73,6 +73,16 @@ quadratic drag linearized the same way per direction.
 Free points with their own hydrodynamics (buoys, clump weights: volume, added mass, drag
 area) get the fluid inertia and the linearized drag of the time domain.
 
+The lines' Kelvin-Voigt dashpot ``BA`` (the time domain's ``T += BA share deps/dt``, ``share``
+blending it off in slack elements) linearized at rest: ``c = BA share / L0`` per element,
+``c t t^T`` on its relative motion in ``C`` and ``i omega c t . (U_b - U_a)`` in the tension
+transfer (tested against the time domain on a riser where it is 20 % of the tension).
+
+Left out (the time domain has it): the superharmonics of the quadratic drag, which in the
+time domain ring lightly damped modes above the wave band (``benchmarks/bench_all.py`` P3:
+most of the OC3 fairlead tension's time-domain variance, a few N, at 1-3 rad/s; within the
+wave band the two agree).
+
 Current (beyond the source, which assumes zero-mean flow): with a steady current ``U(x)`` the
 relative velocity is ``U + u'``, ``u'`` zero-mean Gaussian, and each quadratic drag law is
 replaced by its mean plus the mean-square-optimal linear term about the mean,
@@ -186,6 +196,18 @@ def _seabed_damping_blocks(mesh, positions: FloatArray, model) -> FloatArray | N
     return -contact.damping
 
 
+def _dashpot(mesh: Mesh, positions: FloatArray) -> FloatArray:
+    """Per element, the axial dashpot's tension per unit rate of elongation ``BA share / L0``
+    [N s/m] about the static state: the time domain's Kelvin-Voigt law
+    (:class:`moorline.solvers.dynamic_model.DynamicModel`, ``T += BA share deps/dt``) at zero
+    velocity, ``share`` its blending off in slack elements
+    (:func:`moorline.physics.element.dashpot_share`)."""
+    length, _ = element.element_geometry(positions, mesh.elements)
+    share, _ = element.dashpot_share(length, mesh.length0, mesh.slack_smoothing,
+                                     mesh.strain_offset)
+    return mesh.BA * share / mesh.length0
+
+
 class _LinearModel:
     """``K``, ``M`` and the assembly of damping and forces over the unknowns: the free node
     dofs of the lines, then six per free body (the master-slave transformation ``P`` of
@@ -212,6 +234,10 @@ class _LinearModel:
                                                                   strict=True)
                           if body.radiation is not None]
         self.seabed_blocks = _seabed_damping_blocks(mesh, statics.positions, problem.model)
+        self.dashpot = _dashpot(mesh, statics.positions)
+        _, t = element.element_geometry(statics.positions, mesh.elements)
+        self.dashpot_blocks = element.pair_blocks(
+            self.dashpot[:, None, None] * t[:, :, None] * t[:, None, :])
         held = self.ext_map.ravel() >= 0
         rows = np.flatnonzero(held)
         select = sp.csr_matrix((np.ones(len(rows)), (rows, self.ext_map.ravel()[rows])),
@@ -247,12 +273,13 @@ class _LinearModel:
 
     def damping(self, element_blocks: FloatArray, gain_b: FloatArray,
                 node_blocks: FloatArray | None = None) -> sp.csr_matrix:
-        """Linearized line (and point) drag, the seabed contact damper of the resting nodes,
-        bodies' radiation damping and linearized body drag (``gain_b``, (n_bodies, 3):
-        :meth:`_BodyWaves.gains`)."""
+        """Linearized line (and point) drag, the lines' axial dashpots, the seabed contact
+        damper of the resting nodes, bodies' radiation damping and linearized body drag
+        (``gain_b``, (n_bodies, 3): :meth:`_BodyWaves.gains`)."""
         if self.seabed_blocks is not None:
             node_blocks = (self.seabed_blocks if node_blocks is None
                            else node_blocks + self.seabed_blocks)
+        element_blocks = element_blocks + self.dashpot_blocks  # the lines' axial dashpots
         C = self.pattern.assemble(element_blocks, node_blocks)
         C = (self.P.T @ C @ self.P).tolil()
         for i, (body, d) in enumerate(zip(self.bodies, self.body_dof, strict=True)):
@@ -796,7 +823,9 @@ def _result(system: System, settings: StochasticSettings, statics: StaticResult,
     a, b = mesh.elements[:, 0], mesh.elements[:, 1]
     _, dT = element.axial_tension(lin.length, mesh.length0, mesh.EA, mesh.slack_ratio,
                                   mesh.slack_smoothing, **mesh.axial_law)
-    H_T = dT[None] * np.einsum("wei,ei->we", U[:, b] - U[:, a], lin.t)
+    # the elastic and the dashpot's tension per elongation (i omega BA share / L0)
+    H_T = (dT[None] + 1j * omega[:, None] * model.dashpot[None]) \
+        * np.einsum("wei,ei->we", U[:, b] - U[:, a], lin.t)
     u_std = np.sqrt(np.einsum("w,wnc->nc", power, np.abs(U) ** 2))
     T_std = np.sqrt(np.einsum("w,we->e", power, np.abs(H_T) ** 2))
 
