@@ -15,18 +15,15 @@ from moorline.solvers.statics import solve_statics
 from moorline.verification.oc3_line import (
     ANCHOR_R,
     DEPTH,
-    DIAMETER,
     EA,
     FAIR_R,
     FAIR_Z,
-    MASS,
-    RHO,
-    G,
+    SUBMERGED_WEIGHT,
     closed_form,
     oc3_system,
 )
 
-W = (MASS - RHO * np.pi * DIAMETER**2 / 4) * G
+W = SUBMERGED_WEIGHT
 X, Z = ANCHOR_R - FAIR_R, FAIR_Z + DEPTH
 
 

@@ -27,6 +27,10 @@ DEPTH, ANCHOR_R, FAIR_R, FAIR_Z = 320.0, 853.87, 5.2, -70.0
 LENGTH, DIAMETER, MASS, EA, RHO, G = 902.2, 0.09, 77.7066, 384.243e6, 1025.0, 9.80665
 
 
+#: submerged weight per unstretched length [N/m]
+SUBMERGED_WEIGHT = (MASS - RHO * np.pi * DIAMETER**2 / 4) * G
+
+
 def oc3_system(segments: int = 100) -> System:
     """One OC3-Hywind line from its anchor to its fairlead (prescribed)."""
     lt = LineType("chain", diameter=DIAMETER, mass_per_length=MASS, EA=EA, Cd=1.6, Ca=1.0,
@@ -43,8 +47,8 @@ def oc3_system(segments: int = 100) -> System:
 
 def closed_form():
     """The closed-form catenary of the OC3 line."""
-    w = (MASS - RHO * np.pi * DIAMETER**2 / 4) * G
-    return solve_catenary(ANCHOR_R - FAIR_R, FAIR_Z + DEPTH, LENGTH, EA, w, seabed_contact=True)
+    return solve_catenary(ANCHOR_R - FAIR_R, FAIR_Z + DEPTH, LENGTH, EA, SUBMERGED_WEIGHT,
+                          seabed_contact=True)
 
 
 def run() -> list[Row]:
