@@ -73,3 +73,45 @@ def test_isotropic_friction_saturates_at_mu_n_against_the_sliding_direction():
     f = seabed.friction_force(v, np.array([1000.0]), np.array([[1.0, 0.0, 0.0]]), 0.5, 0.5,
                               1e-4)[0]
     assert np.allclose(f[0], -0.5 * 1000.0 * v[0] / 0.5, rtol=1e-12)
+
+
+def test_lagged_dashpot_share_is_the_band_law_at_the_start_strain():
+    """The share held over a step: 0 below ``-s``, 1 above ``s``, linear between (0.5 at
+    zero strain), of the strain less its offset; a step at 0 without a band."""
+    from moorline.physics.element import lagged_dashpot_share
+
+    s = 1e-5
+    strain = np.array([-1e-3, -s, -0.5 * s, 0.0, 0.5 * s, s, 1e-3])
+    np.testing.assert_allclose(lagged_dashpot_share(strain, s),
+                               [0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(lagged_dashpot_share(strain + 2e-3, s, np.full(7, 2e-3)),
+                               [0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0], rtol=0, atol=1e-9)
+    np.testing.assert_array_equal(lagged_dashpot_share(strain, 0.0),
+                                  [0, 0, 0, 0, 1, 1, 1])
+
+
+@pytest.mark.parametrize("kernel", ["numpy", "numba"])
+def test_dashpot_acts_by_the_strain_at_the_start_of_the_step(kernel):
+    """An element stretching at a rate: its tension carries ``BA deps/dt`` when it was taut
+    at the start of the step and none when it was slack then, whatever its strain now (the
+    share is held over the step: element.lagged_dashpot_share)."""
+    system = _system((0.0, 0.0))
+    mesh = discretize(system)
+    model = DynamicModel(mesh, CurrentProfile.uniform(0.0, 25.0), kernel=kernel)
+    x = mesh.node_position.copy()
+    e = 3
+    i, j = mesh.elements[e]
+    chord = x[j] - x[i]
+    unit = chord / np.linalg.norm(chord)
+    x[j] = x[i] + unit * mesh.length0[e] * (1 + 1e-3)  # taut now
+    v = np.zeros_like(x)
+    v[j] = 0.2 * unit  # stretching
+    rate = 0.2 / mesh.length0[e]
+    taut, slack = model.initial_material(x), model.initial_material(x)
+    slack.strain[e] = -1e-3
+    BA = mesh.BA[e]
+    assert BA > 0
+    T_taut = model.evaluate(x, v, v * 0, 0.0, taut, 0.05, False).tension[e]
+    T_slack = model.evaluate(x, v, v * 0, 0.0, slack, 0.05, False).tension[e]
+    np.testing.assert_allclose(T_taut - T_slack, BA * rate, rtol=1e-9)
+    np.testing.assert_allclose(T_slack, mesh.EA[e] * 1e-3, rtol=1e-9)

@@ -123,10 +123,40 @@ def dashpot_share(
     strain = _strain(length, length0, offset)
     s = np.broadcast_to(np.asarray(smoothing, dtype=float), strain.shape)
     safe_s = np.where(s > 0, s, 1.0)
-    share = np.where(s > 0, np.clip((strain + s) / (2 * safe_s), 0.0, 1.0),
-                     (strain > 0).astype(float))
     slope = np.where((s > 0) & (np.abs(strain) < s), 1.0 / (2 * safe_s), 0.0)
-    return share, slope
+    return _share_of_strain(strain, s), slope
+
+
+def lagged_dashpot_share(
+    strain_before: FloatArray, smoothing: FloatArray | float = 0.0,
+    offset: FloatArray | None = None,
+) -> FloatArray:
+    """Fraction of each element's dashpot that acts over a time step: the share of
+    :func:`dashpot_share` at the strain the element had at the start of the step
+    (``strain_before``, ``l / L0 - 1`` without the offset), held over the step.
+
+    Why lagged: blended in over the slack band of width ``2 s`` (``s ~ 1e-5``), the damping
+    force ``BA share(eps) deps/dt`` of an element snapping slack or taut has a slope
+    ``BA (deps/dt) / (2 s)`` thousands of times ``EA``: the step's residual is all but
+    discontinuous there, and Newton cycles or the step is cut many times over (issue 16: a
+    1,000-element OC3 line under the P1 motion took 176 iterations a step). Held at its
+    value at the start of the step, the share switches the dashpot on or off one step late
+    (an error of order ``dt`` in the timing of the switch alone, converging with the step)
+    and the residual of the step keeps only the C1 elastic band. A step that is cut starts
+    again from the same state, so the share does not depend on the iteration path.
+    """
+    strain = np.asarray(strain_before, dtype=float)
+    if offset is not None:
+        strain = strain - offset
+    s = np.broadcast_to(np.asarray(smoothing, dtype=float), strain.shape)
+    return _share_of_strain(strain, s)
+
+
+def _share_of_strain(strain: FloatArray, s: FloatArray) -> FloatArray:
+    """The dashpot share law of :func:`dashpot_share` at the strain less its offset."""
+    safe_s = np.where(s > 0, s, 1.0)
+    return np.where(s > 0, np.clip((strain + s) / (2 * safe_s), 0.0, 1.0),
+                    (strain > 0).astype(float))
 
 
 def strain_energy(

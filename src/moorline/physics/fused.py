@@ -15,8 +15,11 @@ slack band, whose slope is ``EA / (2 s)``, the tangent to ~``eps EA / (s L0)``.
   offset in its law); the tension with the smooth slack band and its slope
   (:func:`moorline.physics.element.axial_tension`), linear ``EA`` or a tabulated
   tension-strain law (:class:`TableLaws`); the Kelvin-Voigt
-  damping ``BA * share(strain) * strain_rate`` (blended in over the slack band, or whole in
-  every element with ``slack_damping``, a row of the packed properties); the nodal
+  damping ``BA * share * strain_rate`` (the share blended in over the slack band at the
+  strain the element had at the start of the step,
+  :func:`moorline.physics.element.lagged_dashpot_share`, set into a row of the packed
+  properties by :func:`set_dashpot_shares`; or whole in every element with
+  ``slack_damping``, another row); the nodal
   forces
   (:func:`moorline.physics.element.nodal_forces`); with ``tangent`` the blocks ``K``
   (geometric + material + the non-symmetric rotation term of the dashpot) and ``C`` (the
@@ -76,8 +79,8 @@ _TINY = float(np.finfo(float).tiny)
 
 # rows of the packed per-element property array
 (_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET, _W, _KEEP,
- _NODE_DRAG) = range(15)
-_N_PROPS = 15
+ _NODE_DRAG, _DASHPOT) = range(16)
+_N_PROPS = 16
 
 
 class ElementLoads(NamedTuple):
@@ -314,24 +317,15 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
                                   coef, end_slope)
             # the model converts dT/dl to dT/deps and back (DynamicModel._axial_tension)
             dT_dl = ((slope / L0) * L0) / L0
-        # Kelvin-Voigt dashpot, blended in over the slack band (element.dashpot_share), or
-        # kept whole in slack elements (DynamicModel slack_damping: share 1, dshare 0)
-        if props[_KEEP, e] != 0.0:
-            share = 1.0
-            dshare = 0.0
-        elif s_band > 0:
-            share = min(max((strain + s_band) / (2 * s_band), 0.0), 1.0)
-            dshare = 1.0 / (2 * s_band) if -s_band < strain < s_band else 0.0
-        else:
-            share = 1.0 if strain > 0 else 0.0
-            dshare = 0.0
+        # Kelvin-Voigt dashpot: the share held over the step (set_dashpot_shares; 1 with
+        # slack_damping), independent of this state
+        share = props[_DASHPOT, e]
         taut = share > 0
         dv0 = v[j, 0] - v[i, 0]
         dv1 = v[j, 1] - v[i, 1]
         dv2 = v[j, 2] - v[i, 2]
         ndv = t[0] * dv0 + t[1] * dv1 + t[2] * dv2
         T = T + BA * share * (ndv / L0)
-        dT_dl = dT_dl + BA * dshare * (ndv / L0) / L0
         tension[e] = T
         strain_out[e] = strain_total
         taut_out[e] = taut
@@ -536,19 +530,50 @@ def pack_properties(
     weight_per_length: ArrayLike | None = None, slack_damping: ArrayLike = False,
     node_drag: ArrayLike = False,
 ) -> FloatArray:
-    """Per-element properties (scalars broadcast) packed into one (15, n_el) array, in the
+    """Per-element properties (scalars broadcast) packed into one (16, n_el) array, in the
     row order the kernel reads them (the last rows: the strain offset and the submerged weight
     per length of the sag correction, ``None``: 0; 1 where the dashpot is kept whole in slack
     elements, ``slack_damping``, else 0; 1 where each node's drag share is at its own
-    velocity, ``node_drag``, else 0)."""
+    velocity, ``node_drag``, else 0; the dashpot share over the current step, 1 until
+    :func:`set_dashpot_shares` sets it)."""
     props = np.empty((_N_PROPS, n_el))
     for row, value in enumerate((length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct,
                                  Ca, Cat, rho, 0.0 if offset is None else offset,
                                  0.0 if weight_per_length is None else weight_per_length,
                                  np.asarray(slack_damping, dtype=float),
-                                 np.asarray(node_drag, dtype=float))):
+                                 np.asarray(node_drag, dtype=float), 1.0)):
         props[row] = _per_element(value, n_el)
     return props
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
+def set_dashpot_shares(strain_before, props):
+    """Set the dashpot share row of ``props`` from each element's strain at the start of the
+    step (``l / L0 - 1`` without the offset, (n_el,)): 1 where the dashpot is kept whole
+    (``slack_damping``), else the share of
+    :func:`moorline.physics.element.lagged_dashpot_share`."""
+    for e in range(props.shape[1]):
+        if props[_KEEP, e] != 0.0:
+            props[_DASHPOT, e] = 1.0
+            continue
+        strain = strain_before[e] - props[_OFFSET, e]
+        s_band = props[_SMOOTH, e]
+        if s_band > 0:
+            props[_DASHPOT, e] = min(max((strain + s_band) / (2 * s_band), 0.0), 1.0)
+        else:
+            props[_DASHPOT, e] = 1.0 if strain > 0 else 0.0
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
+def element_strains(x, elements, props, out):
+    """``l / L0 - 1`` of every element at positions ``x`` into ``out`` (n_el,)."""
+    for e in range(elements.shape[0]):
+        i = elements[e, 0]
+        j = elements[e, 1]
+        d0 = x[j, 0] - x[i, 0]
+        d1 = x[j, 1] - x[i, 1]
+        d2 = x[j, 2] - x[i, 2]
+        out[e] = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2) / props[_L0, e] - 1.0
 
 
 class TableLaws(NamedTuple):
@@ -698,14 +723,16 @@ class FusedLoads:
     def __call__(
         self, x: FloatArray, v: FloatArray, a: FloatArray,
         fluid_velocity_mid: ArrayLike | None, fluid_acceleration_mid: ArrayLike | None,
-        tangent: bool,
+        tangent: bool, strain_before: ArrayLike | None = None,
     ) -> ElementLoads:
         """Evaluate the loads at node positions, velocities and accelerations (n_nodes, 3).
 
         ``fluid_velocity_mid`` and ``fluid_acceleration_mid`` are the fluid kinematics at the
         element midpoints, (n_el, 3) or (3,); ``None`` means still water. ``K`` and ``C`` of
         the result are ``None`` unless ``tangent``, ``Ma`` unless ``tangent`` and
-        ``with_added_mass``.
+        ``with_added_mass``. ``strain_before``: each element's strain at the start of the
+        step (``l / L0 - 1``, (n_el,)), which sets the share of its dashpot
+        (:func:`set_dashpot_shares`); ``None``: the strain at ``x`` (a state of its own).
         """
         tangent = bool(tangent)
         if self._buffers is not None:
@@ -713,6 +740,10 @@ class FusedLoads:
         else:
             out = self._allocate(tangent)
         x = np.ascontiguousarray(x, dtype=np.float64)
+        if strain_before is None:
+            strain_before = np.empty(self.n_el)
+            element_strains(x, self.elements, self.props, strain_before)
+        set_dashpot_shares(np.ascontiguousarray(strain_before, dtype=np.float64), self.props)
         phi, dphi = self._no_sag if self.sag is None else self.sag.share(x)
         _kernel(x, np.ascontiguousarray(v, dtype=np.float64),
                 np.ascontiguousarray(a, dtype=np.float64),

@@ -88,7 +88,8 @@ class DynamicModel:
     slack_damping
         Keep the Kelvin-Voigt dashpot ``BA`` in slack elements (MoorDyn's law: a slack element
         then pushes by ``BA`` times its strain rate) instead of blending it off with the
-        tension (:func:`moorline.physics.element.dashpot_share`).
+        tension over the slack band, at the element's strain at the start of the step
+        (:func:`moorline.physics.element.lagged_dashpot_share`).
     drag_velocity
         ``element``: an element's drag at the mean of its node velocities, half to each node
         (:func:`moorline.physics.hydro.drag_forces`); ``node``: each node's half at its own
@@ -190,7 +191,7 @@ relaxed_state`)."""
             u_f = a_f = None
             if self.has_drag or self.has_added_mass:
                 u_f, a_f, _ = self.fluid.kinematics(self._midpoints(x, el), t)
-            r = self._fused(x, v, a, u_f, a_f, tangent)
+            r = self._fused(x, v, a, u_f, a_f, tangent, strain_before=previous.strain)
             out = {}
             if tangent:
                 out = {"K": r.K, "C": r.C, "Ma": r.Ma if self.has_added_mass else None}
@@ -283,13 +284,12 @@ relaxed_state`)."""
                     strain[k], previous.strain[k], previous.maxwell[k], previous.peak[k], dt,
                     rope, sy.c1[on], sy.c2[on], m.slack_ratio[k] * m.EA[k])
         if self.slack_damping:
-            share, dshare = np.ones_like(length), np.zeros_like(length)
-        else:
-            share, dshare = element.dashpot_share(length, m.length0, m.slack_smoothing,
-                                                  m.strain_offset)
+            share = np.ones_like(length)
+        else:  # held over the step at its start (element.lagged_dashpot_share)
+            share = element.lagged_dashpot_share(previous.strain, m.slack_smoothing,
+                                                 m.strain_offset)
         strain_rate = np.einsum("ij,ij->i", unit, dv) / m.length0
         T = T + m.BA * share * strain_rate
-        dT_deps = dT_deps + m.BA * dshare * strain_rate
         return T, dT_deps / m.length0, MaterialState(strain, maxwell, peak), share, sag_law
 
     def _viscoelastic(self, strain, strain_old, maxwell_old, dt, EA, EA1, tau, slack_ratio):

@@ -28,7 +28,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from ..physics.fused import _kernel
+from ..physics.fused import _kernel, element_strains, set_dashpot_shares
 from .fast_fluid import fluid_at_midpoints
 from .fast_path import fluid_parts
 
@@ -327,10 +327,12 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     ca = 1.0 / (beta * h * h)
     cv = (1 + alpha) * gamma / (beta * h)
     ck = 1.0 + alpha
-    for n in range(x1.shape[0]):
+    element_strains(x0, elements, props, buf[4])  # the dashpot shares held over the step
+    set_dashpot_shares(buf[4], props)
+    for n in range(x1.shape[0]):  # predictor x0 + h v0 (Stepper._predict)
         if free[n]:
             for c in range(3):
-                x1[n, c] = x0[n, c] + h * v0[n, c] + 0.5 * h * h * a0[n, c]
+                x1[n, c] = x0[n, c] + h * v0[n, c]
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
     moving = fluid[0] or fluid[6]
     if moving:
