@@ -360,9 +360,12 @@ def test_dynamic_max_tension_includes_the_ends(wang_table):
     assert "end tensions included" in wang_table["max_tension"].attrs["long_name"]
 
 
-def test_partial_results_are_kept_as_cases_finish(tmp_path):
-    """The table on disk after each finished case; a study stopped after the first case
-    keeps it (the other: ``not run``)."""
+def test_partial_results_are_kept_as_cases_finish(tmp_path, monkeypatch):
+    """The table on disk after each finished case (rewrites at most every ``TABLE_WALL``
+    seconds: 0 here); with rewrites rarer than the cases, the table is written when the
+    study ends; a study stopped after the first case keeps it (the other: ``not run``)."""
+    import moorline.sweep
+
     study = _oc3_study(tmp_path, variations={"lines.line1.length": [900.0, 905.0, 910.0]})
     directory = tmp_path / "partial"
     seen: list[tuple[int, int, list[str]]] = []
@@ -372,10 +375,19 @@ def test_partial_results_are_kept_as_cases_finish(tmp_path):
         seen.append((done, total, list(csv["status"])))
         assert elapsed >= 0.0
 
+    monkeypatch.setattr(moorline.sweep, "TABLE_WALL", 0.0)
     full = run_study(study, directory=directory, progress=progress)
     assert seen == [(1, 3, ["ok", "not run", "not run"]), (2, 3, ["ok", "ok", "not run"]),
                     (3, 3, ["ok", "ok", "ok"])]
     assert full.attrs["complete"] == 1
+
+    monkeypatch.setattr(moorline.sweep, "TABLE_WALL", 1e9)
+    directory = tmp_path / "rare"
+    written: list[bool] = []
+    run_study(study, directory=directory,
+              progress=lambda *_: written.append((directory / "table.csv").exists()))
+    assert written == [False, False, False]
+    assert list(pd.read_csv(directory / "table.csv")["status"]) == ["ok", "ok", "ok"]
 
     def stopped(function, cases):
         yield function(cases[0])

@@ -581,8 +581,9 @@ def sweep(study: Path, out: Path, workers: int | None, scheduler: str | None, as
 
     Writes DIR/<study>/table.csv, table.nc (one row per case: parameters, steady-state
     outputs, status) and trends.png (each output against the varied parameter). The table
-    is rewritten after every finished case, so a study stopped mid-way keeps what finished
-    (status "not run" for the rest); the progress line shows the cases done and the time
+    is rewritten as cases finish (at most every second) and when stopped, so a study
+    stopped mid-way keeps what finished (status "not run" for the rest); the progress line
+    shows the cases done and the time
     left (from the mean case time). The cases run one after the other, or in parallel on
     Dask with --workers or --scheduler (the optional [dask] extra). Exit code 1 when a case
     failed.

@@ -48,7 +48,8 @@ Parameter paths
     indices into tuples, from 0 (``points.fairlead.position.2``: its z; ``-1``: the last).
 Output
     :func:`run_study` returns, and ``moorline sweep`` writes (``table.csv``, ``table.nc``,
-    rewritten after every finished case), one row per case: ``case`` (row number),
+    rewritten as cases finish, at most every :data:`TABLE_WALL` seconds, and when the study
+    ends or is stopped), one row per case: ``case`` (row number),
     ``series`` (the varied parameter, ``grid`` or ``base``), one column per parameter, one
     per quantity, ``status`` (``ok``, ``failed: <reason>``, or ``not run`` in a study
     stopped before the case) and ``elapsed`` (the case's wall time [s]).
@@ -96,6 +97,11 @@ TABLE_CSV, TABLE_NC, TRENDS_PNG = "table.csv", "table.nc", "trends.png"
 NOT_RUN = "not run"
 #: How long to wait for a Dask scheduler to answer.
 SCHEDULER_TIMEOUT = "20s"
+#: Wall time [s] between rewrites of a running study's table: a case that finishes sooner
+#: after the last rewrite waits for the next one (or the end of the study), so a study killed
+#: outright (SIGKILL) loses at most this much of finished cases, while short cases do not
+#: pay a table rewrite each (about 0.1 s: xarray's dataset and two files; issue 16, P6).
+TABLE_WALL = 1.0
 
 
 @dataclass(frozen=True)
@@ -555,9 +561,10 @@ def run_study(study: Study | Mapping[str, Any] | str | Path,
         :func:`run_one` row), in order or in the order they finish (rows are matched to
         their parameter set).
     directory
-        When given, ``table.csv`` and ``table.nc`` are rewritten there after every finished
-        case (:func:`write_table`): a study stopped mid-way keeps the cases that finished
-        (the others have status ``not run``; attribute ``complete`` is 0).
+        When given, ``table.csv`` and ``table.nc`` are rewritten there as cases finish (at
+        most every :data:`TABLE_WALL` seconds) and when the loop ends, normally or by an
+        exception (:func:`write_table`): a study stopped mid-way keeps the cases that
+        finished (the others have status ``not run``; attribute ``complete`` is 0).
     progress
         Called after every finished case with (cases finished, distinct cases, seconds
         since the start); :func:`eta_text` makes it a progress line.
@@ -580,13 +587,20 @@ def run_study(study: Study | Mapping[str, Any] | str | Path,
     for _, params in cases:
         distinct.setdefault(_key(params), params)
     outputs: dict[tuple, dict[str, Any]] = {}
-    start = time.perf_counter()
-    for row in mapper(partial(run_one, study), list(distinct.values())):
-        outputs[_match(row, distinct, outputs)] = row
-        if directory is not None:
+    start = written = time.perf_counter()
+    unwritten = directory is not None
+    try:
+        for row in mapper(partial(run_one, study), list(distinct.values())):
+            outputs[_match(row, distinct, outputs)] = row
+            unwritten = directory is not None
+            if unwritten and time.perf_counter() - written >= TABLE_WALL:
+                write_table(_table(study, cases, outputs), directory)
+                written, unwritten = time.perf_counter(), False
+            if progress is not None:
+                progress(len(outputs), len(distinct), time.perf_counter() - start)
+    finally:
+        if unwritten:  # what finished since the last rewrite, also when stopped
             write_table(_table(study, cases, outputs), directory)
-        if progress is not None:
-            progress(len(outputs), len(distinct), time.perf_counter() - start)
     return _table(study, cases, outputs)
 
 
