@@ -207,14 +207,15 @@ class TensionEnvelope:
             return
         if not self._seen:
             self.static, self._seen = tensions[0].copy(), True
-        kept = tensions[times >= self.start]
+        kept = tensions if times[0] >= self.start else tensions[times >= self.start]
         if not len(kept):
             return
         np.minimum(self._min, kept.min(axis=0), out=self._min)
         np.maximum(self._max, kept.max(axis=0), out=self._max)
         shifted = kept - self.static
+        square = shifted * shifted
         self._sum = _in_order(self._sum, shifted)
-        self._square = _in_order(self._square, shifted * shifted)
+        self._square = _in_order(self._square, square)
         self.count += len(kept)
 
     def values(self) -> dict[str, FloatArray]:
@@ -237,8 +238,9 @@ def _in_order(total: FloatArray, rows: FloatArray) -> FloatArray:
     rounding of a record-by-record sum, whatever the blocks): numpy reduces a C-ordered
     (n, m) array over axis 0 row after row when m > 1 (checked bit for bit in
     ``tests/test_envelope.py``); a single column would be summed pairwise, so it is
-    accumulated instead."""
-    stacked = np.vstack([total, rows])
-    if stacked.shape[1] > 1:
-        return np.add.reduce(stacked, axis=0)
-    return np.add.accumulate(stacked, axis=0)[-1]
+    accumulated instead. ``rows`` (a temporary of the caller) is overwritten: ``total`` is
+    added to its first row in place (no stacked copy)."""
+    rows[0] += total
+    if rows.shape[1] > 1:
+        return np.add.reduce(rows, axis=0)
+    return np.add.accumulate(rows, axis=0)[-1]
