@@ -96,7 +96,7 @@ def write_into(root: Any, ds: Any, *, group: str | None = None,
     coordinates = _coordinates(ds)
     # everything is defined before any value is written: netCDF-4 leaves define mode at a
     # write and re-enters it at the next definition, each switch writing the metadata of the
-    # whole file (interleaved, the skeleton of a dynamics group took 9 ms instead of 3)
+    # whole file (interleaved, the skeleton of a dynamics group took 9 ms instead of 5)
     defined = [_define_variable(target, str(name), var, chunks.get(str(name)),
                                 coordinates.get(str(name)))
                for name, var in ds.variables.items()]
