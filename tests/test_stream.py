@@ -1,0 +1,54 @@
+"""The stream's block buffer: records are copied as they come (the caller may reuse its
+arrays), and a block longer than the buffer is written as the buffer fills."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from moorline.io import load_case, stream
+from moorline.io.stream import HistoryWriter
+from moorline.mesh import discretize
+
+OC3_DYNAMICS = Path(__file__).resolve().parents[1] / "cases" / "oc3_dynamics.yaml"
+
+needs_case = pytest.mark.skipif(not OC3_DYNAMICS.is_file(),
+                                reason="cases/oc3_dynamics.yaml missing")
+
+
+@needs_case
+def test_records_are_copied_and_a_long_block_is_written_as_the_buffer_fills(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A buffer of 4 records, a frozen clock: a block of 10 records is written 4 + 4 as it
+    comes (2 wait), the caller's arrays are overwritten after each append, and the file
+    holds the values given, in order."""
+    mesh = discretize(load_case(OC3_DYNAMICS))
+    n, m, lines = mesh.n_nodes, mesh.n_elements, len(mesh.line_names)
+    monkeypatch.setattr(stream.time, "monotonic", lambda: 0.0)
+    times = 0.1 * np.arange(13)
+    given = {"position": np.arange(13 * n * 3, dtype=float).reshape(13, n, 3),
+             "velocity": -np.arange(13 * n * 3, dtype=float).reshape(13, n, 3),
+             "tension": 1.0e5 + np.arange(13 * m, dtype=float).reshape(13, m),
+             "end_force": np.tile([3.0, 0.0, 4.0], (13, lines, 2, 1)),
+             "wave_elevation": np.linspace(-1.0, 1.0, 13)}
+    written = []
+    with HistoryWriter(tmp_path / "h.nc", mesh, {"case": "x", "units": "SI"},
+                       block_records=4) as writer:
+        for first, last in ((0, 10), (10, 11), (11, 13)):
+            block = {key: value[first:last].copy() for key, value in given.items()}
+            block |= {key: np.zeros((last - first, 0, 6))
+                      for key in ("body_pose", "body_velocity", "body_mooring_force")}
+            writer.append_block(times[first:last].copy(), block)
+            written.append(writer.written)
+            for value in block.values():
+                value.fill(np.nan)  # the caller reuses its arrays
+    assert written == [8, 8, 12]
+    with xr.open_dataset(tmp_path / "h.nc") as ds:
+        np.testing.assert_array_equal(ds["time"], times)
+        for key, value in given.items():
+            np.testing.assert_array_equal(ds[key], value, err_msg=key)
+        np.testing.assert_array_equal(ds["fairlead_tension"], np.full((13, lines), 5.0))
+        assert ds.attrs["status"] == "completed"
