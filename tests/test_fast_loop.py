@@ -48,11 +48,25 @@ def _buoy_system() -> System:
                   lines=lines)
 
 
+def _viscoelastic_oc3() -> System:
+    """The OC3 lines of a standard linear solid: the chain's ``EA`` long-term, a Maxwell
+    branch of half of it relaxing in 3 s (exponential update; the grounded elements slack)."""
+    from dataclasses import replace
+
+    system = oc3_three_lines(40, BA=6.2358e6)
+    chain = system.line_types["chain"]
+    return replace(system, line_types={"chain": replace(
+        chain, material="viscoelastic", EA1=0.5 * chain.EA, tau=3.0)})
+
+
 CASES = {
     # OC3, fairleads surging 5 m at 10 s (the benchmark P1), at most 5 iterations a step: 30
     # step cuts in 30 s (with the default 20, none)
     "oc3_surge": (lambda: oc3_three_lines(40, BA=6.2358e6),
                   dict(duration=30.0, dt=0.05, max_iterations=5), 0.05),
+    # the same with viscoelastic lines: 28 step cuts
+    "oc3_surge_viscoelastic": (_viscoelastic_oc3, dict(duration=30.0, dt=0.05,
+                                                       max_iterations=5), 0.05),
     "buoy_current_table": (_buoy_system, dict(duration=10.0, dt=0.05, ramp_time=3.0), 0.1),
 }
 
@@ -71,7 +85,7 @@ def test_compiled_loop_gives_the_records_of_the_step_by_step_loop(name, monkeypa
     loop, steps = runs
     assert loop.success and steps.success
     assert loop.counters == steps.counters
-    if name == "oc3_surge":
+    if name.startswith("oc3_surge"):
         assert loop.counters["step_cuts"] > 0  # the loop handed steps to Python
     for key in ("time", "positions", "velocities", "tension", "end_force", "wave_elevation"):
         a, b = getattr(loop, key), getattr(steps, key)
@@ -93,6 +107,32 @@ def test_compiled_hht_equals_the_general_stepper_on_the_numpy_kernel(name, monke
     # HHT is not Newmark here: its numerical damping moves the states
     scale = float(np.abs(newmark.positions).max())
     assert not np.allclose(newmark.positions, fast.positions, rtol=0, atol=1e-5 * scale)
+
+
+def test_compiled_loop_with_viscoelastic_lines_and_step_cuts_equals_the_general_stepper(
+        monkeypatch, caplog):
+    """Viscoelastic OC3 lines (standard linear solid, exponential update) in the compiled
+    loop, whose Maxwell-branch forces it carries from step to step and hands to Python at
+    every step cut (the cut sub-steps restarting from the saved state), against the general
+    stepper on the numpy element kernel: the same states to the Newton tolerance's round-off
+    and the same work; the Maxwell branch changes the run."""
+    import logging
+
+    make, settings, every = CASES["oc3_surge_viscoelastic"]
+    system = make()
+    start = solve_statics(system)
+    assert start.success, start.message
+    with caplog.at_level(logging.INFO, logger="moorline"):
+        fast = simulate(system, DynamicsSettings(**settings), initial=start,
+                        output_every=every)
+    assert "general stepper" not in caplog.text  # the compiled loop ran it
+    assert fast.counters["step_cuts"] > 0
+    assert_same_run(fast, reference_run(system, DynamicsSettings(**settings), start, every,
+                                        monkeypatch))
+    elastic = simulate(oc3_three_lines(40, BA=6.2358e6), DynamicsSettings(**settings),
+                       initial=start.positions, output_every=every)
+    scale = float(np.abs(fast.tension).max())
+    assert not np.allclose(elastic.tension, fast.tension, rtol=0, atol=1e-2 * scale)
 
 
 def _in_waves(waves) -> System:

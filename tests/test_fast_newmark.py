@@ -1,6 +1,7 @@
 """The compiled step (moorline.solvers.fast_newmark) against the general stepper: same
 algorithm, same results, on a case with every load the fast path supports."""
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -59,6 +60,79 @@ def assert_fast_equals_slow(system: System, duration: float = 12.0) -> None:
 @pytest.mark.parametrize("friction,current", [(0.0, 0.0), (0.5, 0.8)])
 def test_fast_step_reproduces_the_general_stepper(friction, current):
     assert_fast_equals_slow(_system(friction, current))
+
+
+def _with_viscoelastic_line(friction: float, current: float, EA1: float) -> System:
+    """:func:`_system` with its second line a polyester rope (standard linear solid:
+    long-term stiffness ``EA``, Maxwell branch ``EA1`` with a 2 s relaxation time)."""
+    system = _system(friction, current)
+    rope = LineType("polyester", diameter=0.16, mass_per_length=20.0, EA=1.0e8, Cd=1.2,
+                    Ct=0.008, Ca=1.0, Cat=0.0, BA=-0.8, material="viscoelastic", EA1=EA1,
+                    tau=2.0)
+    lines = dict(system.lines, l2=replace(system.lines["l2"], line_type="polyester"))
+    return replace(system, line_types={**system.line_types, "polyester": rope}, lines=lines)
+
+
+@pytest.mark.parametrize("friction,current", [(0.0, 0.0), (0.5, 0.8)])
+def test_compiled_step_with_a_viscoelastic_line_equals_the_general_stepper(
+        friction, current, monkeypatch, caplog):
+    """A chain and a viscoelastic polyester rope (exponential update) on the compiled step
+    against the general stepper on the numpy element kernel: the same states to the Newton
+    tolerance's round-off and the same work; the rope's Maxwell branch changes the run."""
+    import logging
+
+    system = _with_viscoelastic_line(friction, current, 2.0e8)
+    start = solve_statics(system)
+    assert start.success, start.message
+    settings = DynamicsSettings(duration=12.0, dt=0.05, ramp_time=4.0)
+    with caplog.at_level(logging.INFO, logger="moorline"):
+        fast = simulate(system, settings, initial=start, output_every=0.1)
+    assert "general stepper" not in caplog.text  # the compiled step ran it
+    assert_same_run(fast, reference_run(system, settings, start, 0.1, monkeypatch))
+    relaxed = _with_viscoelastic_line(friction, current, 0.0)
+    plain = simulate(relaxed, settings, initial=solve_statics(relaxed), output_every=0.1)
+    rope = start.mesh.viscoelastic
+    assert np.abs(plain.tension[:, rope] - fast.tension[:, rope]).max() > 0.1 * np.abs(
+        plain.tension[:, rope] - plain.tension[0, rope]).max()
+
+
+def test_compiled_step_hands_back_the_viscoelastic_state_of_the_general_stepper(monkeypatch):
+    """Tuah's Ex. 4 string of the viscoelastic material (released from 2 ft with its Maxwell
+    branch loaded; slack in every swing, where the Maxwell branch relaxes along the material
+    strain): one step at a time from the same start, the compiled step's states carry the
+    strains and Maxwell-branch forces of the general stepper on the numpy kernel to
+    round-off, and the same positions."""
+    from moorline.mesh import discretize
+    from moorline.solvers import dynamics
+    from moorline.solvers.dynamic_model import DynamicModel
+    from moorline.solvers.fast_newmark import FastStepper
+    from moorline.verification import tuah_ex4
+
+    system = tuah_ex4.ex4_system(viscoelastic=True)
+    settings = DynamicsSettings(duration=0.3, dt=0.001, tolerance=1e-10, max_iterations=30)
+    x0 = tuah_ex4.start_positions(system)
+    maxwell = np.full(discretize(system).n_elements, tuah_ex4.initial_maxwell())
+    _, _, excitation, fast_state, fast = dynamics.start(system, settings, x0, maxwell=maxwell)
+    monkeypatch.setattr(dynamics, "DynamicModel",
+                        lambda *args, **kw: DynamicModel(*args, **kw, kernel="numpy"))
+    _, _, _, state, slow = dynamics.start(system, replace(settings, fast_path=False), x0,
+                                          maxwell=maxwell)
+    assert isinstance(fast, FastStepper) and not isinstance(slow, FastStepper)
+    q_scale = abs(tuah_ex4.initial_maxwell())
+    slack = 0
+    for _ in range(300):
+        constrained = excitation.constrained_state(state.t + settings.dt)
+        fast_state, ok_fast, _ = fast.step(fast_state, settings.dt, constrained, None)
+        state, ok, _ = slow.step(state, settings.dt, constrained, None)
+        assert ok and ok_fast
+        assert np.allclose(fast_state.x, state.x, rtol=0, atol=1e-12 * tuah_ex4.SPAN)
+        assert np.allclose(fast_state.material.strain, state.material.strain, rtol=0,
+                           atol=1e-12)
+        assert np.allclose(fast_state.material.maxwell, state.material.maxwell, rtol=0,
+                           atol=1e-9 * q_scale)
+        slack += bool(np.any(state.evaluation.tension < 0))
+    assert slack > 10  # steps ending slack
+    assert np.abs(state.material.maxwell).max() < 0.5 * q_scale  # it relaxed
 
 
 def test_band_ordering_and_lu_solve_like_dense():

@@ -19,7 +19,7 @@ import pytest
 from moorline.mesh import Mesh, discretize
 from moorline.model import Environment, Line, LineType, Point, System
 from moorline.physics import element, fused, hydro
-from moorline.solvers.dynamic_model import DynamicModel, Evaluation
+from moorline.solvers.dynamic_model import DynamicModel, Evaluation, MaterialState
 from moorline.waves import CurrentProfile
 
 RTOL = 1e-12
@@ -206,9 +206,61 @@ def _replace_density(mesh: Mesh, rho: float) -> Mesh:
     return replace(mesh, water_density=rho)
 
 
-def test_viscoelastic_system_stays_on_numpy():
-    mesh = discretize(_system(material="viscoelastic"))
-    assert DynamicModel(mesh, FLUIDS["current"], kernel="numba").kernel == "numpy"
+def _half_viscoelastic() -> System:
+    """:func:`_system` with its lines from the anchors viscoelastic (standard linear solid),
+    the others elastic."""
+    from dataclasses import replace
+
+    system = _system()
+    ve = replace(system.line_types["rope"], name="sls", material="viscoelastic", EA1=1.0e6,
+                 tau=5.0)
+    lines = {k: replace(line, line_type="sls") if k.startswith("a") else line
+             for k, line in system.lines.items()}
+    return replace(system, line_types={**system.line_types, "sls": ve}, lines=lines)
+
+
+@pytest.mark.parametrize("dt", [0.0, 0.1, 50.0])
+@pytest.mark.parametrize("mode", ["taut", "slack", "band", "mixed"])
+def test_viscoelastic_evaluate_numba_equals_numpy(mode, dt):
+    """Standard-linear-solid elements (exponential update, with its slack rule) beside elastic
+    ones: the compiled kernel gives the numpy path's loads, tangents and new Maxwell-branch
+    forces, from a start-of-step state with strains off the current ones and Maxwell forces
+    of either sign; steps of none, a fiftieth and ten relaxation times."""
+    mesh = discretize(_half_viscoelastic())
+    ve = mesh.viscoelastic
+    assert 0 < ve.sum() < mesh.n_elements
+    ref = DynamicModel(mesh, FLUIDS["ramped"], kernel="numpy")
+    new = DynamicModel(mesh, FLUIDS["ramped"], kernel="numba")
+    assert new.kernel == "numba"
+    seed = 100 + ["taut", "slack", "band", "mixed"].index(mode)
+    x, v, a = _configuration(mesh, mode, seed)
+    rng = np.random.default_rng(seed)
+    now = ref.initial_material(x)
+    previous = MaterialState(now.strain + rng.normal(0.0, 2e-3, now.strain.shape),
+                             rng.normal(0.0, 3e3, now.strain.shape))
+    for tangent in (True, False):
+        args = (x, v, a, 2.0, previous, dt, tangent)
+        _assert_same(ref.evaluate(*args), new.evaluate(*args))
+    if mode == "mixed":  # both branches of the slack rule
+        trial = mesh.EA * now.strain + previous.maxwell  # dt = 0: Q_new - Q_old = EA1 deps
+        trial = trial + mesh.EA1 * (now.strain - np.maximum(previous.strain,
+                                                            -previous.maxwell / mesh.EA))
+        assert np.any(trial[ve] < 0) and np.any(trial[ve] > 0)
+
+
+def test_compiled_kernel_refusals():
+    """The incremental update of the standard linear solid stays on numpy; given Maxwell
+    forces (harmonic balance) are evaluated by numpy; unknown kernels are refused."""
+    mesh = discretize(_half_viscoelastic())
+    model = DynamicModel(mesh, FLUIDS["current"], "incremental", kernel="numba")
+    assert model.kernel == "numpy" and "incremental" in model.compiled_refusal
+    ref = DynamicModel(mesh, FLUIDS["current"], kernel="numpy")
+    new = DynamicModel(mesh, FLUIDS["current"], kernel="numba")
+    x, v, a = _configuration(mesh, "taut", 7)
+    material = ref.initial_material(x)
+    given = np.random.default_rng(7).normal(0.0, 1e3, mesh.n_elements)
+    args = (x, v, a, 1.0, material, 0.1, True, None, given)
+    _assert_same(ref.evaluate(*args), new.evaluate(*args))
     with pytest.raises(ValueError, match="kernel"):
         DynamicModel(mesh, FLUIDS["current"], kernel="fortran")
 

@@ -206,7 +206,8 @@ def test_polyester_case_with_its_waves_numba_kernel_equals_numpy():
 
 def test_table_and_dynamic_stiffness_meshes_use_the_compiled_kernel():
     """The default kernel takes the static mesh (tables) and the dynamic one (strain
-    offsets); viscoelastic lines still go to numpy."""
+    offsets), and viscoelastic lines with the exponential update; with the incremental one
+    they go to numpy."""
     system = _mixed_system()
     start = solve_statics(system)
     still = CurrentProfile.uniform(0.0)
@@ -214,4 +215,5 @@ def test_table_and_dynamic_stiffness_meshes_use_the_compiled_kernel():
     assert DynamicModel(dynamic_mesh(start.mesh, start.positions), still).kernel == "numba"
     chain = replace(system.line_types["chain"], material="viscoelastic", EA1=1e8, tau=5.0)
     sls = replace(system, line_types=dict(system.line_types, chain=chain))
-    assert DynamicModel(discretize(sls), still).kernel == "numpy"
+    assert DynamicModel(discretize(sls), still).kernel == "numba"
+    assert DynamicModel(discretize(sls), still, "incremental").kernel == "numpy"

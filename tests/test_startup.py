@@ -80,11 +80,12 @@ def test_run_without_plots_needs_neither_xarray_nor_matplotlib(tmp_path: Path) -
 
 @pytest.mark.skipif(not (ROOT / "cases" / "oc3_dynamics.yaml").is_file(), reason="no case file")
 def test_a_run_the_compiled_step_cannot_take_does_not_import_numba(tmp_path: Path) -> None:
-    """Viscoelastic lines: the general stepper with the numpy kernels; deciding so does not
-    load numba (moorline.solvers.fast_path)."""
+    """Viscoelastic lines with the source's incremental update: the general stepper with the
+    numpy kernels; deciding so does not load numba (moorline.solvers.fast_path)."""
     case = tmp_path / "visco.yaml"
     text = (ROOT / "cases" / "oc3_dynamics.yaml").read_text(encoding="utf-8")
-    text = re.sub(r"duration: *[0-9.]+", "duration: 0.5", text)
+    text = re.sub(r"duration: *[0-9.]+", "duration: 0.5, viscoelastic_update: incremental",
+                  text)
     case.write_text(text.replace("    material: elastic",
                                  "    material: viscoelastic\n    EA1: 2.0e8\n    tau: 1.0"),
                     encoding="utf-8")

@@ -1,4 +1,4 @@
-"""All element loads of an elastic cable in one compiled loop (numba).
+"""All element loads of an elastic or viscoelastic cable in one compiled loop (numba).
 
 The numpy path of :meth:`moorline.solvers.dynamic_model.DynamicModel.evaluate` calls a few
 dozen small vectorized kernels per evaluation (:mod:`moorline.physics.element`,
@@ -48,10 +48,15 @@ so the tension and its exact tangent equal the numpy path's to round-off. The fi
 dynamic stiffness of :func:`moorline.mesh.dynamic_mesh` is the linear law (``EA = EA_d``)
 about a per-element strain offset, which the kernel takes as it is.
 
-Every element given to the kernel is treated as **elastic**. Viscoelastic (standard linear
-solid) elements stay on the numpy path: a caller with a mixed system either keeps the numpy
-path (what :class:`~moorline.solvers.dynamic_model.DynamicModel` does) or passes the elastic
-subset of the elements only; the hydrodynamic part is per element, so a subset is exact.
+Viscoelastic (standard linear solid) elements, flagged in a row of the packed properties with
+their ``EA1`` and ``tau``, follow :func:`moorline.physics.material.sls_update_exponential`
+with its slack rule: the Maxwell-branch force at the start of the step and the step size enter
+through three rows held over the step (``exp(-dt/tau) Q_old``, ``dQ/deps`` and the material
+strain at the start, :func:`set_viscoelastic_step`, the same arithmetic as the numpy update);
+:func:`maxwell_forces` gives the new Maxwell-branch forces at the end of the step. The
+source's incremental update (Tuah eq. 2.2.b.3) and MoorDyn's static-dynamic and Syrope ropes
+are not in the kernel (their systems stay on the numpy path of
+:class:`~moorline.solvers.dynamic_model.DynamicModel`).
 
 Division follows numpy (``error_model="numpy"``: inf/nan, no exception), and ``fastmath`` is
 off so that the order of operations is kept. The first call compiles the kernels (about 2 s);
@@ -77,10 +82,11 @@ BoolArray = NDArray[np.bool_]
 
 _TINY = float(np.finfo(float).tiny)
 
-# rows of the packed per-element property array
+# rows of the packed per-element property array; the last three: the standard linear solid's
+# update over the current step (set_viscoelastic_step)
 (_L0, _EA, _SLACK, _SMOOTH, _BA, _DIAM, _CD, _CT, _CA, _CAT, _RHO, _OFFSET, _W, _KEEP,
- _NODE_DRAG, _DASHPOT) = range(16)
-_N_PROPS = 16
+ _NODE_DRAG, _DASHPOT, _EA1, _TAU, _VISCO, _AQ, _DQ, _START) = range(22)
+_N_PROPS = 22
 
 
 class ElementLoads(NamedTuple):
@@ -109,6 +115,10 @@ class ElementLoads(NamedTuple):
         ``total_forces`` summed to the nodes, (n_nodes, 3).
     nodal_added_mass
         ``added_mass_force`` summed to the nodes, (n_nodes, 3).
+    maxwell
+        Maxwell-branch force of every element at the end of the step (the viscoelastic
+        elements' updated, the others' as given), (n_el,); ``None`` without viscoelastic
+        elements.
     """
 
     element_forces: FloatArray
@@ -122,6 +132,7 @@ class ElementLoads(NamedTuple):
     Ma: FloatArray | None
     nodal: FloatArray
     nodal_added_mass: FloatArray
+    maxwell: FloatArray | None = None
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
@@ -189,6 +200,26 @@ def _axial_law(strain, s_band, sr, EA, k, start, breaks, coef, end_slope):
         g = dg * shifted
     T, df = _table_law(k, g, EA, start, breaks, coef, end_slope)
     return T, df * dg
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _sls_law(strain, props, e):
+    """Tension, Maxwell-branch force and ``dT/deps`` of viscoelastic element ``e`` at the
+    strain ``l / L0 - 1`` at the end of the step: :func:`moorline.physics.material.\
+sls_update_exponential` with its slack rule, from the rows :func:`set_viscoelastic_step` set
+    (same order of operations)."""
+    EA = props[_EA, e]
+    aq = props[_AQ, e]
+    c = props[_DQ, e]
+    start = props[_START, e]
+    Q = aq + c * (strain - start)
+    T = EA * strain + Q
+    tangent = EA + c
+    if T < 0.0:  # slack: the material at zero force, the chord shorter than it
+        material = (c * start - aq) / tangent
+        k_slack = props[_SLACK, e] * EA
+        return k_slack * (strain - material), -EA * material, k_slack
+    return T, Q, tangent
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
@@ -312,6 +343,9 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
                 length, L0, EA, s_band, props[_SLACK, e], props[_OFFSET, e], props[_W, e],
                 t[2], phi[e], law[e], start, breaks, coef, end_slope)
             dq = -2.0 * weight2 * t[2] / length  # dq/dx2 = dq (e_z - n_z n)
+        elif props[_VISCO, e] != 0.0:  # standard linear solid, the step's rows
+            T, _q, slope = _sls_law(strain_total, props, e)
+            dT_dl = slope / L0
         else:
             T, slope = _axial_law(strain, s_band, props[_SLACK, e], EA, law[e], start, breaks,
                                   coef, end_slope)
@@ -528,20 +562,25 @@ def pack_properties(
     smoothing: ArrayLike, BA: ArrayLike, diameter: ArrayLike, Cd: ArrayLike, Ct: ArrayLike,
     Ca: ArrayLike, Cat: ArrayLike, rho: ArrayLike, offset: ArrayLike | None = None,
     weight_per_length: ArrayLike | None = None, slack_damping: ArrayLike = False,
-    node_drag: ArrayLike = False,
+    node_drag: ArrayLike = False, EA1: ArrayLike = 0.0, tau: ArrayLike = 0.0,
+    viscoelastic: ArrayLike = False,
 ) -> FloatArray:
-    """Per-element properties (scalars broadcast) packed into one (16, n_el) array, in the
-    row order the kernel reads them (the last rows: the strain offset and the submerged weight
-    per length of the sag correction, ``None``: 0; 1 where the dashpot is kept whole in slack
-    elements, ``slack_damping``, else 0; 1 where each node's drag share is at its own
-    velocity, ``node_drag``, else 0; the dashpot share over the current step, 1 until
-    :func:`set_dashpot_shares` sets it)."""
+    """Per-element properties (scalars broadcast) packed into one (22, n_el) array, in the
+    row order the kernel reads them (after the hydrodynamic ones: the strain offset and the
+    submerged weight per length of the sag correction, ``None``: 0; 1 where the dashpot is
+    kept whole in slack elements, ``slack_damping``, else 0; 1 where each node's drag share is
+    at its own velocity, ``node_drag``, else 0; the dashpot share over the current step, 1
+    until :func:`set_dashpot_shares` sets it; the standard linear solid's Maxwell-branch
+    stiffness ``EA1`` [force] and relaxation time ``tau`` [time], 1 where the element is
+    ``viscoelastic``, else 0; three rows of its update over the current step, 0 until
+    :func:`set_viscoelastic_step` sets them)."""
     props = np.empty((_N_PROPS, n_el))
     for row, value in enumerate((length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct,
                                  Ca, Cat, rho, 0.0 if offset is None else offset,
                                  0.0 if weight_per_length is None else weight_per_length,
                                  np.asarray(slack_damping, dtype=float),
-                                 np.asarray(node_drag, dtype=float), 1.0)):
+                                 np.asarray(node_drag, dtype=float), 1.0, EA1, tau,
+                                 np.asarray(viscoelastic, dtype=float), 0.0, 0.0, 0.0)):
         props[row] = _per_element(value, n_el)
     return props
 
@@ -562,6 +601,36 @@ def set_dashpot_shares(strain_before, props):
             props[_DASHPOT, e] = min(max((strain + s_band) / (2 * s_band), 0.0), 1.0)
         else:
             props[_DASHPOT, e] = 1.0 if strain > 0 else 0.0
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
+def set_viscoelastic_step(strain_before, maxwell_before, dt, props):
+    """Set the rows of the viscoelastic elements' update over a step of ``dt`` [time] from
+    their strain ``l / L0 - 1`` and Maxwell-branch force [force] at its start (n_el,): the
+    terms of :func:`moorline.physics.material.sls_update_exponential` that do not depend on
+    the strain at the end, ``exp(-dt/tau) Q_old`` (as ``Q_old + expm1(-dt/tau) Q_old``),
+    ``dQ/deps = EA1 (1 - exp(-dt/tau)) tau / dt`` (``EA1`` at ``dt = 0``) and the material
+    strain at the start, ``max(eps_old, -Q_old / EA)``."""
+    for e in range(props.shape[1]):
+        if props[_VISCO, e] == 0.0:
+            continue
+        minus_h = -(dt / props[_TAU, e])
+        a_minus_1 = math.expm1(minus_h)
+        phi = a_minus_1 / minus_h if minus_h < 0.0 else 1.0
+        q = maxwell_before[e]
+        props[_DQ, e] = props[_EA1, e] * phi
+        props[_AQ, e] = q + a_minus_1 * q
+        props[_START, e] = max(strain_before[e], -q / props[_EA, e])
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy")
+def maxwell_forces(strain, props, out):
+    """The viscoelastic elements' Maxwell-branch forces at the strains ``l / L0 - 1`` at the
+    end of the step (n_el,) into ``out`` (the others' entries are left as they are), with the
+    rows :func:`set_viscoelastic_step` set for the step."""
+    for e in range(props.shape[1]):
+        if props[_VISCO, e] != 0.0:
+            out[e] = _sls_law(strain[e], props, e)[1]
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
@@ -627,7 +696,7 @@ class TableLaws(NamedTuple):
 
 
 class FusedLoads:
-    """Element loads of a fixed set of elastic elements, evaluated by the compiled kernel.
+    """Element loads of a fixed set of elements, evaluated by the compiled kernel.
 
     Holds the packed element properties (and scratch arrays) so that a call costs one
     dispatch into the kernel plus the allocation of its outputs.
@@ -635,7 +704,7 @@ class FusedLoads:
     Parameters
     ----------
     elements
-        Node indices of each element, shape (n_el, 2). All are treated as elastic.
+        Node indices of each element, shape (n_el, 2).
     n_nodes
         Number of nodes of the positions passed to :meth:`__call__`.
     length0, EA, slack_ratio, smoothing, BA, diameter, Cd, Ct, Ca, Cat, rho
@@ -664,6 +733,11 @@ class FusedLoads:
         (:func:`moorline.physics.hydro.nodal_drag_forces`, MoorDyn's node-based drag; the
         model's ``drag_velocity: node``) instead of at the element's mean velocity
         (:func:`~moorline.physics.hydro.drag_forces`); a bool or one per element.
+    EA1, tau, viscoelastic
+        The standard linear solid (:func:`moorline.physics.material.sls_update_exponential`,
+        with its slack rule) of the elements flagged ``viscoelastic`` (a bool or one per
+        element): Maxwell-branch stiffness [force] and relaxation time [time]; their tension
+        then needs the state at the start of the step (:meth:`__call__`).
     """
 
     def __init__(
@@ -674,7 +748,8 @@ class FusedLoads:
         with_drag: bool | None = None, with_added_mass: bool | None = None,
         reuse_buffers: bool = False, sag: SagCorrection | None = None,
         weight_per_length: ArrayLike | None = None, slack_damping: ArrayLike = False,
-        node_drag: ArrayLike = False,
+        node_drag: ArrayLike = False, EA1: ArrayLike = 0.0, tau: ArrayLike = 0.0,
+        viscoelastic: ArrayLike = False,
     ) -> None:
         self.elements = np.ascontiguousarray(elements, dtype=np.int64)
         n_el = self.elements.shape[0]
@@ -682,7 +757,8 @@ class FusedLoads:
         self.n_nodes = int(n_nodes)
         self.props = pack_properties(n_el, length0, EA, slack_ratio, smoothing, BA, diameter,
                                      Cd, Ct, Ca, Cat, rho, offset, weight_per_length,
-                                     slack_damping, node_drag)
+                                     slack_damping, node_drag, EA1, tau, viscoelastic)
+        self.viscoelastic = bool(np.any(self.props[_VISCO] != 0.0))
         self.sag = sag
         self._no_sag = (np.zeros(n_el), np.zeros((n_el, 2, 3)))
         self.laws = TableLaws.of(laws, n_el)
@@ -724,6 +800,7 @@ class FusedLoads:
         self, x: FloatArray, v: FloatArray, a: FloatArray,
         fluid_velocity_mid: ArrayLike | None, fluid_acceleration_mid: ArrayLike | None,
         tangent: bool, strain_before: ArrayLike | None = None,
+        maxwell_before: ArrayLike | None = None, dt: float | None = None,
     ) -> ElementLoads:
         """Evaluate the loads at node positions, velocities and accelerations (n_nodes, 3).
 
@@ -733,6 +810,9 @@ class FusedLoads:
         ``with_added_mass``. ``strain_before``: each element's strain at the start of the
         step (``l / L0 - 1``, (n_el,)), which sets the share of its dashpot
         (:func:`set_dashpot_shares`); ``None``: the strain at ``x`` (a state of its own).
+        ``maxwell_before`` (n_el,) [force] and ``dt`` [time]: the Maxwell-branch forces at the
+        start of the step and its size, needed with viscoelastic elements (their strain at
+        the start is ``strain_before``); the result's ``maxwell`` holds their new values.
         """
         tangent = bool(tangent)
         if self._buffers is not None:
@@ -743,13 +823,22 @@ class FusedLoads:
         if strain_before is None:
             strain_before = np.empty(self.n_el)
             element_strains(x, self.elements, self.props, strain_before)
-        set_dashpot_shares(np.ascontiguousarray(strain_before, dtype=np.float64), self.props)
+        strain_before = np.ascontiguousarray(strain_before, dtype=np.float64)
+        set_dashpot_shares(strain_before, self.props)
+        if self.viscoelastic:
+            if maxwell_before is None or dt is None:
+                raise ValueError("viscoelastic elements need maxwell_before and dt")
+            maxwell = np.array(maxwell_before, dtype=np.float64)
+            set_viscoelastic_step(strain_before, maxwell, float(dt), self.props)
         phi, dphi = self._no_sag if self.sag is None else self.sag.share(x)
         _kernel(x, np.ascontiguousarray(v, dtype=np.float64),
                 np.ascontiguousarray(a, dtype=np.float64),
                 self._fluid(fluid_velocity_mid), self._fluid(fluid_acceleration_mid),
                 self.elements, self.props, self.laws, self.sag is not None, phi, dphi,
                 tangent, self.with_drag, self.with_added_mass, *out)
+        if self.viscoelastic:
+            maxwell_forces(out[4], self.props, maxwell)
+            out = (*out, maxwell)
         if not tangent:
             return ElementLoads(*out[:6], None, None, None, *out[9:])
         if not self.with_added_mass:

@@ -78,13 +78,14 @@ class DynamicModel:
     seabed_model
         The :class:`~moorline.model.Seabed` (for friction); None: frictionless.
     kernel
-        ``numba``: the element loads of a system without viscoelastic elements are computed by
-        the compiled kernel :class:`moorline.physics.fused.FusedLoads` (same results to
-        round-off, much faster; tension-strain tables, the strain offsets of the fibre-rope
-        dynamic stiffness and sag-corrected elements included); systems with viscoelastic
-        elements, and ``numpy``, use
-        the numpy path (the reference). ``self.kernel`` is the one in use. Bending stiffness
-        is added by numpy on either path.
+        ``numba``: the element loads are computed by the compiled kernel
+        :class:`moorline.physics.fused.FusedLoads` (same results to round-off, much faster;
+        tension-strain tables, the strain offsets of the fibre-rope dynamic stiffness,
+        sag-corrected elements and standard-linear-solid elements with the ``exponential``
+        update included); systems with the ``incremental`` viscoelastic update or MoorDyn's
+        static-dynamic or Syrope ropes, evaluations with given Maxwell-branch forces, and
+        ``numpy``, use the numpy path (the reference). ``self.kernel`` is the one in use.
+        Bending stiffness is added by numpy on either path.
     slack_damping
         Keep the Kelvin-Voigt dashpot ``BA`` in slack elements (MoorDyn's law: a slack element
         then pushes by ``BA`` times its strain rate) instead of blending it off with the
@@ -138,7 +139,8 @@ class DynamicModel:
         self.slack_damping = bool(slack_damping)
         self._drag = hydro.nodal_drag_forces if drag_velocity == "node" else hydro.drag_forces
         self._fused = None
-        if kernel == "numba" and not self.any_viscoelastic:
+        self.compiled_refusal = self._compiled_refusal(kernel)
+        if self.compiled_refusal is None:
             from ..physics import fused  # imports numba only when used
 
             laws = m.strain_laws if m.strain_laws is not None and m.strain_laws.active else None
@@ -147,9 +149,21 @@ class DynamicModel:
                 m.diameter, m.Cd, m.Ct, m.Ca, m.Cat, self.rho, laws, m.strain_offset,
                 with_drag=self.has_drag, with_added_mass=self.has_added_mass, sag=self.sag,
                 weight_per_length=m.weight_per_length, slack_damping=self.slack_damping,
-                node_drag=drag_velocity == "node")
+                node_drag=drag_velocity == "node", EA1=m.EA1, tau=m.tau,
+                viscoelastic=m.viscoelastic)
             self._midpoints = fused.midpoints
         self.kernel = "numba" if self._fused is not None else "numpy"
+
+    def _compiled_refusal(self, kernel: str) -> str | None:
+        """Why the element loads stay on the numpy path (None: the compiled kernel)."""
+        if kernel == "numpy":
+            return "the numpy kernel"
+        if self.series is not None or self.mesh.syrope is not None:
+            return "static-dynamic or Syrope ropes"
+        if np.any(self.mesh.viscoelastic) and self.viscoelastic_update != "exponential":
+            return (f"viscoelastic lines with the {self.viscoelastic_update!r} update (the "
+                    "compiled kernel has the exponential one)")
+        return None
 
     def initial_material(self, x: FloatArray) -> MaterialState:
         """Material state in equilibrium at positions ``x`` (relaxed Maxwell branch; a relaxed
@@ -187,11 +201,12 @@ relaxed_state`)."""
                              "balance")
         m = self.mesh
         el = m.elements
-        if self._fused is not None:  # compiled element loads, elastic elements only
+        if self._fused is not None and (maxwell is None or not self._fused.viscoelastic):
             u_f = a_f = None
             if self.has_drag or self.has_added_mass:
                 u_f, a_f, _ = self.fluid.kinematics(self._midpoints(x, el), t)
-            r = self._fused(x, v, a, u_f, a_f, tangent, strain_before=previous.strain)
+            r = self._fused(x, v, a, u_f, a_f, tangent, strain_before=previous.strain,
+                            maxwell_before=previous.maxwell, dt=dt)
             out = {}
             if tangent:
                 out = {"K": r.K, "C": r.C, "Ma": r.Ma if self.has_added_mass else None}
@@ -202,7 +217,8 @@ relaxed_state`)."""
             nodal, el_forces, out = self._bending(x, nodal, r.element_forces, out, tangent)
             nodal, inertial, out = self._nodes(x, v, a, t, nodal, inertial, out, tangent)
             return Evaluation(nodal, inertial, r.tension, MaterialState(
-                r.strain, previous.maxwell, previous.peak), el_forces, **out)
+                r.strain, previous.maxwell if r.maxwell is None else r.maxwell,
+                previous.peak), el_forces, **out)
         length, unit = element.element_geometry(x, el)
         dv = v[el[:, 1]] - v[el[:, 0]]
         T, dT_dl, state, share, sag_law = self._axial_tension(x, length, unit, dv, previous, dt,

@@ -28,14 +28,15 @@ import math
 
 import numba
 
+from ..physics.fused import maxwell_forces
 from .fast_newmark import _JIT, newmark_step
 
 
 @numba.njit(**_JIT)
 def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, fluid, model,
-              newton, tan, counters, work, other0):
-    """Sub-step ``j`` of the block from (x0, v0, a0) into (x1, v1, a1); returns
-    (converged, residual max-norm)."""
+              newton, tan, counters, work, other0, strain0, maxwell0):
+    """Sub-step ``j`` of the block from (x0, v0, a0) and the material state (strain0,
+    maxwell0) into (x1, v1, a1); returns (converged, residual max-norm)."""
     (free, band, bw, elements, props, laws, with_drag, with_added_mass, node_mass, external,
      seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, beta,
      gamma, alpha) = model
@@ -57,7 +58,8 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, f
     ok, norm, refactored = newmark_step(
         x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
         with_added_mass, node_mass, external, pforce, uf, af, seabed_on, seabed_z, k_sb, c_sb,
-        ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta, gamma, alpha, other0, tol,
+        ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta, gamma, alpha, other0, strain0,
+        maxwell0, tol,
         max_iter, refresh, lu, buf, rvec,
         trial, counters, refresh_ratio, stall_ratio, stall_limit, max_halvings, fluid, j)
     if refactored:
@@ -74,11 +76,13 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
                   fvals, fluid, model, newton, tan, counters, work, other0, saved, out):
     """Advance ``len(hs) // per_step`` full steps of ``per_step`` sub-steps of sizes ``hs``.
 
-    On entry ``(x0, v0, a0)`` is the state; on return the state after the last converged
-    sub-step, with its element forces, tensions, strains, added-mass forces and residual in
-    ``saved``. Per sub-step ``j``: the fixed and prescribed nodes ``fixed`` take
-    ``xc[j], vc[j], ac[j]`` (n_fixed, 3), the nodes ``fnodes`` the point forces ``fvals[j]``
-    and the elements the waves and current of ``fluid``
+    On entry ``(x0, v0, a0)`` is the state and ``saved``'s strains and Maxwell-branch forces
+    its material state; on return the state after the last converged sub-step, with its
+    element forces, tensions, strains, added-mass forces, residual and Maxwell-branch forces
+    (the viscoelastic elements' updated after every converged sub-step, a sub-step that does
+    not converge leaves them) in ``saved``. Per sub-step ``j``: the fixed and prescribed
+    nodes ``fixed`` take ``xc[j], vc[j], ac[j]`` (n_fixed, 3), the nodes ``fnodes`` the point
+    forces ``fvals[j]`` and the elements the waves and current of ``fluid``
     (:func:`moorline.solvers.fast_fluid.fluid_at_midpoints`). After full step ``k`` with
     ``record[k]``, the state goes into the next record of ``out = (positions, velocities,
     tensions, end_forces, end_elements, end_sides)``: the end forces are the element forces
@@ -93,7 +97,8 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
     there (of the last sub-step when complete), records written): the loop stops at the
     first sub-step that does not converge (index -1 when the block is complete).
     """
-    el_forces, tension, strain, f_am, resid = saved
+    el_forces, tension, strain, f_am, resid, maxwell = saved
+    props = model[4]
     pos, vel, ten, ends, end_el, end_side = out
     buf = work[1]
     n_steps = hs.shape[0] // per_step
@@ -103,9 +108,11 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
     for k in range(n_steps):
         for i in range(per_step):
             ok, norm = _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes,
-                                 fvals, fluid, model, newton, tan, counters, work, other0)
+                                 fvals, fluid, model, newton, tan, counters, work, other0,
+                                 strain, maxwell)
             if not (ok and math.isfinite(norm)):
                 return k, i, norm, r
+            maxwell_forces(buf[4], props, maxwell)  # with the rows of this sub-step
             x0[:, :] = x1
             v0[:, :] = v1
             a0[:, :] = a1

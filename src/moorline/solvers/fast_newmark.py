@@ -1,6 +1,7 @@
 """Compiled implicit step for the common case: elastic lines (constant ``EA``, tension-strain
 tables, the fibre-rope dynamic stiffness, sag-corrected elements, whose ``phi`` on the flat
-seabed is computed here) in still water, a uniform current, Airy waves or a
+seabed is computed here) and viscoelastic ones (the standard linear solid, exponential
+update, its state carried from step to step) in still water, a uniform current, Airy waves or a
 sea of linear components (no or Wheeler stretching), on a seabed with contact, damping and
 (isotropic) friction, Newmark beta = 1/4, gamma = 1/2 or HHT-alpha (Hilber, Hughes and
 Taylor 1977: the non-inertial forces weighted ``1 + alpha`` at the new time and ``-alpha`` at
@@ -28,7 +29,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from ..physics.fused import _kernel, element_strains, set_dashpot_shares
+from ..physics.fused import _kernel, set_dashpot_shares, set_viscoelastic_step
 from .fast_fluid import fluid_at_midpoints
 from .fast_path import fluid_parts
 
@@ -304,7 +305,7 @@ def _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1):
 def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
                  with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
                  seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta,
-                 gamma, alpha, other0, tol,
+                 gamma, alpha, other0, strain0, maxwell0, tol,
                  max_iter, refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
                  stall_limit, max_halvings, fluid, j):
     """One Newmark (or HHT-alpha: ``alpha`` and the non-inertial forces at the start of the
@@ -321,14 +322,18 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     [iterations, residuals, factorizations]. The fluid velocity and acceleration ``uf, af``
     come from ``fluid`` at sub-step ``j`` at every evaluated state
     (:func:`~moorline.solvers.fast_fluid.fluid_at_midpoints`, as the general stepper's
-    model evaluates them) when it has waves or a current.
+    model evaluates them) when it has waves or a current. ``strain0``, ``maxwell0``: the
+    elements' strains and Maxwell-branch forces at the start of the step (the material state
+    of :class:`~moorline.solvers.dynamic_model.MaterialState`), which set the dashpot shares
+    and the viscoelastic elements' update held over the step
+    (:func:`~moorline.physics.fused.set_viscoelastic_step`).
     Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
     cv = (1 + alpha) * gamma / (beta * h)
     ck = 1.0 + alpha
-    element_strains(x0, elements, props, buf[4])  # the dashpot shares held over the step
-    set_dashpot_shares(buf[4], props)
+    set_dashpot_shares(strain0, props)  # held over the step
+    set_viscoelastic_step(strain0, maxwell0, h, props)
     for n in range(x1.shape[0]):  # predictor x0 + h v0 (Stepper._predict)
         if free[n]:
             for c in range(3):
@@ -526,8 +531,10 @@ class FastStepper:
         x0, v0, a0 = s0.x.copy(), s0.v.copy(), s0.a.copy()
         x1, v1, a1 = np.empty_like(x0), np.empty_like(x0), np.empty_like(x0)
         n_el, n_nodes = mesh.n_elements, mesh.n_nodes
-        saved = (np.empty((n_el, 2, 3)), np.empty(n_el), np.empty(n_el),
-                 np.empty((n_nodes, 3)), np.empty((n_nodes, 3)))
+        material = s0.material
+        saved = (np.empty((n_el, 2, 3)), np.empty(n_el), np.array(material.strain, dtype=float),
+                 np.empty((n_nodes, 3)), np.empty((n_nodes, 3)),
+                 np.array(material.maxwell, dtype=float))
         n_rec = int(np.count_nonzero(record))
         out = (np.empty((n_rec, n_nodes, 3)), np.empty((n_rec, n_nodes, 3)),
                np.empty((n_rec, n_el)), np.empty((n_rec, len(end_elements), 3)),
@@ -543,10 +550,10 @@ class FastStepper:
             from .dynamic_model import Evaluation, MaterialState
             from .newmark import StepState
 
-            el_forces, tension, strain, f_am, resid = saved
+            el_forces, tension, strain, f_am, resid, maxwell = saved
             nodal = resid + self.model.node_mass[:, None] * a0  # F without structural inertia
-            ev = Evaluation(nodal, f_am, tension, MaterialState(strain, s0.material.maxwell),
-                            el_forces)
+            ev = Evaluation(nodal, f_am, tension,
+                            MaterialState(strain, maxwell, material.peak), el_forces)
             state = StepState(float(times[n_sub - 1]), x0, v0, a0, ev.material, ev)
         return Block(state, int(done), int(stopped), float(norm), out[0][:n_written],
                      out[1][:n_written], out[2][:n_written], out[3][:n_written])

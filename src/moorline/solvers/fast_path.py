@@ -1,8 +1,8 @@
 """When the compiled time step (:mod:`moorline.solvers.fast_newmark`) can run a model.
 
 Kept apart from the compiled step so that deciding does not import numba: a model the
-compiled step cannot run (bodies, viscoelastic lines, bending...) takes the general stepper
-without loading it.
+compiled step cannot run (bodies, MoorDyn's viscoelastic ropes, bending...) takes the general
+stepper without loading it.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
         return "rigid bodies"
     if rayleigh:
         return "Rayleigh damping"
-    if model._fused is None:
-        return "viscoelastic lines or the numpy kernel"
+    if model._fused is None:  # the numpy kernel, the incremental SLS update, MoorDyn's ropes
+        return model.compiled_refusal
     if model.mesh.has_bending:
         return "bending stiffness (EI)"
     if scheme not in ("newmark", "hht") or variant != "iterative":
