@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import CaseError, MoorlineError
+from ..user_cache import CACHE_ENV, cache_root
 from .files import file_problem
 from .hydro_database import BodyHydrodynamics, DatabaseError, from_dataset, read_database
 
@@ -32,9 +33,6 @@ __all__ = ["CACHE_ENV", "MAX_DATABASE_BYTES", "body_hydrodynamics", "bem_inputs"
            "cache_directory"]
 
 logger = logging.getLogger(__name__)
-
-CACHE_ENV = "MOORLINE_CACHE_DIR"
-"""Environment variable naming the cache directory (its ``bem`` subdirectory is used)."""
 
 MAX_DATABASE_BYTES = 1024**3
 """Largest database file read [bytes] (1 GiB; a 6-dof body at 200 frequencies and 36
@@ -46,13 +44,9 @@ CACHE_FORMAT = 1
 
 def cache_directory() -> Path:
     """Where computed databases are cached: ``$MOORLINE_CACHE_DIR/bem``, else
-    ``$XDG_CACHE_HOME/moorline/bem``, else ``~/.cache/moorline/bem``."""
-    root = os.environ.get(CACHE_ENV)
-    if root:
-        return Path(root) / "bem"
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    base = Path(xdg) if xdg else Path.home() / ".cache"
-    return base / "moorline" / "bem"
+    ``$XDG_CACHE_HOME/moorline/bem``, else ``~/.cache/moorline/bem``
+    (:func:`moorline.user_cache.cache_root`)."""
+    return cache_root() / "bem"
 
 
 def body_hydrodynamics(name: str, body: Any, environment: Any, units: str,

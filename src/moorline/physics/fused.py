@@ -60,8 +60,9 @@ are not in the kernel (their systems stay on the numpy path of
 
 Division follows numpy (``error_model="numpy"``: inf/nan, no exception), and ``fastmath`` is
 off so that the order of operations is kept. The first call compiles the kernels (about 2 s);
-``cache=True`` stores the machine code in ``__pycache__`` next to this file (or in
-``NUMBA_CACHE_DIR``), so later processes load it (about 0.2 s, plus 0.3 s to import numba).
+``cache=True`` stores the machine code in a directory named by the kernels' sources
+(:mod:`moorline.numba_cache`; or in ``NUMBA_CACHE_DIR``), so later processes load it (about
+0.2 s, plus 0.3 s to import numba).
 """
 
 from __future__ import annotations
@@ -69,10 +70,10 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-import numba
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..jit import numba
 from .load_strain import StrainLaws
 from .sag import MAX_ITERATIONS, NOISE, SATURATION, SagCorrection
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-import numba
+from ..jit import numba
 
 _JIT = {"cache": True, "fastmath": False, "error_model": "numpy"}
 

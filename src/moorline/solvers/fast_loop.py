@@ -17,17 +17,17 @@ loop with the state after the last converged sub-step: Python cuts that sub-step
 :class:`FastStepper` is a block of one sub-step, so the Python path and the compiled loop
 run the same code.
 
-numba's cache is per file: a change to a kernel this loop calls in another file
-(:mod:`~moorline.solvers.fast_newmark`, :mod:`~moorline.physics.fused`) is not seen by the
-cached loop until its own cache is dropped (``__pycache__/fast_loop*.nbi, .nbc``).
+numba checks a cached function against its own file only, and this loop compiles in kernels
+of other files (:mod:`~moorline.solvers.fast_newmark`, :mod:`~moorline.physics.fused`): the
+cache directory is therefore named by a hash of all kernel sources
+(:mod:`moorline.numba_cache`), so a change to any of them compiles the loop again.
 """
 
 from __future__ import annotations
 
 import math
 
-import numba
-
+from ..jit import numba
 from ..physics.fused import maxwell_forces
 from .fast_newmark import _JIT, newmark_step
 

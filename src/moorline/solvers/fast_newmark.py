@@ -23,12 +23,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numba
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
+from ..jit import numba
 from ..physics.fused import _kernel, set_dashpot_shares, set_viscoelastic_step
 from .fast_fluid import fluid_at_midpoints
 from .fast_path import fluid_parts

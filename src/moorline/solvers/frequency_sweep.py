@@ -24,12 +24,12 @@ solve_sparse`); :attr:`FrequencySweep.refactored` counts them.
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
+from ..jit import numba
 from .assembly import solve_sparse
 from .fast_newmark import _JIT, _band_lu, _band_solve
 
