@@ -5,7 +5,7 @@ Not a timing test: it checks which heavy modules are loaded, in a fresh interpre
 a unit; matplotlib, xarray, netCDF4, numba, scipy and dask only when an analysis uses them), by
 ``moorline statics --json`` and by ``moorline run --no-plots`` (results written from numpy
 with netCDF4, summaries from the results in memory: no xarray, pandas or dask; numba only for
-the compiled time step; matplotlib only when plotting).
+the compiled time step; matplotlib only when plotting; rich only when something is shown).
 """
 
 from __future__ import annotations
@@ -34,13 +34,13 @@ def test_help_imports_no_heavy_module() -> None:
     assert _loaded_after("from moorline.cli import cli") == []
 
 
-def _loaded_by_cli(*args: str) -> set[str]:
-    """The heavy modules (:data:`HEAVY`, pandas) loaded after ``moorline ARGS`` ran in a fresh
-    interpreter (exit code 0 required)."""
+def _loaded_by_cli(*args: str, names: tuple[str, ...] = (*HEAVY, "pandas")) -> set[str]:
+    """The modules of ``names`` (by default :data:`HEAVY` and pandas) loaded after ``moorline
+    ARGS`` ran in a fresh interpreter (exit code 0 required)."""
     code = (f"import sys\nsys.argv = ['moorline', *{list(args)!r}]\n"
             "from moorline.cli import main\n"
             "try:\n    main()\nexcept SystemExit as exc:\n    assert not exc.code, exc.code\n"
-            f"print('LOADED', *(m for m in {(*HEAVY, 'pandas')!r} if m in sys.modules))")
+            f"print('LOADED', *(m for m in {names!r} if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=ROOT, timeout=900)
     assert out.returncode == 0, out.stderr
@@ -49,6 +49,12 @@ def _loaded_by_cli(*args: str) -> set[str]:
 
 def test_help_command_imports_no_heavy_module() -> None:
     assert _loaded_by_cli("--help") == set()
+
+
+def test_help_imports_neither_rich_nor_pydantic() -> None:
+    """rich only when something is shown with it (a table, a spinner, a progress bar);
+    pydantic only to read a case."""
+    assert _loaded_by_cli("--help", names=("rich", "pydantic", "yaml", "numpy")) == set()
 
 
 @pytest.mark.skipif(not (ROOT / "cases" / "oc3_line.yaml").is_file(), reason="no case file")

@@ -28,15 +28,13 @@ import re
 import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
-from rich.markup import escape
-from rich.table import Table
 
 from . import __version__
 from .analyses import KINDS
-from .console import _note, _status, _stdout
+from .console import _escape, _note, _status, _stdout, _table
 from .errors import CaseError, ConvergenceError, MoorlineError
 from .runners import (
     RESULTS_FILE,
@@ -47,6 +45,9 @@ from .runners import (
 )
 from .signals import Terminated, handle_signals
 from .threads import one_blas_thread
+
+if TYPE_CHECKING:
+    from rich.table import Table
 
 logger = logging.getLogger(__name__)
 
@@ -372,13 +373,13 @@ def _replace_group(context: RunContext, ds: Any, group: str) -> None:
 
 
 def _modes_table(result: Any) -> Table:
-    table = Table(title=escape(f"{result.case}: natural modes ({result.message})"))
+    table = _table(f"{result.case}: natural modes ({result.message})")
     for name in ("mode", "omega [rad/s]", "period [s]", "frequency [Hz]", "dominant",
                  "share x", "share y", "share z"):
-        table.add_column(escape(name), justify="left" if name == "dominant" else "right")
+        table.add_column(_escape(name), justify="left" if name == "dominant" else "right")
     for k in range(result.n_modes):
         table.add_row(str(k + 1), _g(result.omega[k]), _g(result.period[k]),
-                      _g(result.frequency_hz[k]), escape(str(result.dominant[k])),
+                      _g(result.frequency_hz[k]), _escape(str(result.dominant[k])),
                       *(f"{v:.3f}" for v in result.participation[k]))
     return table
 
@@ -474,16 +475,16 @@ def _print_verification(rows: list[dict[str, Any]], skipped: dict[str, str]) -> 
         console.print(_verify_table(missing, "Not reproduced (the source's result is not "
                                              "obtained; see why)", reasons=True))
     if skipped:
-        table = Table(title="Skipped cases")
+        table = _table("Skipped cases")
         table.add_column("case")
         table.add_column("why")
         for name, reason in skipped.items():
-            table.add_row(escape(name), escape(reason))
+            table.add_row(_escape(name), _escape(reason))
         console.print(table)
 
 
 def _verify_table(rows: list[dict[str, Any]], title: str, reasons: bool = False) -> Table:
-    table = Table(title=escape(title))
+    table = _table(title)
     columns = ["case", "quantity", "reference", "computed", "error", "tolerance", "kind",
                "reason" if reasons else "status"]
     for name in columns:
@@ -493,12 +494,12 @@ def _verify_table(rows: list[dict[str, Any]], title: str, reasons: bool = False)
         unit = f" {row['unit']}" if row.get("unit") else ""
         rel = " (rel)" if row.get("relative") else unit
         ref = row["reference"]
-        last = escape(str(row.get("note", ""))) if reasons else _STATUS_STYLE[row["status"]]
+        last = _escape(str(row.get("note", ""))) if reasons else _STATUS_STYLE[row["status"]]
         table.add_row(
-            escape(str(row["case"])), escape(str(row["quantity"])),
-            escape(_g(ref["value"]) + unit), escape(_g(row["computed"]) + unit),
-            escape(_g(row.get("error")) + rel), escape(_g(row.get("tolerance")) + rel),
-            escape(str(ref["kind"] or "-")), last)
+            _escape(str(row["case"])), _escape(str(row["quantity"])),
+            _escape(_g(ref["value"]) + unit), _escape(_g(row["computed"]) + unit),
+            _escape(_g(row.get("error")) + rel), _escape(_g(row.get("tolerance")) + rel),
+            _escape(str(ref["kind"] or "-")), last)
     return table
 
 
@@ -639,11 +640,11 @@ def sweep(study: Path, out: Path, workers: int | None, scheduler: str | None, as
                                         "files": [str(f) for f in files]}),
                               indent=2, allow_nan=False))
     else:
-        result = Table(title=escape(f"{spec.name}: {len(rows)} cases"))
+        result = _table(f"{spec.name}: {len(rows)} cases")
         for column in rows.columns:
-            result.add_column(escape(str(column)))
+            result.add_column(_escape(str(column)))
         for record in rows.itertuples(index=False):
-            result.add_row(*(escape(_g(v) if isinstance(v, float) else str(v))
+            result.add_row(*(_escape(_g(v) if isinstance(v, float) else str(v))
                              for v in record))
         _stdout().print(result)
     _note(f"wrote {', '.join(str(f) for f in files)}", quiet)
@@ -693,12 +694,12 @@ def bem(case: Path, body: str, omega: float, out: Path | None, panel: float | No
         table = write_body_table(case, body, omega, out, panel_size=panel, draft=draft,
                                  shape=shape, dimensions=dims, whole_case=whole_case)
     a = table.coefficients.attrs
-    result = Table(title=escape(f"{case.name}: body {body}, omega {omega:g} rad/s, capytaine "
-                                f"{a['capytaine_version']}, {a['n_panels']} panels"))
+    result = _table(f"{case.name}: body {body}, omega {omega:g} rad/s, capytaine "
+                    f"{a['capytaine_version']}, {a['n_panels']} panels")
     for name in ("quantity", "unit", "case", "BEM"):
         result.add_column(name, justify="left" if name in ("quantity", "unit") else "right")
     for quantity, unit, value, computed in table.rows:
-        result.add_row(escape(quantity), escape(unit), _g(value), _g(computed))
+        result.add_row(_escape(quantity), _escape(unit), _g(value), _g(computed))
     _stdout().print(result)
     _note(f"wrote {table.path}", quiet)
 
@@ -803,14 +804,14 @@ def catalog(name: str | None, diameter: str | None, units: str, as_json: bool, q
         if as_json:
             click.echo(json.dumps(jsonable(entries), indent=2, allow_nan=False))
             return
-        table = Table(title="Line catalogue (moorline catalog NAME DIAMETER for properties)")
+        table = _table("Line catalogue (moorline catalog NAME DIAMETER for properties)")
         for column in ("entry", "grades", "nominal diameter [mm]", "description"):
             table.add_column(column)
         for family, entry in entries.items():
             grades = ", ".join(f"{family}_{g.lower()}" for g in entry["grades"]) or family
             low, high = entry["diameter_range_mm"]
-            table.add_row(escape(family), escape(grades), f"{low:g} to {high:g}",
-                          escape(entry["description"]))
+            table.add_row(_escape(family), _escape(grades), f"{low:g} to {high:g}",
+                          _escape(entry["description"]))
         _stdout().print(table)
         return
     if diameter is None:
@@ -832,14 +833,14 @@ def catalog(name: str | None, diameter: str | None, units: str, as_json: bool, q
             "sources": props.sources, "verified": props.verified,
             "mean_load_percent": props.mean_load_percent}), indent=2, allow_nan=False))
         return
-    table = Table(title=escape(f"{props.name}, nominal diameter {props.nominal_diameter * 1e3:g}"
-                               f" mm ({units})"))
+    table = _table(f"{props.name}, nominal diameter {props.nominal_diameter * 1e3:g}"
+                   f" mm ({units})")
     for column in ("key", "value", "unit", "source"):
         table.add_column(column, justify="right" if column == "value" else "left")
     for key, value in values.items():
         unit = unit_of(PROPERTIES[key], units).replace("dimensionless", "-")
         source = props.sources[key] + ("" if props.verified[key] else " [not verified]")
-        table.add_row(key, f"{value:.6g}", escape(unit), escape(source))
+        table.add_row(key, f"{value:.6g}", _escape(unit), _escape(source))
     _stdout().print(table)
     if props.mean_load_percent:
         _note(f"EA_dynamic at a mean load of {props.mean_load_percent:g} % MBL; the solvers "
@@ -910,9 +911,9 @@ def stiffness(case: Path, body: str | None, points: str | None, reference: str |
         return
     what = f"body {group.body}" if group.body else "points " + ", ".join(group.points)
     force, length = units
-    table = Table(title=escape(f"{system.name}: mooring stiffness of {what} about "
-                               f"({', '.join(f'{v:g}' for v in about)}) {length} "
-                               f"[{force}/{length}, {force}/rad, {force}*{length}/rad]"))
+    table = _table(f"{system.name}: mooring stiffness of {what} about "
+                   f"({', '.join(f'{v:g}' for v in about)}) {length} "
+                   f"[{force}/{length}, {force}/rad, {force}*{length}/rad]")
     table.add_column("")
     for dof in BODY_DOFS:
         table.add_column(dof, justify="right")

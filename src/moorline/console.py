@@ -1,14 +1,20 @@
-"""Console output of the command line: spinners, status lines, tables on stdout."""
+"""Console output of the command line: spinners, status lines, tables on stdout.
+
+rich is imported when something is shown with it (not by ``--help`` nor a quiet spinner).
+"""
 
 from __future__ import annotations
 
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from typing import TYPE_CHECKING
 
 import click
-from rich.console import Console
-from rich.text import Text
+
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
 
 
 @contextmanager
@@ -19,6 +25,9 @@ def _status(message: str, quiet: bool) -> Iterator[Callable[[str], None]]:
     if quiet:
         yield lambda _msg: None
         return
+    from rich.console import Console
+    from rich.text import Text
+
     console = Console(stderr=True)
     with console.status(Text(message)) as status:
         yield lambda msg: status.update(Text(msg))
@@ -32,5 +41,21 @@ def _note(message: str, quiet: bool) -> None:
 
 def _stdout() -> Console:
     """Console for tables on stdout: the terminal's width, or 160 columns into a pipe/file."""
+    from rich.console import Console
+
     console = Console(file=sys.stdout)
     return console if console.is_terminal else Console(file=sys.stdout, width=160)
+
+
+def _escape(text: str) -> str:
+    """``text`` with rich markup escaped (printed literally)."""
+    from rich.markup import escape
+
+    return escape(text)
+
+
+def _table(title: str) -> Table:
+    """An empty rich table titled ``title`` (printed literally)."""
+    from rich.table import Table
+
+    return Table(title=_escape(title))

@@ -17,9 +17,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from rich.console import Console
-from rich.markup import escape
-
 from . import __version__
 from .analyses import KINDS
 from .console import _note, _status
@@ -260,6 +257,8 @@ def _progress(description: str, total: float, quiet: bool) -> Iterator[Callable[
     if quiet:
         yield lambda _t: None
         return
+    from rich.console import Console
+    from rich.markup import escape
     from rich.progress import (
         BarColumn,
         Progress,
