@@ -18,12 +18,12 @@ from __future__ import annotations
 
 import math
 from functools import cache
-from importlib import resources
 from typing import Any
 
 import numpy as np
 
 from .model import DesignSettings
+from .package_data import load_yaml
 
 __all__ = ["DESIGN_FILE", "design_summary", "dynamics_extremes", "factors", "line_attrs",
            "line_check", "line_mbl", "most_probable_maximum", "statics_extremes",
@@ -36,10 +36,7 @@ DESIGN_FILE = "design.yaml"
 @cache
 def factors() -> dict[str, Any]:
     """The design data file: ``{"storm_duration_s", "standards": {name: {...}}}``."""
-    import yaml
-
-    text = resources.files("moorline.catalog").joinpath(DESIGN_FILE).read_text("utf-8")
-    return yaml.safe_load(text)
+    return load_yaml("moorline.catalog", DESIGN_FILE)
 
 
 def _analysis(settings: DesignSettings, kind: str) -> str:

@@ -20,12 +20,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from importlib import resources
 from typing import Any, Literal
 
 import numpy as np
-import yaml
 from numpy.typing import ArrayLike, NDArray
+
+from .package_data import load_yaml
 
 __all__ = ["TNCurve", "chain_area", "curve", "curves", "newtons_per"]
 
@@ -134,8 +134,8 @@ def newtons_per(dimension: str, units: str) -> float:
 @lru_cache(maxsize=1)
 def curves() -> dict[str, TNCurve]:
     """Every curve of the data file, by name."""
-    text = resources.files("moorline").joinpath("data/tn_curves.yaml").read_text("utf-8")
-    return {name: _curve(name, entry) for name, entry in yaml.safe_load(text).items()}
+    data = load_yaml("moorline", "data/tn_curves.yaml")
+    return {name: _curve(name, entry) for name, entry in data.items()}
 
 
 def _curve(name: str, entry: dict[str, Any]) -> TNCurve:

@@ -15,8 +15,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cache
-from importlib import resources
 from typing import Any
+
+from ..package_data import load_yaml
 
 __all__ = ["CATALOG_FILE", "PROPERTIES", "CatalogError", "LineProperties", "catalog_names",
            "families", "in_units", "line_properties"]
@@ -80,10 +81,7 @@ class LineProperties:
 
 @cache
 def _data() -> dict[str, Any]:
-    import yaml
-
-    text = resources.files(__name__).joinpath(CATALOG_FILE).read_text(encoding="utf-8")
-    return yaml.safe_load(text)
+    return load_yaml(__name__, CATALOG_FILE)
 
 
 def families() -> dict[str, dict[str, Any]]:
