@@ -48,7 +48,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -223,6 +223,18 @@ class HarmonicBalance:
             out.append(q)
         return out
 
+    def _instant_material(self, x: FloatArray):
+        """The material state an instant of the cycle is evaluated with: the static one with
+        the strain of the instant itself, so the axial dashpot's share
+        (:func:`moorline.physics.element.lagged_dashpot_share`, held over a time step in the
+        time domain) follows the strain through the cycle, as in the limit of small steps (a
+        periodic state has no previous step). The Maxwell forces of viscoelastic elements are
+        given apart; the tangent leaves out the share's slope inside the slack band (2e-5 of
+        strain), which slows the iteration there but not what it converges to."""
+        length = np.linalg.norm(x[self.mesh.elements[:, 1]] - x[self.mesh.elements[:, 0]],
+                                axis=1)
+        return replace(self.material, strain=length / self.mesh.length0 - 1.0)
+
     def evaluate(self, u: FloatArray, tangent: bool
                  ) -> tuple[FloatArray, sp.spmatrix | None, FloatArray]:
         """Residual, Jacobian and tensions at the unknowns ``u``.
@@ -257,8 +269,8 @@ class HarmonicBalance:
         maps = []  # per instant: (rows map T^T, columns map P_x) for the Maxwell terms
         for j, (x, v, a) in enumerate(states):
             t = float(self.shift + self.times[j])
-            ev = model.evaluate(x, v, a, t, self.material, self.period / n_t, tangent,
-                                self.forces[j], maxwell[j])
+            ev = model.evaluate(x, v, a, t, self._instant_material(x), self.period / n_t,
+                                tangent, self.forces[j], maxwell[j])
             tension[j] = ev.tension
             if not self.coupled:
                 R += np.outer(E[j], gather_free(model.node_mass[:, None] * a - ev.nodal, dof))
