@@ -317,8 +317,14 @@ def _shift(model: StaticModel) -> float:
 
 
 def _limit_step(dx: FloatArray, max_step: float) -> FloatArray:
-    """Scale a displacement step so that no node moves farther than ``max_step``."""
-    largest = float(np.sqrt((dx * dx).sum(axis=1)).max(initial=0.0))
+    """Scale a displacement step so that no node moves farther than ``max_step`` (the node
+    norms taken relative to the largest component: a near-singular solve's huge step does
+    not overflow)."""
+    peak = float(np.abs(dx).max(initial=0.0))
+    if not 0.0 < peak < np.inf:
+        return dx
+    unit = dx / peak
+    largest = peak * float(np.sqrt((unit * unit).sum(axis=1)).max())
     return dx * (max_step / largest) if largest > max_step else dx
 
 
