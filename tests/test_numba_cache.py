@@ -8,7 +8,6 @@ import re
 import shutil
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -55,7 +54,7 @@ def test_the_directory_changes_with_any_kernel_source(tmp_path: Path,
 
 
 def test_prune_keeps_the_newest_and_the_recently_used(tmp_path: Path) -> None:
-    now = time.time()
+    now = 1.7e9  # a fixed "now" [s since the epoch]: the ages are set from it, not the clock
     ages = {"numba-a": 5, "numba-b": 4, "numba-c": 3, "numba-d": 2, "numba-e": 1}  # days
     for name, days in ages.items():
         (tmp_path / name / "solvers_x").mkdir(parents=True)
@@ -64,8 +63,8 @@ def test_prune_keeps_the_newest_and_the_recently_used(tmp_path: Path) -> None:
     os.utime(tmp_path / "bem", (now - 9 * 86400, now - 9 * 86400))
     current = tmp_path / "numba-new"
     current.mkdir()
-    assert numba_cache.prune(tmp_path, current, keep=3, unused_s=10 * 86400) == []
-    removed = numba_cache.prune(tmp_path, current, keep=3, unused_s=1.5 * 86400)
+    assert numba_cache.prune(tmp_path, current, keep=3, unused_s=10 * 86400, now=now) == []
+    removed = numba_cache.prune(tmp_path, current, keep=3, unused_s=1.5 * 86400, now=now)
     assert sorted(p.name for p in removed) == ["numba-a", "numba-b"]
     left = sorted(p.name for p in tmp_path.iterdir())
     assert left == ["bem", "numba-c", "numba-d", "numba-e", "numba-new"]

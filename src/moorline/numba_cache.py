@@ -85,12 +85,15 @@ def cache_directory(files: Iterable[Path] | None = None) -> Path:
     return cache_root() / f"{PREFIX}{source_key(kernel_files() if files is None else files)}"
 
 
-def prune(root: Path, current: Path, keep: int = KEEP, unused_s: float = UNUSED_S) -> list[Path]:
+def prune(root: Path, current: Path, keep: int = KEEP, unused_s: float = UNUSED_S,
+          now: float | None = None) -> list[Path]:
     """Remove the ``numba-*`` directories of ``root`` other than ``current`` beyond the
     ``keep`` most recently used (modification time) that were not used for ``unused_s``
-    seconds; returns those removed. Errors are ignored (another process pruning too)."""
+    seconds before ``now`` (default: the clock's time, seconds since the epoch); returns those
+    removed. Errors are ignored (another process pruning too)."""
     import shutil
 
+    now = time.time() if now is None else now
     try:
         others = [p for p in root.iterdir()
                   if p.name.startswith(PREFIX) and p.is_dir() and p != current]
@@ -99,7 +102,7 @@ def prune(root: Path, current: Path, keep: int = KEEP, unused_s: float = UNUSED_
         return []
     removed = []
     for mtime, path in stamped[keep:]:
-        if time.time() - mtime > unused_s:
+        if now - mtime > unused_s:
             shutil.rmtree(path, ignore_errors=True)
             removed.append(path)
     return removed
