@@ -74,6 +74,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..jit import numba
+from .element import element_geometry
 from .load_strain import StrainLaws
 from .sag import MAX_ITERATIONS, NOISE, SATURATION, SagCorrection
 
@@ -634,18 +635,6 @@ def maxwell_forces(strain, props, out):
             out[e] = _sls_law(strain[e], props, e)[1]
 
 
-@numba.njit(cache=True, fastmath=False, error_model="numpy")
-def element_strains(x, elements, props, out):
-    """``l / L0 - 1`` of every element at positions ``x`` into ``out`` (n_el,)."""
-    for e in range(elements.shape[0]):
-        i = elements[e, 0]
-        j = elements[e, 1]
-        d0 = x[j, 0] - x[i, 0]
-        d1 = x[j, 1] - x[i, 1]
-        d2 = x[j, 2] - x[i, 2]
-        out[e] = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2) / props[_L0, e] - 1.0
-
-
 class TableLaws(NamedTuple):
     """The tabulated laws of :class:`~moorline.physics.load_strain.StrainLaws` in flat arrays
     (the form the kernel reads; :meth:`of` builds it).
@@ -822,8 +811,7 @@ class FusedLoads:
             out = self._allocate(tangent)
         x = np.ascontiguousarray(x, dtype=np.float64)
         if strain_before is None:
-            strain_before = np.empty(self.n_el)
-            element_strains(x, self.elements, self.props, strain_before)
+            strain_before = element_geometry(x, self.elements)[0] / self.props[_L0] - 1.0
         strain_before = np.ascontiguousarray(strain_before, dtype=np.float64)
         set_dashpot_shares(strain_before, self.props)
         if self.viscoelastic:

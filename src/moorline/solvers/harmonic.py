@@ -58,6 +58,7 @@ from numpy.typing import NDArray
 from ..errors import MoorlineError
 from ..mesh import dynamic_mesh
 from ..model import HarmonicSettings, System
+from ..physics.element import element_geometry
 from ..results import HarmonicResult, StaticResult
 from .assembly import BlockPattern, factorize, gather_free, scatter_free
 from .bodies import BodyState
@@ -231,8 +232,7 @@ class HarmonicBalance:
         periodic state has no previous step). The Maxwell forces of viscoelastic elements are
         given apart; the tangent leaves out the share's slope inside the slack band (2e-5 of
         strain), which slows the iteration there but not what it converges to."""
-        length = np.linalg.norm(x[self.mesh.elements[:, 1]] - x[self.mesh.elements[:, 0]],
-                                axis=1)
+        length, _ = element_geometry(x, self.mesh.elements)
         return replace(self.material, strain=length / self.mesh.length0 - 1.0)
 
     def evaluate(self, u: FloatArray, tangent: bool
