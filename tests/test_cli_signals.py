@@ -59,12 +59,25 @@ def _start_long_run(tmp_path: Path) -> tuple[subprocess.Popen, Path]:
 
 
 def _records(results: Path) -> int:
-    """Dynamics records on disk (0 while the file or the group is not there yet)."""
+    """Dynamics records on disk (0 while the file or the group is not there yet).
+
+    Read from a copy under a new name each time: HDF5 keeps a file it once failed to open
+    half-way (the writer mid-block) in its list of open files, and later opens of the same
+    file in this process see that stale state: the poller then read no record for minutes
+    while the run wrote thousands (seen on clean clones). A copy is a new file each time, and
+    the results file itself is first opened when the run has ended."""
     try:
-        with netCDF4.Dataset(results) as root:
+        copy = results.with_name(f"poll-{time.monotonic_ns()}.nc")
+        copy.write_bytes(results.read_bytes())
+    except OSError:
+        return 0
+    try:
+        with netCDF4.Dataset(copy) as root:
             return len(root["dynamics"]["time"]) if "dynamics" in root.groups else 0
     except (OSError, KeyError, IndexError, RuntimeError):
         return 0
+    finally:
+        copy.unlink(missing_ok=True)
 
 
 def _wait_for_records(proc: subprocess.Popen, results: Path, n: int = 1) -> None:
