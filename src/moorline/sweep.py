@@ -65,6 +65,7 @@ tcp://host:8786`` (the optional ``[dask]`` extra).
 from __future__ import annotations
 
 import dataclasses
+import gc
 import importlib
 import itertools
 import logging
@@ -687,9 +688,17 @@ def dask_mapper(scheduler: str | None = None, workers: int | None = None,
             if warm is not None:
                 warm()
             method = "fork" if sys.platform.startswith("linux") else "spawn"
-            with dask.config.set({"distributed.worker.multiprocessing-method": method}):
-                cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
-                                       processes=True, dashboard_address=None)
+            # forked workers share this process's memory copy-on-write; the garbage
+            # collector's first pass in a worker would write to every tracked object (and
+            # so copy every page holding one: +0.6 s on the first case of each worker of the
+            # issue-16 P6 study); frozen objects are left out of the workers' collections
+            gc.freeze()
+            try:
+                with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+                    cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+                                           processes=True, dashboard_address=None)
+            finally:
+                gc.unfreeze()
             client = Client(cluster)
     except (OSError, TimeoutError) as exc:
         raise MoorlineError(f"cannot reach the Dask scheduler {scheduler!r}: {exc}") from None
