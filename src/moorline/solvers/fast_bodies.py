@@ -170,11 +170,16 @@ def kinematic_blocks(bodies, ca, cv1):
 
 
 @numba.njit(**_JIT)
-def _rows(arm, i, c):
-    """``T^T[i, c]``, ``T = [I, -[arm x]]``."""
-    if i < 3:
-        return 1.0 if i == c else 0.0
-    return skew(arm)[i - 3, c]
+def _transposed_maps(arms):
+    """``T^T = [I; [arm x]]`` (n_slaves, 6, 3) of ``T = [I, -[arm x]]``."""
+    out = np.zeros((arms.shape[0], 6, 3))
+    for s in range(arms.shape[0]):
+        A = skew(arms[s])
+        for c in range(3):
+            out[s, c, c] = 1.0
+            for k in range(3):
+                out[s, 3 + c, k] = A[c, k]
+    return out
 
 
 @numba.njit(**_JIT)
@@ -200,6 +205,7 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
     D[:, :] = 0.0
     cv1 = cv / ck
     bx, bv, ba = kinematic_blocks(bodies, ca, cv1)
+    TT = _transposed_maps(arms)
     for e in range(elements.shape[0]):
         if slave_of_node[elements[e, 0]] < 0 and slave_of_node[elements[e, 1]] < 0:
             continue
@@ -218,7 +224,7 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
                     if with_added_mass:
                         val += ca * Ma[e, p, q]
                     for i in range(6):
-                        Cr[6 * slave_body[s_r] + i, col] += _rows(arms[s_r], i, c_p) * val
+                        Cr[6 * slave_body[s_r] + i, col] += TT[s_r, i, c_p] * val
                     continue
                 if s_c < 0:
                     continue
@@ -233,7 +239,7 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
                         BT[d_c + k, row] += mapped[k]
                 else:
                     for i in range(6):
-                        t = _rows(arms[s_r], i, c_p)
+                        t = TT[s_r, i, c_p]
                         if t != 0.0:
                             for k in range(6):
                                 D[6 * slave_body[s_r] + i, d_c + k] += t * mapped[k]
@@ -247,11 +253,7 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
                 for c in range(2):
                     node_c[r, c] = fric_c[n, r, c]
         mapped = node_mass[n] * ba[s] + ck * (mm(node_k, bx[s]) + mm(node_c, bv[s]))
-        TT = np.zeros((6, 3))
-        for i in range(6):
-            for c in range(3):
-                TT[i, c] = _rows(arms[s], i, c)
-        D[d:d + 6, d:d + 6] += mm(TT, mapped)
+        D[d:d + 6, d:d + 6] += mm(TT[s], mapped)
     mass, cog, inertia, added, damping = loads[0], loads[1], loads[2], loads[3], loads[4]
     stiff = np.empty((6, 6))
     d_vel = np.empty((6, 6))

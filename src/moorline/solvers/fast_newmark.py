@@ -14,8 +14,9 @@ tens of microseconds. The element loads come from :func:`moorline.physics.fused.
 effective tangent is assembled straight into band storage (nodes ordered by reverse
 Cuthill-McKee) and factored by a banded LU without pivoting (the effective tangent
 ``M / (beta h^2) + gamma C / (beta h) + K`` is dominated by its mass and stiffness blocks,
-which are symmetric positive definite). Tests compare it step by step with the general
-stepper.
+which are symmetric positive definite). Free rigid bodies border the band with their six
+unknowns each (:mod:`moorline.solvers.fast_bodies`: Schur complement on the body unknowns).
+Tests compare it step by step with the general stepper.
 """
 
 from __future__ import annotations
@@ -456,7 +457,9 @@ class FastStepper:
     (see :func:`~moorline.solvers.fast_path.fast_path_reason` for when it applies), run by
     :func:`newmark_step` inside the compiled loop
     :func:`moorline.solvers.fast_loop.advance_block`: :meth:`step` is a block of one
-    sub-step, :meth:`run_block` many steps."""
+    sub-step, :meth:`run_block` many steps. ``bodies``: the model's free rigid bodies
+    (:class:`~moorline.solvers.body_model.BodyModel`; see
+    :func:`~moorline.solvers.fast_path.body_refusal`), None without bodies."""
 
     def __init__(self, model, coefficients, policy, bodies=None) -> None:
         from .fast_body_inputs import BodyInputs
@@ -477,6 +480,7 @@ class FastStepper:
         n_el, n_nodes = mesh.n_elements, mesh.n_nodes
         # the free rigid bodies (BodyModel; None: none) and the general stepper with them
         # (HHT's forces at a state without them, the error message of a failed step)
+        self.bodies = bodies
         self.body_inputs = BodyInputs(bodies, mesh, n_dof)
         self.general = None if bodies is None else \
             Stepper(model, coefficients, "iterative", policy, bodies)

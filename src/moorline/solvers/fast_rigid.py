@@ -18,15 +18,9 @@ import math
 import numpy as np
 
 from ..jit import numba
+from ..physics.rigid_body import _SMALL  # below it the left Jacobian's series
 
 _JIT = {"cache": True, "fastmath": False, "error_model": "numpy"}
-
-HULL_KINDS = {"none": 0, "box": 1, "cylinder": 1, "matrix": 2}
-"""Hydrostatics kinds the compiled step takes, by the code :func:`static_load` uses: 0 none,
-1 a wall-sided hull (box or vertical cylinder), 2 a constant stiffness matrix with a constant
-buoyancy."""
-
-_SMALL = 1e-4  # below this angle the left Jacobian's coefficients use their series
 
 
 @numba.njit(**_JIT)
@@ -72,19 +66,23 @@ def cross(a, b):
 
 
 @numba.njit(**_JIT)
+def _quadratic(P, b, c):
+    """``I + b P + c P^2``."""
+    P2 = mm(P, P)
+    out = np.eye(3)
+    for i in range(3):
+        for j in range(3):
+            out[i, j] += b * P[i, j] + c * P2[i, j]
+    return out
+
+
+@numba.njit(**_JIT)
 def rotation_matrix(phi):
     """``exp([phi x])`` (Rodrigues; :func:`moorline.physics.rigid_body.rotation_matrix`)."""
     angle = math.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
-    out = np.eye(3)
     if angle < 1e-300:
-        return out
-    K = skew(phi / angle)
-    K2 = mm(K, K)
-    s, c = math.sin(angle), 1.0 - math.cos(angle)
-    for i in range(3):
-        for j in range(3):
-            out[i, j] += s * K[i, j] + c * K2[i, j]
-    return out
+        return np.eye(3)
+    return _quadratic(skew(phi / angle), math.sin(angle), 1.0 - math.cos(angle))
 
 
 @numba.njit(**_JIT)
@@ -98,13 +96,7 @@ def left_jacobian(phi):
     else:
         b = 2.0 * math.sin(0.5 * t) ** 2 / t2
         c = (t - math.sin(t)) / (t2 * t)
-    P = skew(phi)
-    P2 = mm(P, P)
-    out = np.eye(3)
-    for i in range(3):
-        for j in range(3):
-            out[i, j] += b * P[i, j] + c * P2[i, j]
-    return out
+    return _quadratic(skew(phi), b, c)
 
 
 @numba.njit(**_JIT)
@@ -114,13 +106,7 @@ def inverse_left_jacobian(phi):
     t = math.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
     c = 1.0 / 12.0 if t < 1e-6 else \
         1.0 / (t * t) - (1.0 + math.cos(t)) / (2.0 * t * math.sin(t))
-    P = skew(phi)
-    P2 = mm(P, P)
-    out = np.eye(3)
-    for i in range(3):
-        for j in range(3):
-            out[i, j] += -0.5 * P[i, j] + c * P2[i, j]
-    return out
+    return _quadratic(skew(phi), -0.5, c)
 
 
 @numba.njit(**_JIT)
@@ -213,7 +199,8 @@ def _point_load(force, arm, R, load, K):
 def static_load(b, model, r, R, K):
     """Weight, constant load and hydrostatics of body ``b`` (6,) and their tangent ``K``
     (6, 6, filled) (:func:`moorline.solvers.bodies.body_loads` for the kinds of
-    :data:`HULL_KINDS`: :func:`~moorline.physics.rigid_body.gravity_load`,
+    :data:`moorline.solvers.fast_path.HULL_KINDS`:
+    :func:`~moorline.physics.rigid_body.gravity_load`,
     :func:`~moorline.physics.rigid_body.hull_buoyancy` and
     :func:`~moorline.physics.rigid_body.waterplane_restoring` of a box or cylinder,
     :func:`~moorline.physics.rigid_body.matrix_restoring` with a constant buoyancy)."""
