@@ -183,7 +183,7 @@ class _BlockRunner:
         self.end_weight = 0.5 * mesh.weight_per_length[self.end_el] * mesh.length0[self.end_el]
         self.n_lines = len(mesh.line_names)
         self.n_bodies = len(mesh.body_names)
-        self.mooring = _MooringForces(mesh, self.end_el, self.end_side)
+        self.body_records = _BodyRecords(mesh, self.end_el, self.end_side)
 
     def _length(self, remaining: int) -> int:
         loop = self.loop
@@ -245,7 +245,7 @@ class _BlockRunner:
                 "position": block.positions, "velocity": block.velocities,
                 "tension": block.tensions,
                 "end_force": ends.reshape(n_rec, self.n_lines, 2, 3),
-                **self.mooring.records(block),
+                **self.body_records.records(block),
                 "body_pin_force": np.zeros((n_rec, self.n_bodies, 3)),
                 "wave_elevation": self.recorder.elevations(rec_times)})
         if block.stopped < 0:
@@ -549,7 +549,7 @@ def _mooring_forces(mesh: Mesh, state: StepState) -> FloatArray:
     return out
 
 
-class _MooringForces:
+class _BodyRecords:
     """The bodies' records of a block of the compiled loop (:attr:`Block.bodies`): poses,
     velocities and the lines' forces on them as :func:`_mooring_forces` (the attached nodes
     are line ends: their element forces are the block's end forces ``(end_elements,
@@ -558,20 +558,20 @@ class _MooringForces:
     def __init__(self, mesh: Mesh, end_elements: NDArray, end_sides: NDArray) -> None:
         self.n_bodies = len(mesh.body_names)
         ends = mesh.elements[end_elements, end_sides]
-        self.pairs = [(k, np.flatnonzero(ends == node), int(mesh.slave_body[k]), int(node))
+        self.pairs = [(np.flatnonzero(ends == node), int(mesh.slave_body[k]), int(node))
                       for k, node in enumerate(mesh.slave_node)]
 
     def records(self, block) -> dict[str, FloatArray]:
         """``body_pose``, ``body_velocity``, ``body_mooring_force`` (n_rec, nb, 6)."""
         n_rec = len(block.tensions)
-        if not block.bodies:
+        if not self.n_bodies:
             return {"body_pose": np.zeros((n_rec, 0, 6)), "body_velocity": np.zeros((n_rec, 0, 6)),
                     "body_mooring_force": np.zeros((n_rec, 0, 6))}
         from ..physics.rigid_body import rotation_vector
 
         r, R, vel = block.bodies
         mooring = np.zeros((n_rec, self.n_bodies, 6))
-        for _, ends, b, node in self.pairs:
+        for ends, b, node in self.pairs:
             force = block.end_forces[:, ends].sum(axis=1)
             mooring[:, b, :3] += force
             mooring[:, b, 3:] += np.cross(block.positions[:, node] - r[:, b], force)
