@@ -27,8 +27,9 @@ vel0, acc0``, the step ``dq`` and its line-search trial, the evaluated state ``r
 acc1``, the attached nodes' world arms and weighted forces, the non-inertial generalized
 forces at the start of the step and at the evaluated state for HHT); the loads that depend
 on time alone per sub-step (force histories, exciting-force tables; ``(n_sub, nb, 6)``); the
-factorization (``(A^-1 B)^T``, ``C``, ``D``, ``S^-1``). Without bodies every array is empty
-and every function here does nothing.
+factorization (``(A^-1 B)^T``, ``C``, ``D``, ``S^-1``). Without bodies ``bodies`` is None:
+every function here returns at once, and numba prunes the rest, so a model without bodies
+does not compile the bodies' code.
 """
 
 from __future__ import annotations
@@ -58,6 +59,8 @@ _JIT = {"cache": True, "fastmath": False, "error_model": "numpy"}
 @numba.njit(**_JIT)
 def predict(bodies, h):
     """The bodies' predictor ``dq = h v0 + h^2 a0 / 2`` (:meth:`Stepper._predict`)."""
+    if bodies is None:  # no bodies: not compiled in
+        return
     state = bodies[2]
     vel0, acc0, dq = state[2], state[3], state[4]
     for b in range(dq.shape[0]):
@@ -69,6 +72,8 @@ def predict(bodies, h):
 def place(bodies, trial, h, beta, gamma, x, v, a):
     """The bodies after the step (``trial``: its line-search trial) and their attached
     nodes on them (in ``x, v, a``) (:meth:`BodyModel.advance`, :meth:`BodyModel.place`)."""
+    if bodies is None:  # no bodies: not compiled in
+        return
     slave_node, slave_body, slave_arm = bodies[0][0], bodies[0][1], bodies[0][2]
     r0, R0, vel0, acc0, dq_now, dq_try, r1, R1, vel1, acc1, arms = bodies[2][:11]
     dq = dq_try if trial else dq_now
@@ -101,6 +106,8 @@ def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
     (:meth:`Stepper.residual`, :meth:`BodyModel.forces`), with the attached nodes' forces
     of ``buf`` through ``T^T``; returns the max-norm of the whole residual (``norm``: that of
     the band rows; ``inf`` for a NaN)."""
+    if bodies is None:  # no bodies: not compiled in
+        return norm
     slave_node, slave_body = bodies[0][0], bodies[0][1]
     loads = bodies[1]
     (_, _, _, _, _, _, r1, R1, vel1, acc1, arms, other0, other1, node_w) = bodies[2]
@@ -191,6 +198,8 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
     body's block (:meth:`BodyModel.block_parts`: hydrostatics and weight, the attached
     nodes' arms turning under their forces, damping, added mass and the exact rigid-body
     inertia; rotation columns chained by the left Jacobian of the step)."""
+    if bodies is None:  # no bodies: not compiled in
+        return
     slave_node, slave_body, slave_of_node = bodies[0][0], bodies[0][1], bodies[0][3]
     loads = bodies[1]
     (_, _, _, _, dq, _, r1, R1, vel1, acc1, arms, _, _, node_w) = bodies[2]
@@ -277,6 +286,8 @@ def schur(bodies):
     :func:`moorline.solvers.fast_newmark._factor_border`): the inverse of
     ``S = D - C A^-1 B`` (Gauss-Jordan with partial pivoting); False when ``S`` is
     singular."""
+    if bodies is None:  # no bodies: not compiled in
+        return True
     BT, Cr, D, S_inv = bodies[4]
     m = D.shape[0]
     if m == 0:
@@ -327,6 +338,8 @@ def _invert(S, out):
 def solve(bodies, dx):
     """Completes a solve whose band rows ``dx[:n]`` hold ``y = A^-1 r_l``: the bodies' step
     ``dq = S^-1 (r_b - C y)`` into ``dx[n:]`` and ``dx[:n] = y - A^-1 B dq``."""
+    if bodies is None:  # no bodies: not compiled in
+        return
     BT, Cr, _, S_inv = bodies[4]
     m = S_inv.shape[0]
     if m == 0:
@@ -348,6 +361,8 @@ def solve(bodies, dx):
 @numba.njit(**_JIT)
 def try_step(bodies, step, dx):
     """The line-search trial of the bodies: ``dq + step dx[n:]``."""
+    if bodies is None:  # no bodies: not compiled in
+        return
     dq, dq_try = bodies[2][4], bodies[2][5]
     n = dx.shape[0] - 6 * dq.shape[0]
     for b in range(dq.shape[0]):
@@ -358,12 +373,16 @@ def try_step(bodies, step, dx):
 @numba.njit(**_JIT)
 def take_trial(bodies):
     """The trial becomes the iterate."""
+    if bodies is None:  # no bodies: not compiled in
+        return
     bodies[2][4][:, :] = bodies[2][5]
 
 
 @numba.njit(**_JIT)
 def commit(bodies):
     """A converged sub-step: its end state becomes the start of the next."""
+    if bodies is None:  # no bodies: not compiled in
+        return
     state = bodies[2]
     state[0][:, :] = state[6]
     state[1][:, :, :] = state[7]
@@ -375,6 +394,8 @@ def commit(bodies):
 @numba.njit(**_JIT)
 def record(bodies, r, out):
     """The bodies' state into record ``r`` of ``out = (origins, rotations, velocities)``."""
+    if bodies is None:  # no bodies: not compiled in
+        return
     state = bodies[2]
     out[0][r] = state[0]
     out[1][r] = state[1]

@@ -330,7 +330,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     and the viscoelastic elements' update held over the step
     (:func:`~moorline.physics.fused.set_viscoelastic_step`). ``bodies``: the free rigid
     bodies, their state and the border of the tangent (:mod:`moorline.solvers.fast_bodies`;
-    empty arrays without bodies); ``rvec`` then has their ``6 nb`` rows after the band's.
+    None without bodies); ``rvec`` then has their ``6 nb`` rows after the band's.
     Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
@@ -436,6 +436,8 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
 def _factor_border(bodies, lu, bw):
     """The bodies' part of a factorization, after the band's (:func:`fast_bodies.schur`):
     ``A^-1 B`` by band solves, then the Schur complement's inverse."""
+    if bodies is None:
+        return True
     BT = bodies[4][0]
     for k in range(BT.shape[0]):
         _band_solve(lu, bw, BT[k])
@@ -585,7 +587,8 @@ class FastStepper:
         if inputs.nb and self.c.alpha:  # HHT: the bodies' F0
             body_other0 = self.general._body_other(s0)
         body_state = inputs.state(s0.bodies, body_other0)
-        bodies = (inputs.links, inputs.loads, body_state, inputs.forces(times), inputs.work)
+        bodies = None if not inputs.nb else (inputs.links, inputs.loads, body_state,
+                                             inputs.forces(times), inputs.work)
         done, stopped, norm, n_written = advance_block(
             x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
             self._fluid_inputs(times), self.model_args, self.newton_args, self.tan,
