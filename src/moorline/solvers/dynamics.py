@@ -183,6 +183,7 @@ class _BlockRunner:
         self.end_weight = 0.5 * mesh.weight_per_length[self.end_el] * mesh.length0[self.end_el]
         self.n_lines = len(mesh.line_names)
         self.n_bodies = len(mesh.body_names)
+        self.body_records = _BodyRecords(mesh, self.end_el, self.end_side)
 
     def _length(self, remaining: int) -> int:
         loop = self.loop
@@ -244,8 +245,7 @@ class _BlockRunner:
                 "position": block.positions, "velocity": block.velocities,
                 "tension": block.tensions,
                 "end_force": ends.reshape(n_rec, self.n_lines, 2, 3),
-                "body_pose": np.zeros((n_rec, 0, 6)), "body_velocity": np.zeros((n_rec, 0, 6)),
-                "body_mooring_force": np.zeros((n_rec, 0, 6)),
+                **self.body_records.records(block),
                 "body_pin_force": np.zeros((n_rec, self.n_bodies, 3)),
                 "wave_elevation": self.recorder.elevations(rec_times)})
         if block.stopped < 0:
@@ -314,13 +314,13 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     has_bodies = bool(model.mesh.body_names)
     reason = fast_path_reason(model, fluid, settings.scheme, settings.variant, has_bodies,
                               rayleigh is not None)
+    bodies = BodyModel(model.mesh, fluid, start.bodies if start is not None else None) \
+        if has_bodies else None
     if reason is None and settings.fast_path:
         from .fast_newmark import FastStepper  # imports numba: only when it runs
 
-        return FastStepper(model, coefficients, policy)
+        return FastStepper(model, coefficients, policy, bodies)
     logger.info("general stepper (compiled step not used: %s)", reason or "disabled")
-    bodies = BodyModel(model.mesh, fluid, start.bodies if start is not None else None) \
-        if has_bodies else None
     return Stepper(model, coefficients, settings.variant, policy, bodies, rayleigh)
 
 
@@ -450,8 +450,9 @@ def _advance(stepper, excitation: Excitation, state: StepState, h: float,
 
 def _worst(stepper, state: StepState, h: float, constrained, forces) -> str:
     """Where the residual of the predicted state is largest (for the error message)."""
-    general = stepper if isinstance(stepper, Stepper) else Stepper(
-        stepper.model, stepper.c, "iterative", stepper.policy)
+    general = stepper if isinstance(stepper, Stepper) else getattr(
+        stepper, "general", None) or Stepper(stepper.model, stepper.c, "iterative",
+                                             stepper.policy)
     dof = general.worst_dof(state, h, constrained, forces)
     return describe_unknown(stepper.model.mesh, general.bodies.body_dof, dof)
 
@@ -546,6 +547,36 @@ def _mooring_forces(mesh: Mesh, state: StepState) -> FloatArray:
         out[b, :3] += force
         out[b, 3:] += np.cross(arm, force)
     return out
+
+
+class _BodyRecords:
+    """The bodies' records of a block of the compiled loop (:attr:`Block.bodies`): poses,
+    velocities and the lines' forces on them as :func:`_mooring_forces` (the attached nodes
+    are line ends: their element forces are the block's end forces ``(end_elements,
+    end_sides)``)."""
+
+    def __init__(self, mesh: Mesh, end_elements: NDArray, end_sides: NDArray) -> None:
+        self.n_bodies = len(mesh.body_names)
+        ends = mesh.elements[end_elements, end_sides]
+        self.pairs = [(np.flatnonzero(ends == node), int(mesh.slave_body[k]), int(node))
+                      for k, node in enumerate(mesh.slave_node)]
+
+    def records(self, block) -> dict[str, FloatArray]:
+        """``body_pose``, ``body_velocity``, ``body_mooring_force`` (n_rec, nb, 6)."""
+        n_rec = len(block.tensions)
+        if not self.n_bodies:
+            return {"body_pose": np.zeros((n_rec, 0, 6)), "body_velocity": np.zeros((n_rec, 0, 6)),
+                    "body_mooring_force": np.zeros((n_rec, 0, 6))}
+        from ..physics.rigid_body import rotation_vector
+
+        r, R, vel = block.bodies
+        mooring = np.zeros((n_rec, self.n_bodies, 6))
+        for ends, b, node in self.pairs:
+            force = block.end_forces[:, ends].sum(axis=1)
+            mooring[:, b, :3] += force
+            mooring[:, b, 3:] += np.cross(block.positions[:, node] - r[:, b], force)
+        return {"body_pose": np.concatenate((r, rotation_vector(R)), axis=-1),
+                "body_velocity": vel.copy(), "body_mooring_force": mooring}
 
 
 def _end_forces(mesh: Mesh, state: StepState) -> FloatArray:

@@ -29,14 +29,16 @@ import math
 
 from ..jit import numba
 from ..physics.fused import maxwell_forces
+from . import fast_bodies as fb
 from .fast_newmark import _JIT, newmark_step
 
 
 @numba.njit(**_JIT)
 def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, fluid, model,
-              newton, tan, counters, work, other0, strain0, maxwell0):
+              newton, tan, counters, work, other0, strain0, maxwell0, bodies):
     """Sub-step ``j`` of the block from (x0, v0, a0) and the material state (strain0,
-    maxwell0) into (x1, v1, a1); returns (converged, residual max-norm)."""
+    maxwell0) (and the bodies' state in ``bodies``) into (x1, v1, a1); returns (converged,
+    residual max-norm)."""
     (free, band, bw, elements, props, laws, with_drag, with_added_mass, node_mass, external,
      seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, beta,
      gamma, alpha) = model
@@ -61,7 +63,8 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, f
         ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta, gamma, alpha, other0, strain0,
         maxwell0, tol,
         max_iter, refresh, lu, buf, rvec,
-        trial, counters, refresh_ratio, stall_ratio, stall_limit, max_halvings, fluid, j)
+        trial, counters, refresh_ratio, stall_ratio, stall_limit, max_halvings, fluid, j,
+        bodies)
     if refactored:
         tan[0], tan[1], tan[2] = 1.0, h, 0.0
     if not ok:
@@ -73,7 +76,8 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, f
 
 @numba.njit(**_JIT)
 def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixed, fnodes,
-                  fvals, fluid, model, newton, tan, counters, work, other0, saved, out):
+                  fvals, fluid, model, newton, tan, counters, work, other0, saved, out,
+                  bodies):
     """Advance ``len(hs) // per_step`` full steps of ``per_step`` sub-steps of sizes ``hs``.
 
     On entry ``(x0, v0, a0)`` is the state and ``saved``'s strains and Maxwell-branch forces
@@ -86,7 +90,9 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
     (:func:`moorline.solvers.fast_fluid.fluid_at_midpoints`). After full step ``k`` with
     ``record[k]``, the state goes into the next record of ``out = (positions, velocities,
     tensions, end_forces, end_elements, end_sides)``: the end forces are the element forces
-    ``[end_elements[i], end_sides[i]]``.
+    ``[end_elements[i], end_sides[i]]``. ``bodies``: the free rigid bodies
+    (:mod:`moorline.solvers.fast_bodies`), their state carried from sub-step to sub-step like
+    the nodes', their origins, rotations and velocities recorded into ``out[6:9]``.
     ``tan`` = (factorization valid, its step size, its age in steps). ``other0``: the nodal
     forces without inertia at the state (HHT weights them into the next step's residual),
     kept up to date.
@@ -99,7 +105,8 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
     """
     el_forces, tension, strain, f_am, resid, maxwell = saved
     props = model[4]
-    pos, vel, ten, ends, end_el, end_side = out
+    pos, vel, ten, ends, end_el, end_side = out[:6]
+    body_out = out[6:]
     buf = work[1]
     n_steps = hs.shape[0] // per_step
     j = 0
@@ -109,10 +116,11 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
         for i in range(per_step):
             ok, norm = _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes,
                                  fvals, fluid, model, newton, tan, counters, work, other0,
-                                 strain, maxwell)
+                                 strain, maxwell, bodies)
             if not (ok and math.isfinite(norm)):
                 return k, i, norm, r
             maxwell_forces(buf[4], props, maxwell)  # with the rows of this sub-step
+            fb.commit(bodies)
             x0[:, :] = x1
             v0[:, :] = v1
             a0[:, :] = a1
@@ -133,5 +141,6 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
             for q in range(end_el.shape[0]):
                 for c in range(3):
                     ends[r, q, c] = el_forces[end_el[q], end_side[q], c]
+            fb.record(bodies, r, body_out)
             r += 1
     return n_steps, -1, norm, r

@@ -14,8 +14,9 @@ tens of microseconds. The element loads come from :func:`moorline.physics.fused.
 effective tangent is assembled straight into band storage (nodes ordered by reverse
 Cuthill-McKee) and factored by a banded LU without pivoting (the effective tangent
 ``M / (beta h^2) + gamma C / (beta h) + K`` is dominated by its mass and stiffness blocks,
-which are symmetric positive definite). Tests compare it step by step with the general
-stepper.
+which are symmetric positive definite). Free rigid bodies border the band with their six
+unknowns each (:mod:`moorline.solvers.fast_bodies`: Schur complement on the body unknowns).
+Tests compare it step by step with the general stepper.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from ..jit import numba
 from ..physics.fused import _kernel, set_dashpot_shares, set_viscoelastic_step
+from . import fast_bodies as fb
 from .fast_fluid import fluid_at_midpoints
 from .fast_path import fluid_parts
 
@@ -307,7 +309,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                  seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta,
                  gamma, alpha, other0, strain0, maxwell0, tol,
                  max_iter, refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
-                 stall_limit, max_halvings, fluid, j):
+                 stall_limit, max_halvings, fluid, j, bodies):
     """One Newmark (or HHT-alpha: ``alpha`` and the non-inertial forces at the start of the
     step ``other0``, :func:`_residual_norm`) step with modified-Newton iterations: the
     algorithm of :func:`moorline.solvers.newton.solve` (same refresh, line-search,
@@ -326,7 +328,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     elements' strains and Maxwell-branch forces at the start of the step (the material state
     of :class:`~moorline.solvers.dynamic_model.MaterialState`), which set the dashpot shares
     and the viscoelastic elements' update held over the step
-    (:func:`~moorline.physics.fused.set_viscoelastic_step`).
+    (:func:`~moorline.physics.fused.set_viscoelastic_step`). ``bodies``: the free rigid
+    bodies, their state and the border of the tangent (:mod:`moorline.solvers.fast_bodies`;
+    None without bodies); ``rvec`` then has their ``6 nb`` rows after the band's.
     Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
@@ -338,7 +342,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
         if free[n]:
             for c in range(3):
                 x1[n, c] = x0[n, c] + h * v0[n, c]
+    fb.predict(bodies, h)
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
+    fb.place(bodies, False, h, beta, gamma, x1, v1, a1)
     moving = fluid[0] or fluid[6]
     if moving:
         fluid_at_midpoints(x1, elements, j, fluid, uf, af)
@@ -347,6 +353,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
               v_slip, sag_on, sag_active, sag_load, refresh, buf)
     counters[1] += 1
     norm = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
+    norm = fb.residual(bodies, j, buf, rvec, alpha, node_mass, a1, norm)
     have_tangent = refresh
     refactored = False
     stalled = 0
@@ -363,10 +370,13 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                           True, buf)
                 counters[1] += 1
                 norm = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
+                norm = fb.residual(bodies, j, buf, rvec, alpha, node_mass, a1, norm)
             _assemble(lu, bw, band, elements, buf[6], buf[7], buf[8], with_added_mass,
                       node_mass, ca, cv, ck, buf[12], buf[13], buf[14], buf[15], buf[16],
                       seabed_on)
-            if not _band_lu(lu, bw):
+            fb.couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, ck,
+                         seabed_on)
+            if not _band_lu(lu, bw) or not _factor_border(bodies, lu, bw):
                 return False, norm, refactored
             counters[2] += 1
             refactored = True
@@ -376,6 +386,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             merit0 += rvec[k] * rvec[k]
         dx = rvec.copy()
         _band_solve(lu, bw, dx)
+        fb.solve(bodies, dx)
         counters[0] += 1
         step = 1.0  # line-search length
         better = False
@@ -384,7 +395,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                 for c in range(3):
                     k = band[n, c]
                     trial[n, c] = x1[n, c] + (step * dx[k] if k >= 0 else 0.0)
+            fb.try_step(bodies, step, dx)
             _kinematics(x0, v0, a0, trial, h, beta, gamma, free, v1, a1)
+            fb.place(bodies, True, h, beta, gamma, trial, v1, a1)
             if moving:
                 fluid_at_midpoints(trial, elements, j, fluid, uf, af)
             _evaluate(trial, v1, a1, uf, af, elements, props, laws, with_drag,
@@ -392,6 +405,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                       k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, False, buf)
             counters[1] += 1
             n_new = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
+            n_new = fb.residual(bodies, j, buf, rvec, alpha, node_mass, a1, n_new)
             merit = 0.0
             for k in range(rvec.shape[0]):
                 merit += rvec[k] * rvec[k]
@@ -404,16 +418,30 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             refresh = True
             have_tangent = False
             _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
+            fb.place(bodies, False, h, beta, gamma, x1, v1, a1)
             continue
         have_tangent = False  # trials are evaluated without it (made again when refreshed)
         if n_new > refresh_ratio * norm:
             refresh = True
         stalled = stalled + 1 if n_new > stall_ratio * norm else 0
         x1[:, :] = trial
+        fb.take_trial(bodies)
         norm = n_new
         if stall_limit > 0 and stalled >= stall_limit:
             return False, norm, refactored
     return norm <= tol, norm, refactored
+
+
+@numba.njit(**_JIT)
+def _factor_border(bodies, lu, bw):
+    """The bodies' part of a factorization, after the band's (:func:`fast_bodies.schur`):
+    ``A^-1 B`` by band solves, then the Schur complement's inverse."""
+    if bodies is None:
+        return True
+    BT = bodies[4][0]
+    for k in range(BT.shape[0]):
+        _band_solve(lu, bw, BT[k])
+    return fb.schur(bodies)
 
 
 def make_buffers(n_el: int, n_nodes: int) -> tuple:
@@ -431,9 +459,14 @@ class FastStepper:
     (see :func:`~moorline.solvers.fast_path.fast_path_reason` for when it applies), run by
     :func:`newmark_step` inside the compiled loop
     :func:`moorline.solvers.fast_loop.advance_block`: :meth:`step` is a block of one
-    sub-step, :meth:`run_block` many steps."""
+    sub-step, :meth:`run_block` many steps. ``bodies``: the model's free rigid bodies
+    (:class:`~moorline.solvers.body_model.BodyModel`; see
+    :func:`~moorline.solvers.fast_path.body_refusal`), None without bodies."""
 
-    def __init__(self, model, coefficients, policy) -> None:
+    def __init__(self, model, coefficients, policy, bodies=None) -> None:
+        from .fast_body_inputs import BodyInputs
+        from .newmark import Stepper
+
         mesh = model.mesh
         self.model = model
         self.c = coefficients
@@ -447,7 +480,14 @@ class FastStepper:
         self.counts = np.zeros(3, dtype=np.int64)
         self.fixed = np.flatnonzero(~self.free)
         n_el, n_nodes = mesh.n_elements, mesh.n_nodes
-        self.work = (self.lu, self.buf, np.zeros(n_dof), np.zeros((n_nodes, 3)),
+        # the free rigid bodies (BodyModel; None: none) and the general stepper with them
+        # (HHT's forces at a state without them, the error message of a failed step)
+        self.bodies = bodies
+        self.body_inputs = BodyInputs(bodies, mesh, n_dof)
+        self.general = None if bodies is None else \
+            Stepper(model, coefficients, "iterative", policy, bodies)
+        self.work = (self.lu, self.buf, np.zeros(n_dof + 6 * self.body_inputs.nb),
+                     np.zeros((n_nodes, 3)),
                      np.zeros((n_nodes, 3)), np.zeros((n_el, 3)), np.zeros((n_el, 3)))
         f = model._fused
         mu, v_slip = (model.friction[0], model.friction[2]) if model.friction else (0.0, 1.0)
@@ -485,12 +525,14 @@ class FastStepper:
         self.tan[0] = 0.0
 
     def tangent_state(self) -> tuple:
-        """The banded factors and their age (see :meth:`Stepper.tangent_state`)."""
-        return self.lu.copy(), self.tan.copy()
+        """The banded factors, the bodies' border and their age (see
+        :meth:`Stepper.tangent_state`)."""
+        return self.lu.copy(), self.tan.copy(), self.body_inputs.tangent_state()
 
     def set_tangent_state(self, saved: tuple) -> None:
         """Restore what :meth:`tangent_state` returned."""
-        self.lu[...], self.tan[...] = saved
+        self.lu[...], self.tan[...] = saved[:2]
+        self.body_inputs.set_tangent_state(saved[2])
 
     @property
     def counters(self) -> dict:
@@ -536,14 +578,21 @@ class FastStepper:
                  np.empty((n_nodes, 3)), np.empty((n_nodes, 3)),
                  np.array(material.maxwell, dtype=float))
         n_rec = int(np.count_nonzero(record))
+        inputs = self.body_inputs
         out = (np.empty((n_rec, n_nodes, 3)), np.empty((n_rec, n_nodes, 3)),
                np.empty((n_rec, n_el)), np.empty((n_rec, len(end_elements), 3)),
-               end_elements, end_sides)
+               end_elements, end_sides, *inputs.records(n_rec))
         other0 = s0.evaluation.nodal - s0.evaluation.inertial  # HHT: F0 - F_am0
+        body_other0 = None
+        if inputs.nb and self.c.alpha:  # HHT: the bodies' F0
+            body_other0 = self.general._body_other(s0)
+        body_state = inputs.state(s0.bodies, body_other0)
+        bodies = None if not inputs.nb else (inputs.links, inputs.loads, body_state,
+                                             inputs.forces(times), inputs.work)
         done, stopped, norm, n_written = advance_block(
             x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
             self._fluid_inputs(times), self.model_args, self.newton_args, self.tan,
-            self.counts, self.work, other0, saved, out)
+            self.counts, self.work, other0, saved, out, bodies)
         n_sub = done * per_step + max(stopped, 0)
         state = s0
         if n_sub:
@@ -554,9 +603,17 @@ class FastStepper:
             nodal = resid + self.model.node_mass[:, None] * a0  # F without structural inertia
             ev = Evaluation(nodal, f_am, tension,
                             MaterialState(strain, maxwell, material.peak), el_forces)
-            state = StepState(float(times[n_sub - 1]), x0, v0, a0, ev.material, ev)
+            poses, body_other = None, None
+            if inputs.nb:
+                from .bodies import BodyState
+
+                poses = BodyState(*(q.copy() for q in body_state[:4]))
+                body_other = body_state[11].copy()
+            state = StepState(float(times[n_sub - 1]), x0, v0, a0, ev.material, ev, poses,
+                              body_other)
         return Block(state, int(done), int(stopped), float(norm), out[0][:n_written],
-                     out[1][:n_written], out[2][:n_written], out[3][:n_written])
+                     out[1][:n_written], out[2][:n_written], out[3][:n_written],
+                     tuple(q[:n_written] for q in out[6:]))
 
     def step(self, s0, h: float, constrained, point_forces):
         """Advance from ``s0`` by ``h`` (see :meth:`Stepper.step`): a block of one step."""
@@ -575,7 +632,7 @@ class Block:
     """What :meth:`FastStepper.run_block` did: the state after the last converged sub-step,
     the full steps done, the sub-step of the next step where it stopped (-1: none) and its
     residual max-norm, and the records (positions, velocities, tensions, the element forces
-    at the line ends)."""
+    at the line ends; the bodies' origins, rotation matrices and velocities)."""
 
     state: object
     steps: int
@@ -585,3 +642,4 @@ class Block:
     velocities: FloatArray
     tensions: FloatArray
     end_forces: FloatArray
+    bodies: tuple = ()

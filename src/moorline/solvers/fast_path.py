@@ -1,22 +1,28 @@
 """When the compiled time step (:mod:`moorline.solvers.fast_newmark`) can run a model.
 
 Kept apart from the compiled step so that deciding does not import numba: a model the
-compiled step cannot run (bodies, MoorDyn's viscoelastic ropes, bending...) takes the general
-stepper without loading it.
+compiled step cannot run (fixed or pinned bodies, MoorDyn's viscoelastic ropes, bending...)
+takes the general stepper without loading it.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["fast_path_reason", "fluid_parts"]
+__all__ = ["HULL_KINDS", "body_refusal", "fast_path_reason", "fluid_parts"]
+
+HULL_KINDS = {"none": 0, "box": 1, "cylinder": 1, "matrix": 2}
+"""Hydrostatics the compiled step takes (:func:`moorline.solvers.fast_rigid.static_load`),
+by its code there: 0 none, 1 a wall-sided hull (box or vertical cylinder), 2 a constant
+stiffness matrix with a constant buoyancy."""
 
 
 def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
                      rayleigh: bool = False) -> str | None:
-    """Why the compiled step cannot run this model (None when it can)."""
-    if bodies:
-        return "rigid bodies"
+    """Why the compiled step cannot run this model (None when it can). ``bodies``: the
+    model's mesh has rigid bodies (:func:`body_refusal`)."""
+    if bodies and (reason := body_refusal(model.mesh)) is not None:
+        return reason
     if rayleigh:
         return "Rayleigh damping"
     if model._fused is None:  # the numpy kernel, the incremental SLS update, MoorDyn's ropes
@@ -59,3 +65,23 @@ def fluid_parts(fluid):
     if current is not None and not (isinstance(current, CurrentProfile) and uniform(current)):
         return None
     return waves, current
+
+
+def body_refusal(mesh) -> str | None:
+    """Why the compiled step cannot run the bodies of ``mesh`` (None when it can): it takes
+    free bodies with weight, constant loads and force histories, constant added mass and
+    damping, hydrostatics of :data:`HULL_KINDS` and exciting-force tables
+    (:mod:`moorline.solvers.fast_bodies`)."""
+    for body in mesh.bodies:
+        name = body.name
+        if body.kind != "free":
+            return f"a {body.kind} body ({name})"
+        if getattr(body, "radiation", None) is not None:
+            return f"a radiation table (Cummins memory) on body {name}"
+        if body.hydrostatics.kind not in HULL_KINDS:
+            return f"{body.hydrostatics.kind} hydrostatics on body {name}"
+        if np.any(np.asarray(body.drag_area, dtype=float)):
+            return f"drag on body {name}"
+        if body.wave_loads:
+            return f"long-wave loads on body {name}"
+    return None

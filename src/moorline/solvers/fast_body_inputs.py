@@ -1,0 +1,117 @@
+"""The arrays the compiled step with bodies takes (:mod:`moorline.solvers.fast_bodies`), built
+from a :class:`~moorline.solvers.body_model.BodyModel`: the attached nodes, the bodies'
+constants, their state at the start of a block and the loads that depend on time alone at its
+sub-steps (force histories, :meth:`BodyModel._excitation`'s exciting-force tables)."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..physics.rigid_body import rotation_matrix, waterplane
+from .bodies import BodyState
+from .excitation import history_values, ramps
+from .fast_path import HULL_KINDS
+
+FloatArray = NDArray[np.float64]
+
+
+def _square(value, n: int = 6) -> FloatArray:
+    """A matrix given as None (zeros), its diagonal or itself (n, n)."""
+    if value is None:
+        return np.zeros((n, n))
+    value = np.asarray(value, dtype=float)
+    return np.diag(value) if value.ndim == 1 else value
+
+
+class BodyInputs:
+    """The compiled step's ``bodies`` argument for the free bodies of ``body_model`` (None:
+    no bodies, every array empty) on a band of ``n_band`` rows."""
+
+    def __init__(self, body_model, mesh, n_band: int) -> None:
+        from .body_model import _exciting_terms
+
+        self.model = body_model
+        bodies = [] if body_model is None else body_model.bodies
+        nb = len(bodies)
+        self.nb = nb
+        node = np.asarray(mesh.slave_node if nb else np.zeros(0), dtype=np.int64)
+        slave_of_node = np.full(mesh.n_nodes, -1, dtype=np.int64)
+        slave_of_node[node] = np.arange(len(node))
+        self.links = (node, np.asarray(mesh.slave_body if nb else np.zeros(0), dtype=np.int64),
+                      np.asarray(mesh.slave_arm if nb else np.zeros((0, 3)),
+                                 dtype=float).reshape(-1, 3), slave_of_node)
+        hs = [b.hydrostatics for b in bodies]
+        planes = [waterplane(h.kind, h.length, h.width, h.diameter) for h in hs]
+        f8 = np.float64
+        self.loads = (
+            np.array([b.mass for b in bodies], dtype=f8),
+            np.array([b.center_of_gravity for b in bodies], dtype=f8).reshape(nb, 3),
+            np.array([_square(b.inertia, 3) for b in bodies], dtype=f8).reshape(nb, 3, 3),
+            np.array(body_model.added if nb else [], dtype=f8).reshape(nb, 6, 6),
+            np.array(body_model.damping if nb else [], dtype=f8).reshape(nb, 6, 6),
+            np.array([b.force for b in bodies], dtype=f8).reshape(nb, 6),
+            np.array([HULL_KINDS[h.kind] for h in hs], dtype=np.int64),
+            np.array([p[0] for p in planes], dtype=f8),
+            np.array([h.height for h in hs], dtype=f8),
+            np.array([p[1] for p in planes], dtype=f8).reshape(nb, 2),
+            np.array([h.volume for h in hs], dtype=f8),
+            np.array([h.center_of_buoyancy for h in hs], dtype=f8).reshape(nb, 3),
+            np.array([_square(h.stiffness) for h in hs], dtype=f8).reshape(nb, 6, 6),
+            np.array([b.position for b in bodies], dtype=f8).reshape(nb, 3),
+            rotation_matrix(np.array([b.rotation for b in bodies], dtype=f8).reshape(nb, 3)),
+            float(mesh.gravity), float(mesh.water_density))
+        self.exciting = [None if b.excitation is None else
+                         _exciting_terms(b.excitation, body_model.fluid, body_model.origin0[k])
+                         for k, b in enumerate(bodies)]
+        m = 6 * nb
+        self.work = (np.zeros((m, n_band)), np.zeros((m, n_band)), np.zeros((m, m)),
+                     np.zeros((m, m)))
+
+    def state(self, bs: BodyState | None, other0: FloatArray | None) -> tuple:
+        """The state arrays at the start of a block: the bodies ``bs`` and their
+        non-inertial generalized forces ``other0`` (HHT; None: zeros)."""
+        nb = self.nb
+        z6 = np.zeros((nb, 6))
+        if nb == 0:
+            r, R, vel, acc = np.zeros((0, 3)), np.zeros((0, 3, 3)), z6, z6.copy()
+        else:
+            r, R, vel, acc = (np.array(q, dtype=float) for q in (bs.r, bs.R, bs.vel, bs.acc))
+        ns = len(self.links[0])
+        return (r, R, vel, acc, z6.copy(), z6.copy(), r.copy(), R.copy(), vel.copy(),
+                acc.copy(), np.zeros((ns, 3)),
+                z6.copy() if other0 is None else np.array(other0, dtype=float), z6.copy(),
+                np.zeros((ns, 3)))
+
+    def forces(self, times: FloatArray) -> FloatArray:
+        """Loads on the bodies that depend on time alone at ``times`` (n,): (n, nb, 6)
+        (:meth:`BodyModel.forces`'s force histories and exciting forces)."""
+        times = np.asarray(times, dtype=float)
+        out = np.zeros((len(times), self.nb, 6))
+        for k in range(self.nb):
+            body = self.model.bodies[k]
+            if body.force_history is not None:
+                out[:, k, :3] += history_values(body.force_history, times)
+            terms = self.exciting[k]
+            if terms is not None:  # rigid_body.wave_excitation at every time
+                a, w, shift, amp, phase, ramp_time = terms
+                arg = w[None, :] * times[:, None] - shift[None, :]  # cos(arg + phase) split
+                scaled = a[:, None] * amp
+                load = np.cos(arg) @ (scaled * np.cos(phase)) \
+                    - np.sin(arg) @ (scaled * np.sin(phase))
+                out[:, k] += ramps(times, ramp_time)[0][:, None] * load
+        return out
+
+    def records(self, n: int) -> tuple:
+        """Record buffers (origins, rotations, velocities) for ``n`` records."""
+        return (np.empty((n, self.nb, 3)), np.empty((n, self.nb, 3, 3)),
+                np.empty((n, self.nb, 6)))
+
+    def tangent_state(self) -> tuple:
+        """Copies of the factorization's border."""
+        return tuple(w.copy() for w in self.work)
+
+    def set_tangent_state(self, saved: tuple) -> None:
+        """Restore what :meth:`tangent_state` returned."""
+        for w, s in zip(self.work, saved, strict=True):
+            w[...] = s

@@ -1,0 +1,246 @@
+"""Compiled rigid-body kernels for the compiled time step with bodies
+(:mod:`moorline.solvers.fast_bodies`): the rotation maps, the rigid-body inertia and the
+static loads of one body with their exact tangents.
+
+They are the formulas of :mod:`moorline.physics.rigid_body` (and of
+:func:`moorline.solvers.bodies.body_loads`, which combines them) written for one body at a
+time in numba, with the same conventions: ``R <- exp([dtheta x]) R``, tangents
+``K = -d load / d(dr, dtheta)``, loads about the body origin in world axes. Sources as
+there: Tuah (1982) eq. 3.2.c.20 / 3.3.1 (constant added mass, damping, hydrostatic
+restoring), Wang, Er and Iu eq. 24-30 (the box's buoyancy and waterplane restoring), and the
+Newton-Euler rigid-body equations about a point off the centre of gravity.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..jit import numba
+from ..physics.rigid_body import _SMALL  # below it the left Jacobian's series
+
+_JIT = {"cache": True, "fastmath": False, "error_model": "numpy"}
+
+
+@numba.njit(**_JIT)
+def skew(v):
+    """``[v x]`` (3, 3)."""
+    out = np.zeros((3, 3))
+    out[0, 1], out[0, 2] = -v[2], v[1]
+    out[1, 0], out[1, 2] = v[2], -v[0]
+    out[2, 0], out[2, 1] = -v[1], v[0]
+    return out
+
+
+@numba.njit(**_JIT)
+def mm(A, B):
+    """``A @ B`` of small matrices."""
+    out = np.zeros((A.shape[0], B.shape[1]))
+    for i in range(A.shape[0]):
+        for k in range(A.shape[1]):
+            a = A[i, k]
+            if a != 0.0:
+                for j in range(B.shape[1]):
+                    out[i, j] += a * B[k, j]
+    return out
+
+
+@numba.njit(**_JIT)
+def mv(A, x):
+    """``A @ x`` of a small matrix."""
+    out = np.zeros(A.shape[0])
+    for i in range(A.shape[0]):
+        s = 0.0
+        for k in range(A.shape[1]):
+            s += A[i, k] * x[k]
+        out[i] = s
+    return out
+
+
+@numba.njit(**_JIT)
+def cross(a, b):
+    """``a x b``."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
+
+
+@numba.njit(**_JIT)
+def _quadratic(P, b, c):
+    """``I + b P + c P^2``."""
+    P2 = mm(P, P)
+    out = np.eye(3)
+    for i in range(3):
+        for j in range(3):
+            out[i, j] += b * P[i, j] + c * P2[i, j]
+    return out
+
+
+@numba.njit(**_JIT)
+def rotation_matrix(phi):
+    """``exp([phi x])`` (Rodrigues; :func:`moorline.physics.rigid_body.rotation_matrix`)."""
+    angle = math.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
+    if angle < 1e-300:
+        return np.eye(3)
+    return _quadratic(skew(phi / angle), math.sin(angle), 1.0 - math.cos(angle))
+
+
+@numba.njit(**_JIT)
+def left_jacobian(phi):
+    """SO(3) left Jacobian ``I + (1 - cos t) / t^2 P + (t - sin t) / t^3 P^2``, series below
+    1e-4 rad (:func:`moorline.physics.rigid_body.left_jacobian`)."""
+    t2 = phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2]
+    t = math.sqrt(t2)
+    if t < _SMALL:
+        b, c = 0.5 - t2 / 24.0, 1.0 / 6.0 - t2 / 120.0
+    else:
+        b = 2.0 * math.sin(0.5 * t) ** 2 / t2
+        c = (t - math.sin(t)) / (t2 * t)
+    return _quadratic(skew(phi), b, c)
+
+
+@numba.njit(**_JIT)
+def inverse_left_jacobian(phi):
+    """``I - P / 2 + (1 / t^2 - (1 + cos t) / (2 t sin t)) P^2``, series below 1e-6 rad
+    (:func:`moorline.physics.rigid_body.inverse_left_jacobian`)."""
+    t = math.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
+    c = 1.0 / 12.0 if t < 1e-6 else \
+        1.0 / (t * t) - (1.0 + math.cos(t)) / (2.0 * t * math.sin(t))
+    return _quadratic(skew(phi), -0.5, c)
+
+
+@numba.njit(**_JIT)
+def rotation_vector(R):
+    """The log map, ``|phi| <= pi`` (:func:`moorline.physics.rigid_body.rotation_vector`:
+    ``t / (2 sin t) w``; near ``t = pi`` the axis from the symmetric part)."""
+    w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    cos = min(max((R[0, 0] + R[1, 1] + R[2, 2] - 1.0) / 2.0, -1.0), 1.0)
+    angle = math.acos(cos)
+    scale = 0.5 if angle < 1e-8 else angle / (2.0 * math.sin(angle))
+    s2 = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+    if not (cos < 0.0 and s2 < 2e-2):
+        return scale * w
+    t = math.atan2(0.5 * s2, cos)
+    B = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            B[i, j] = (0.5 * (R[i, j] + R[j, i]) - (cos if i == j else 0.0)) / (1.0 - cos)
+    i = 0
+    for k in range(1, 3):
+        if B[k, k] > B[i, i]:
+            i = k
+    n = B[:, i] / math.sqrt(max(B[i, i], 1e-300))
+    sign = -1.0 if n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0.0 else 1.0
+    return (sign * t) * n
+
+
+@numba.njit(**_JIT)
+def rigid_mass(m, cog, inertia, R):
+    """Rigid-body mass matrix about the origin, world axes
+    (:func:`moorline.physics.rigid_body.rigid_mass`); ``inertia`` (3, 3) body frame about
+    the centre of gravity."""
+    c = mv(R, cog)
+    I_G = mm(mm(R, inertia), R.T.copy())
+    S = skew(c)
+    S2 = mm(S, S)
+    M = np.zeros((6, 6))
+    for i in range(3):
+        M[i, i] = m
+        for j in range(3):
+            M[i, 3 + j] = -m * S[i, j]
+            M[3 + i, j] = m * S[i, j]
+            M[3 + i, 3 + j] = I_G[i, j] - m * S2[i, j]
+    return M
+
+
+@numba.njit(**_JIT)
+def inertia_load(m, cog, inertia, R, vel, acc, d_vel, d_rot):
+    """Rigid-body inertia ``(F, M)`` about the origin (6,)
+    (:func:`moorline.physics.rigid_body.inertia_load`: ``F = m (a + alpha x c + w x (w x
+    c))``, ``M = c x F + I_G alpha + w x (I_G w)``); fills its exact derivatives with respect
+    to velocity ``d_vel`` and rotation ``d_rot`` (6, 6) (``d / d acc`` is
+    :func:`rigid_mass`)."""
+    c = mv(R, cog)
+    I_G = mm(mm(R, inertia), R.T.copy())
+    w, al = vel[3:].copy(), acc[3:].copy()
+    Sc, Sw, Sal = skew(c), skew(w), skew(al)
+    wc = cross(w, c)
+    F = m * (acc[:3] + cross(al, c) + cross(w, wc))
+    I_al, I_w = mv(I_G, al), mv(I_G, w)
+    M = cross(c, F) + I_al + cross(w, I_w)
+    load = np.empty(6)
+    load[:3], load[3:] = F, M
+    dF_dw = -m * (skew(wc) + mm(Sw, Sc))
+    dM_dw = mm(Sc, dF_dw) - skew(I_w) + mm(Sw, I_G)
+    dF_de = -m * mm(Sal + mm(Sw, Sw), Sc)
+    dM_de = (mm(skew(F), Sc) + mm(Sc, dF_de) - skew(I_al) + mm(I_G, Sal)
+             - mm(Sw, skew(I_w)) + mm(mm(Sw, I_G), Sw))
+    d_vel[:, :] = 0.0
+    d_rot[:, :] = 0.0
+    d_vel[:3, 3:] = dF_dw
+    d_vel[3:, 3:] = dM_dw
+    d_rot[:3, 3:] = dF_de
+    d_rot[3:, 3:] = dM_de
+    return load
+
+
+@numba.njit(**_JIT)
+def _point_load(force, arm, R, load, K):
+    """Adds a constant world ``force`` at the body point ``arm``
+    (:func:`moorline.physics.rigid_body.point_load`): ``(f, (R arm) x f)``, and
+    ``K_rot = -[f x][R arm x]``."""
+    world = mv(R, arm)
+    load[:3] += force
+    load[3:] += cross(world, force)
+    K[3:, 3:] -= mm(skew(force), skew(world))
+
+
+@numba.njit(**_JIT)
+def static_load(b, model, r, R, K):
+    """Weight, constant load and hydrostatics of body ``b`` (6,) and their tangent ``K``
+    (6, 6, filled) (:func:`moorline.solvers.bodies.body_loads` for the kinds of
+    :data:`moorline.solvers.fast_path.HULL_KINDS`:
+    :func:`~moorline.physics.rigid_body.gravity_load`,
+    :func:`~moorline.physics.rigid_body.hull_buoyancy` and
+    :func:`~moorline.physics.rigid_body.waterplane_restoring` of a box or cylinder,
+    :func:`~moorline.physics.rigid_body.matrix_restoring` with a constant buoyancy)."""
+    (mass, cog, inertia, added, damping, force, kind, area, height, wp_inertia, volume,
+     cob, stiffness, ref_r, ref_R, gravity, rho) = model
+    K[:, :] = 0.0
+    load = force[b].copy()
+    _point_load(np.array([0.0, 0.0, -mass[b] * gravity]), cog[b], R, load, K)
+    rg = rho * gravity
+    if kind[b] == 1:  # wall-sided hull: buoyancy of the draft, waterplane restoring
+        h = height[b]
+        depth = h / 2.0 - r[2]
+        draft = min(max(depth, 0.0), h)
+        d_draft = -1.0 if 0.0 < depth < h else 0.0
+        lift = rg * area[b] * draft
+        center = np.array([0.0, 0.0, -h / 2.0 + draft / 2.0])
+        _point_load(np.array([0.0, 0.0, lift]), center, R, load, K)
+        arm = mv(R, center)
+        d_lift = rg * area[b] * d_draft
+        K[2, 2] -= d_lift
+        # the rising centre of buoyancy: d_arm x B + arm x dB
+        d_arm = 0.5 * d_draft * R[:, 2].copy()
+        turn = cross(d_arm, np.array([0.0, 0.0, lift])) \
+            + cross(arm, np.array([0.0, 0.0, d_lift]))
+        for i in range(3):
+            K[3 + i, 2] -= turn[i]
+        tilt = rotation_vector(R)
+        J_inv = inverse_left_jacobian(tilt)
+        for i in range(2):
+            restoring = rg * wp_inertia[b, i]
+            load[3 + i] -= restoring * tilt[i]
+            for j in range(3):
+                K[3 + i, 3 + j] += restoring * J_inv[i, j]
+    elif kind[b] == 2:  # constant buoyancy at the centre of buoyancy, constant stiffness
+        _point_load(np.array([0.0, 0.0, rg * volume[b]]), cob[b], R, load, K)
+        turn = rotation_vector(mm(R, ref_R[b].T.copy()))
+        q = np.empty(6)
+        q[:3], q[3:] = r - ref_r[b], turn
+        load -= mv(stiffness[b], q)
+        jac = np.eye(6)
+        jac[3:, 3:] = inverse_left_jacobian(turn)
+        K += mm(stiffness[b], jac)
+    return load
