@@ -85,6 +85,26 @@ def test_run_without_plots_needs_neither_xarray_nor_matplotlib(tmp_path: Path) -
 
 
 @pytest.mark.skipif(not (ROOT / "cases" / "oc3_dynamics.yaml").is_file(), reason="no case file")
+def test_cached_kernels_load_without_numba_compiler_registries(tmp_path: Path) -> None:
+    """A second run loads the compiled kernels from numba's cache without refreshing numba's
+    compiler context (moorline.jit): its lowering registries (``numba.np.linalg``...)
+    stay unimported; the first run may have compiled them (a cold cache) and needed them.
+    Both runs write the same summary."""
+    case = tmp_path / "short.yaml"
+    text = (ROOT / "cases" / "oc3_dynamics.yaml").read_text(encoding="utf-8")
+    case.write_text(re.sub(r"duration: *[0-9.]+", "duration: 1", text), encoding="utf-8")
+    names = ("numba", "numba.np.linalg", "numba.typed.typeddict", "numba.misc.gdb_hook")
+    summaries = []
+    for k in range(2):
+        out = tmp_path / f"out{k}"
+        loaded = _loaded_by_cli("run", str(case), "--no-plots", "-q", "--json", "--out",
+                                str(out), names=names)
+        summaries.append((out / "oc3-dynamics" / "summary.json").read_text(encoding="utf-8"))
+    assert loaded == {"numba"}
+    assert summaries[0] == summaries[1]
+
+
+@pytest.mark.skipif(not (ROOT / "cases" / "oc3_dynamics.yaml").is_file(), reason="no case file")
 def test_a_run_the_compiled_step_cannot_take_does_not_import_numba(tmp_path: Path) -> None:
     """Viscoelastic lines with the source's incremental update: the general stepper with the
     numpy kernels; deciding so does not load numba (moorline.solvers.fast_path)."""
