@@ -20,7 +20,6 @@ import logging
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh, discretize, with_loads_of
@@ -266,7 +265,7 @@ class _NewtonStatics:
     def __init__(self, model: StaticModel, lam: float, max_step: float) -> None:
         self.model, self.lam, self.max_step = model, lam, max_step
         self.dof = model.mesh.dof_of_node
-        self.factorizer = SparseFactor(model.pattern)
+        self.factorizer = SparseFactor.for_few_solves(model.pattern)
         self.shift = _shift(model)
 
     def residual(self, x: FloatArray, tangent: bool) -> _StaticTrial:
@@ -275,10 +274,10 @@ class _NewtonStatics:
     def factorize(self, x: FloatArray, trial: _StaticTrial) -> SparseFactor:
         if not self.model.friction:  # friction's stuck zone is near-singular: always shift
             try:
-                return self.factorizer.factor(self.model.tangent(x).data)
+                return self.factorizer.factor(self.model.tangent_values(x))
             except np.linalg.LinAlgError:  # a pile free to slide: the shifted matrix
                 pass
-        return self.factorizer.factor(self.model.tangent(x, shift=self.shift).data)
+        return self.factorizer.factor(self.model.tangent_values(x, shift=self.shift))
 
     def update(self, x: FloatArray, du: FloatArray) -> FloatArray:
         return x + scatter_free(du, self.dof)
@@ -393,6 +392,8 @@ def _relaxation(model, x, start, target, settings, counters):
         if K is None or K_age >= settings.stiffness_update:
             K, K_age = model.tangent(x), 0
             counters.tangents += 1
+        import scipy.sparse as sp
+
         shift = sp.identity(K.shape[0], format="csr") * (damping / settings.pseudo_dt)
         counters.factorizations += 1
         try:
