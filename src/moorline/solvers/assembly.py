@@ -6,8 +6,9 @@ free degrees of freedom to its slot in a CSR matrix, once. Assembling is then a 
 
 scipy is imported where a matrix object, a banded LAPACK factorization or SuperLU is used
 (about 0.15 s at a process' first use): the stored entries (:meth:`BlockPattern.values`),
-the ordering (:mod:`moorline.solvers.rcm`) and a small system's dense factorization
-(:class:`SparseFactor` with ``dense_below``) do without it.
+the ordering (:mod:`moorline.solvers.rcm`) and the factorization of a small system solved a
+few times (:meth:`SparseFactor.for_few_solves`, :mod:`moorline.solvers.band_lu`) do without
+it.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from .band_lu import MAX_SMALL, BandLU
 from .rcm import reverse_cuthill_mckee
 
 if TYPE_CHECKING:
@@ -24,11 +26,6 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
-
-DENSE_DOFS = 400
-"""One-off solves of fewer unknowns than this (a statics' Newton steps, the condensed
-stiffness) are done dense by numpy: a few ms at 400 unknowns, where the sparse and band
-factorizations import scipy (about 0.15 s)."""
 
 
 class BlockPattern:
@@ -141,34 +138,35 @@ class SparseFactor:
     narrow-banded (cables: nodes along lines), LAPACK's banded LU (``dgbtrf``/``dgbtrs``) is
     used, filled through a precomputed map from storage slots to band positions: cost linear
     in the number of unknowns and a few microseconds of Python per call. Otherwise SuperLU.
-    With ``dense_below``, a system of fewer unknowns is factored dense by numpy instead (LU
-    with partial pivoting, kept as the inverse: a few ms at 400 unknowns, no scipy), for
-    one-off solves such as a statics' few Newton steps; a time loop keeps the band.
+    With ``small_below``, a narrow-banded system of fewer unknowns is factored by
+    :class:`moorline.solvers.band_lu.BandLU` instead (the same algorithm in Python, a
+    millisecond at 171 unknowns, no scipy): for a few solves, such as a statics' Newton
+    steps (:meth:`for_few_solves`); a time loop keeps LAPACK.
     """
 
     def __init__(self, pattern: BlockPattern, max_band: int = 120,
-                 dense_below: int = 0) -> None:
+                 small_below: int = 0) -> None:
         self.pattern = pattern
         n = pattern.n
-        self.dense = 0 < n < dense_below
-        perm = (np.arange(n) if self.dense
-                else reverse_cuthill_mckee(pattern.indptr, pattern.indices).astype(np.int64))
+        perm = reverse_cuthill_mckee(pattern.indptr, pattern.indices).astype(np.int64)
         inverse = np.empty_like(perm)
         inverse[perm] = np.arange(n)
         rows, cols = inverse[pattern.rows], inverse[pattern.indices]
         self.kl = int(np.max(rows - cols, initial=0))
         self.ku = int(np.max(cols - rows, initial=0))
-        self.banded = not self.dense and n > 0 and self.kl + self.ku + 1 <= max_band
+        self.banded = n > 0 and self.kl + self.ku + 1 <= max_band
+        self.small = self.banded and n < small_below
         self.perm, self.inverse = perm, inverse
         self.shape = (2 * self.kl + self.ku + 1, n)
         self.band_slot = (self.kl + self.ku + rows - cols) * n + cols
+        self._permuted = (rows, cols)
         self._lu = None
 
     @classmethod
     def for_few_solves(cls, pattern: BlockPattern) -> SparseFactor:
         """The factorization of a pattern factored a few times only (a statics' Newton
-        steps): dense below :data:`DENSE_DOFS` unknowns."""
-        return cls(pattern, dense_below=DENSE_DOFS)
+        steps): in Python below :data:`~moorline.solvers.band_lu.MAX_SMALL` unknowns."""
+        return cls(pattern, small_below=MAX_SMALL)
 
     def factor(self, data: FloatArray) -> SparseFactor:
         """Factorize the matrix with entries ``data`` (storage order of the pattern).
@@ -179,8 +177,10 @@ class SparseFactor:
             When a pivot is exactly zero.
         """
         p = self.pattern
-        if self.dense:
-            self._lu = np.linalg.inv(p.dense(data))
+        if self.small:
+            matrix = np.zeros((p.n, p.n))
+            matrix[self._permuted] = data
+            self._lu = BandLU(matrix, self.kl, self.ku)
         elif self.banded:
             from scipy.linalg.lapack import dgbtrf
 
@@ -196,8 +196,8 @@ class SparseFactor:
 
     def solve(self, rhs: FloatArray) -> FloatArray:
         """Solve with the last factorization."""
-        if self.dense:
-            return self._lu @ rhs
+        if self.small:
+            return self._lu.solve(rhs[self.perm])[self.inverse]
         if not self.banded:
             return self._lu.solve(rhs)
         from scipy.linalg.lapack import dgbtrs

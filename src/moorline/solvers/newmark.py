@@ -38,15 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..physics.rigid_body import left_jacobian as rb_left_jacobian
-from .assembly import (
-    DENSE_DOFS,
-    BlockPattern,
-    SparseFactor,
-    factorize,
-    gather_free,
-    scatter_free,
-    solve_sparse,
-)
+from .assembly import BlockPattern, SparseFactor, factorize, gather_free, scatter_free, solve_sparse
 from .bodies import BodyState, hold_dofs, transformation
 from .body_model import BodyModel
 from .dynamic_model import DynamicModel, Evaluation, MaterialState
@@ -539,9 +531,8 @@ def accelerated(model: DynamicModel, state: StepState, material: MaterialState,
         return StepState(state.t, x, v, a, ev.material, ev)
     rhs = gather_free(ev.nodal, mesh.dof_of_node)
     acc = np.zeros(mesh.n_dofs)
-    if pattern.n < DENSE_DOFS:  # a small system: numpy, no scipy
-        acc[massive] = np.linalg.solve(pattern.dense(values)[np.ix_(massive, massive)],
-                                       rhs[massive])
+    if massive.all():  # factored once: in Python when small (band_lu), no scipy
+        acc = SparseFactor.for_few_solves(pattern).factor(values).solve(rhs)
     else:
         M = pattern.csr(values).tocsc()
         acc[massive] = solve_sparse(M[massive][:, massive], rhs[massive])

@@ -381,6 +381,8 @@ def _relaxation(model, x, start, target, settings, counters):
     otherwise the damping decays by ``mu`` each step and the stiffness is refreshed every
     ``stiffness_update`` steps.
     """
+    import scipy.sparse as sp
+
     tol = _tolerance(model, x, settings)
     dof = model.mesh.dof_of_node
     damping, K, K_age = settings.damping, None, 0
@@ -392,8 +394,6 @@ def _relaxation(model, x, start, target, settings, counters):
         if K is None or K_age >= settings.stiffness_update:
             K, K_age = model.tangent(x), 0
             counters.tangents += 1
-        import scipy.sparse as sp
-
         shift = sp.identity(K.shape[0], format="csr") * (damping / settings.pseudo_dt)
         counters.factorizations += 1
         try:

@@ -17,7 +17,8 @@ from numpy.typing import NDArray
 from ..mesh import Mesh
 from ..physics.rigid_body import skew
 from ..results import StaticResult
-from .assembly import DENSE_DOFS, BlockPattern, factorize
+from .assembly import BlockPattern, factorize
+from .band_lu import MAX_SMALL, small_band_solver
 from .equilibrium import StaticModel
 
 FloatArray = NDArray[np.float64]
@@ -41,8 +42,8 @@ def condensed_tangent(mesh: Mesh, positions: FloatArray, nodes: list[int]) -> Fl
     an equilibrium: the current tangent of a time-domain state, :mod:`moorline.coupling`)."""
     pattern = full_pattern(mesh)
     values = StaticModel(mesh).tangent_values(positions, pattern)
-    dense = pattern.n < DENSE_DOFS  # a small system: numpy, no scipy
-    return condense(pattern.dense(values) if dense else pattern.csr(values), mesh, nodes)
+    small = pattern.n < MAX_SMALL  # solved in Python (band_lu) when narrow: no scipy
+    return condense(pattern.dense(values) if small else pattern.csr(values), mesh, nodes)
 
 
 def full_pattern(mesh: Mesh) -> BlockPattern:
@@ -63,8 +64,12 @@ def condense(K, mesh: Mesh, nodes: list[int]) -> FloatArray:
         if condensed.size == 0:
             return K_rr
         K_cr = K[np.ix_(condensed, kept)]  # not K_rc^T: drag and damping tangents are not
-        return K_rr - K[np.ix_(kept, condensed)] @ np.linalg.solve(  # symmetric
-            K[np.ix_(condensed, condensed)], K_cr)
+        solve = small_band_solver(K[np.ix_(condensed, condensed)])  # symmetric
+        if solve is not None:
+            return K_rr - K[np.ix_(kept, condensed)] @ solve(K_cr)
+        from scipy.sparse import csr_matrix
+
+        K = csr_matrix(K)
     K = K.tocsr()
     K_rr = K[kept][:, kept].toarray()
     if condensed.size == 0:
