@@ -3,20 +3,21 @@
 The histories go into a group of a NetCDF-4 file (the run's ``results.nc``, next to the groups
 of the other analyses) or into the root group of a file of their own. The group has an
 unlimited ``time`` dimension. Records are copied as they come into a block buffer allocated
-once and written in blocks: a block is written and the file synced when the group is
-created and at the first record, then when :data:`SYNC_WALL` of wall time will have passed
-since the last write by the next record (judged from the last interval between records) or
-the buffer is full (:data:`BLOCK_RECORDS`, :data:`BLOCK_BYTES`). So a run killed outright
-(SIGKILL) loses at most about the last second of wall time (more only when one output
-interval suddenly takes far longer than those before it), while the output costs little
-beside the stepping even at one record per step: a netCDF4 write has a fixed cost per call
-of about 0.07 ms per variable, paid once per block instead of once per record, and the
-envelope is updated per block, vectorized; what remains is moving the data: into the
-buffer, through a chunk cache of two chunks per variable (:data:`CACHE_CHUNKS`), to the
-operating system. Fresh memory is what made that dear (on a virtual machine a page touched
-for the first time costs about as much as copying it ten times): the buffer is reused from
-block to block and the chunk cache recycles its two chunks. A block is written with SIGINT
-and SIGTERM held back, so a signal never leaves a half-written record.
+once (a long block the caller hands over, the compiled time loop's, is held as it is instead:
+:data:`HOLD_RECORDS`) and written in blocks: a block is written and the file synced when the
+group is created and at the first record, then when :data:`SYNC_WALL` of wall time will have
+passed since the last write by the next record (judged from the last interval between records)
+or the buffer is full (:data:`BLOCK_RECORDS`, :data:`BLOCK_BYTES`). So a run killed outright
+(SIGKILL) loses at most about the last second of wall time (more only when one output interval
+suddenly takes far longer than those before it), while the output costs little beside the
+stepping even at one record per step: a netCDF4 write has a fixed cost per call of about 0.07
+ms per variable, paid once per block instead of once per record, and the envelope is updated
+per block, vectorized; what remains is moving the data: into the buffer (not for a held block),
+through a chunk cache of two chunks per variable (:data:`CACHE_CHUNKS`), to the operating
+system. Fresh memory is what made that dear (on a virtual machine a page touched for the first
+time costs about as much as copying it ten times): the buffer is reused from block to block and
+the chunk cache recycles its two chunks. A block is written with SIGINT and SIGTERM held back,
+so a signal never leaves a half-written record.
 :class:`HistoryWriter` is a context manager: leaving it (normally, by an exception, by
 Ctrl-C or SIGTERM) writes what is buffered and closes the file with its final attributes:
 ``success`` and ``complete`` (1 or 0), ``status`` (``completed``, ``failed``,
