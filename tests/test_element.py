@@ -115,8 +115,9 @@ def test_block_pattern_matches_dense_assembly_with_constrained_dofs():
     assert np.allclose(K, expected)
 
 
-@pytest.mark.parametrize("max_band", [120, 1])  # banded LAPACK and SuperLU paths
-def test_sparse_factor_solves_like_a_dense_solver(max_band):
+@pytest.mark.parametrize("max_band, small_below", [(120, 0), (1, 0), (120, 1000)])
+def test_sparse_factor_solves_like_a_dense_solver(max_band, small_below):
+    """Banded LAPACK, SuperLU, and the same banded LU in Python (a small system)."""
     from moorline.solvers.assembly import SparseFactor
 
     n, n_el = 12, 11
@@ -131,6 +132,13 @@ def test_sparse_factor_solves_like_a_dense_solver(max_band):
     A = np.zeros((pattern.n, pattern.n))
     A[pattern.rows, pattern.indices] = data
     b = RNG.normal(size=pattern.n)
-    factor = SparseFactor(pattern, max_band=max_band)
+    factor = SparseFactor(pattern, max_band=max_band, small_below=small_below)
     assert factor.banded == (max_band == 120)
+    assert factor.small == bool(small_below)
     assert np.allclose(factor.factor(data).solve(b), np.linalg.solve(A, b), rtol=1e-10)
+    assert np.array_equal(pattern.dense(data), A)
+    assert np.array_equal(pattern.diagonal(data), np.diag(A))
+    singular = data.copy()
+    singular[pattern.rows == 0] = 0.0  # a zero row
+    with pytest.raises(np.linalg.LinAlgError):
+        factor.factor(singular)

@@ -52,3 +52,46 @@ def test_records_are_copied_and_a_long_block_is_written_as_the_buffer_fills(
             np.testing.assert_array_equal(ds[key], value, err_msg=key)
         np.testing.assert_array_equal(ds["fairlead_tension"], np.full((13, lines), 5.0))
         assert ds.attrs["status"] == "completed"
+
+
+@needs_case
+def test_owned_blocks_are_written_as_given_and_in_order(tmp_path: Path,
+                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    """Owned blocks (the compiled loop's): a long one is held, not copied (the writer's
+    pending records share its memory), short ones between are copied; a buffer limit cuts
+    a held block; the file and the envelope are those of the same records appended as
+    copies, record by record."""
+    mesh = discretize(load_case(OC3_DYNAMICS))
+    n, m, lines = mesh.n_nodes, mesh.n_elements, len(mesh.line_names)
+    monkeypatch.setattr(stream.time, "monotonic", lambda: 0.0)
+    total = 3 + 2 * stream.HOLD_RECORDS + 5 + stream.HOLD_RECORDS
+    rng = np.random.default_rng(3)
+    times = 0.05 * np.arange(total)
+    given = {"position": rng.normal(size=(total, n, 3)),
+             "velocity": rng.normal(size=(total, n, 3)),
+             "tension": 1.0e5 * rng.random((total, m)),
+             "end_force": rng.normal(size=(total, lines, 2, 3)),
+             "wave_elevation": rng.normal(size=total)}
+    zeros = {key: np.zeros((total, 0, 6))
+             for key in ("body_pose", "body_velocity", "body_mooring_force")}
+    cuts = (0, 3, 3 + 2 * stream.HOLD_RECORDS, total - stream.HOLD_RECORDS, total)
+    attrs = {"case": "x", "units": "SI"}
+    limit = 3 + 2 * stream.HOLD_RECORDS + 2  # the second held block crosses it
+    with HistoryWriter(tmp_path / "owned.nc", mesh, attrs, block_records=limit) as writer:
+        for first, last in zip(cuts[:-1], cuts[1:], strict=True):
+            block = {key: value[first:last] for key, value in (given | zeros).items()}
+            writer.append_block(times[first:last], block, owned=True)
+            if last - first >= stream.HOLD_RECORDS and writer._pending:
+                assert np.shares_memory(writer._pending[-1][1]["position"], given["position"])
+    with HistoryWriter(tmp_path / "copied.nc", mesh, attrs) as writer:
+        for k in range(total):
+            writer.append(times[k], {key: value[k] for key, value in (given | zeros).items()})
+    with xr.open_dataset(tmp_path / "owned.nc") as owned, \
+            xr.open_dataset(tmp_path / "copied.nc") as copied:
+        np.testing.assert_array_equal(owned["time"], times)
+        for key, value in given.items():
+            np.testing.assert_array_equal(owned[key], value, err_msg=key)
+        for name in ("tension_min", "tension_max", "tension_mean", "tension_std",
+                     "end_tension", "fairlead_tension"):
+            np.testing.assert_array_equal(owned[name], copied[name], err_msg=name)
+        assert owned.attrs["envelope_records"] == total

@@ -34,7 +34,7 @@ import click
 
 from . import __version__
 from .analyses import KINDS
-from .console import _escape, _note, _status, _stdout, _table
+from .console import _escape, _note, _status, _stdout, _stdout_is_terminal, _table
 from .errors import CaseError, ConvergenceError, MoorlineError
 from .runners import (
     RESULTS_FILE,
@@ -281,17 +281,19 @@ def _report(context: RunContext, summary: dict[str, Any], files: list[Path]) -> 
 def _finish(case: Path, context: RunContext, summary: dict[str, Any], as_json: bool) -> None:
     """Write the summary and ``report.html``, print the summary, exit 1 when an analysis
     failed."""
-    from .io.writers import render_summary, summary_json, write_summary
+    from .io.writers import render_summary, summary_json, summary_text, write_summary
 
     outcomes, quiet = context.outcomes, context.quiet
     files = [*_written(context), *write_summary(summary, context.directory)]
     files.append(_report(context, summary, files))
     if as_json:
         click.echo(summary_json(summary))
-    else:
+    elif _stdout_is_terminal():
         console = _stdout()
         for renderable in render_summary(summary):
             console.print(renderable)
+    else:  # into a pipe or file: rich's layout at 160 columns, without rich
+        click.echo(summary_text(summary, width=160), nl=False)
     _note(f"wrote {', '.join(str(f) for f in files)}", quiet)
     failed = [o for o in outcomes if not o.success]
     if failed:

@@ -39,6 +39,24 @@ def _note(message: str, quiet: bool) -> None:
         click.echo(message, err=True)
 
 
+def _stdout_is_terminal() -> bool:
+    """Whether rich would treat stdout as a terminal (its rule: ``TTY_COMPATIBLE`` 0 or 1,
+    else a non-empty ``FORCE_COLOR``, else ``isatty``); decided without importing rich."""
+    import os
+
+    compatible = os.environ.get("TTY_COMPATIBLE", "")
+    if compatible in ("0", "1"):
+        return compatible == "1"
+    force = os.environ.get("FORCE_COLOR")
+    if force is not None:
+        return force != ""
+    isatty = getattr(sys.stdout, "isatty", None)
+    try:
+        return bool(isatty is not None and isatty())
+    except ValueError:  # a closed stream
+        return False
+
+
 def _stdout() -> Console:
     """Console for tables on stdout: the terminal's width, or 160 columns into a pipe/file."""
     from rich.console import Console

@@ -3,20 +3,21 @@
 The histories go into a group of a NetCDF-4 file (the run's ``results.nc``, next to the groups
 of the other analyses) or into the root group of a file of their own. The group has an
 unlimited ``time`` dimension. Records are copied as they come into a block buffer allocated
-once and written in blocks: a block is written and the file synced when the group is
-created and at the first record, then when :data:`SYNC_WALL` of wall time will have passed
-since the last write by the next record (judged from the last interval between records) or
-the buffer is full (:data:`BLOCK_RECORDS`, :data:`BLOCK_BYTES`). So a run killed outright
-(SIGKILL) loses at most about the last second of wall time (more only when one output
-interval suddenly takes far longer than those before it), while the output costs little
-beside the stepping even at one record per step: a netCDF4 write has a fixed cost per call
-of about 0.07 ms per variable, paid once per block instead of once per record, and the
-envelope is updated per block, vectorized; what remains is moving the data: into the
-buffer, through a chunk cache of two chunks per variable (:data:`CACHE_CHUNKS`), to the
-operating system. Fresh memory is what made that dear (on a virtual machine a page touched
-for the first time costs about as much as copying it ten times): the buffer is reused from
-block to block and the chunk cache recycles its two chunks. A block is written with SIGINT
-and SIGTERM held back, so a signal never leaves a half-written record.
+once (a long block the caller hands over, the compiled time loop's, is held as it is instead:
+:data:`HOLD_RECORDS`) and written in blocks: a block is written and the file synced when the
+group is created and at the first record, then when :data:`SYNC_WALL` of wall time will have
+passed since the last write by the next record (judged from the last interval between records)
+or the buffer is full (:data:`BLOCK_RECORDS`, :data:`BLOCK_BYTES`). So a run killed outright
+(SIGKILL) loses at most about the last second of wall time (more only when one output interval
+suddenly takes far longer than those before it), while the output costs little beside the
+stepping even at one record per step: a netCDF4 write has a fixed cost per call of about 0.07
+ms per variable, paid once per block instead of once per record, and the envelope is updated
+per block, vectorized; what remains is moving the data: into the buffer (not for a held block),
+through a chunk cache of two chunks per variable (:data:`CACHE_CHUNKS`), to the operating
+system. Fresh memory is what made that dear (on a virtual machine a page touched for the first
+time costs about as much as copying it ten times): the buffer is reused from block to block and
+the chunk cache recycles its two chunks. A block is written with SIGINT and SIGTERM held back,
+so a signal never leaves a half-written record.
 :class:`HistoryWriter` is a context manager: leaving it (normally, by an exception, by
 Ctrl-C or SIGTERM) writes what is buffered and closes the file with its final attributes:
 ``success`` and ``complete`` (1 or 0), ``status`` (``completed``, ``failed``,
@@ -52,6 +53,12 @@ ms on a 2-core machine)."""
 
 BLOCK_BYTES = 32 << 20
 """Size of a block at most [bytes] (fewer records per block on large meshes)."""
+
+HOLD_RECORDS = 64
+"""Records of an owned block (:meth:`HistoryWriter.append_block`) from which it is held as
+given until written instead of copied into the buffer: the compiled loop's blocks of
+thousands of records (the copy, into memory touched for the first time, cost a fifth of the
+streaming); shorter ones are copied, so that they are written together."""
 
 
 class HistoryWriter:
@@ -121,7 +128,10 @@ class HistoryWriter:
         self._limit = 0  # records per block, from the first record's size
         self._buffers: dict[str, FloatArray] = {}  # the block: record key -> (limit, ...)
         self._times = np.zeros(0)
-        self._n_pending = 0
+        self._n_pending = 0  # records waiting: copied into the buffer or held
+        self._n_buffered = 0  # of which copied into the buffer
+        self._pending: list[tuple[FloatArray, dict[str, FloatArray]]] = []  # in order
+        self._buffer_run = -1  # buffer row where the last pending segment starts (-1: held)
         append = group is not None and self.path.exists()
         start = {**attrs, "units": units or attrs.get("units", "SI"), "success": 0,
                  "complete": 0, "status": str(Status.RUNNING)}
@@ -152,11 +162,14 @@ class HistoryWriter:
         self.append_block(np.array([float(t)]),
                           {key: np.asarray(value)[None] for key, value in record.items()})
 
-    def append_block(self, times: FloatArray, records: dict[str, FloatArray]) -> None:
+    def append_block(self, times: FloatArray, records: dict[str, FloatArray],
+                     owned: bool = False) -> None:
         """Buffer several records at once: ``times`` (n,) and each record key stacked along
         a first axis of length n (as the compiled time loop writes them); written by the
         rules of :meth:`append`, the block counting as one arrival (a full block on the way
-        is written as it fills)."""
+        is written as it fills). ``owned``: the caller hands the arrays over (never changes
+        them afterwards): a block of :data:`HOLD_RECORDS` records or more is then held as it
+        is until written, not copied into the buffer."""
         n = len(times)
         if n == 0:
             return
@@ -171,7 +184,10 @@ class HistoryWriter:
                 if self._n_pending:
                     raise ValueError(f"{self.path}: the stream is closed")
             take = min(self._limit - self._n_pending, n - first)
-            self._store(times, records, first, take)
+            if owned and take >= HOLD_RECORDS:
+                self._hold(times, records, first, take)
+            else:
+                self._store(times, records, first, take)
             first += take
         if (self.written == 0 or self._n_pending >= self._limit
                 or now - self._written_at + interval >= SYNC_WALL):
@@ -190,35 +206,57 @@ class HistoryWriter:
                take: int) -> None:
         """Copy records ``first`` .. ``first + take`` of a block into the buffer (counted
         once all are copied: a signal in between leaves the buffer as it was)."""
-        i = self._n_pending
+        i = self._n_buffered
         for key, buffer in self._buffers.items():
             buffer[i:i + take] = records[key][first:first + take]
         self._times[i:i + take] = times[first:first + take]
+        start = self._buffer_run if self._buffer_run >= 0 else i
+        segment = (self._times[start:i + take],
+                   {key: buffer[start:i + take] for key, buffer in self._buffers.items()})
+        if self._buffer_run >= 0:  # continues the buffered segment before it
+            self._pending[-1] = segment
+        else:
+            self._pending.append(segment)
+        self._buffer_run, self._n_buffered = start, i + take
+        self._counted(times, take, first)
+
+    def _hold(self, times: FloatArray, records: dict[str, Any], first: int,
+              take: int) -> None:
+        """Hold records ``first`` .. ``first + take`` of an owned block as they are."""
+        self._pending.append((np.asarray(times[first:first + take], dtype=float),
+                              {key: records[key][first:first + take]
+                               for key in self._buffers}))
+        self._buffer_run = -1
+        self._counted(times, take, first)
+
+    def _counted(self, times: FloatArray, take: int, first: int) -> None:
         self._n_pending += take
         self.count += take
         self.last_time = float(times[first + take - 1])
 
     def flush(self) -> None:
-        """Write the buffered records as one block and sync the file (signals held back)."""
-        n = self._n_pending
-        if n == 0 or not self.root.isopen():
+        """Write the waiting records, segment by segment in order (a held block, the
+        records copied between held ones), and sync the file (signals held back)."""
+        if self._n_pending == 0 or not self.root.isopen():
             return
         i = self.written
-        block = {key: buffer[:n] for key, buffer in self._buffers.items()}
-        times = self._times[:n]
         with signals_deferred():
-            for var in self.variables:
-                self._targets[var.name][i:i + n] = var.derive(block)
-            self.ds["time"][i:i + n] = times
-            self._write_envelope(times, block["tension"])
+            for times, block in self._pending:
+                n = len(times)
+                for var in self.variables:
+                    self._targets[var.name][i:i + n] = var.derive(block)
+                self.ds["time"][i:i + n] = times
+                self.envelope.add_records(times, block["tension"])
+                i += n
+            self._write_envelope()
             self.root.sync()
-            self.written = i + n
-            self._n_pending = 0
+            self.written = i
+            self._n_pending = self._n_buffered = 0
+            self._pending, self._buffer_run = [], -1
             self._written_at = self._appended_at = time.monotonic()
 
-    def _write_envelope(self, times: FloatArray, tension: FloatArray) -> None:
-        """Add a block's records to the envelope and write it."""
-        self.envelope.add_records(times, tension)
+    def _write_envelope(self) -> None:
+        """Write the envelope of the records so far."""
         for name, values in self.envelope.values().items():
             self.ds[name][:] = values
         self.ds.setncattr("envelope_records", self.envelope.count)

@@ -3,15 +3,26 @@
 The pattern maps every entry of every element block (6x6) and node block (3x3) that couples two
 free degrees of freedom to its slot in a CSR matrix, once. Assembling is then a single
 ``np.bincount`` over the block values: no Python loop, no COO sorting per call.
+
+scipy is imported where a matrix object, a banded LAPACK factorization or SuperLU is used
+(about 0.15 s at a process' first use): the stored entries (:meth:`BlockPattern.values`),
+the ordering (:mod:`moorline.solvers.rcm`) and the factorization of a small system solved a
+few times (:meth:`SparseFactor.for_few_solves`, :mod:`moorline.solvers.band_lu`) do without
+it.
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.linalg.lapack import dgbtrf, dgbtrs
-from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+from .band_lu import MAX_SMALL, BandLU
+from .rcm import reverse_cuthill_mckee
+
+if TYPE_CHECKING:
+    import scipy.sparse as sp
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -66,7 +77,23 @@ class BlockPattern:
         diagonal: FloatArray | None = None,
     ) -> sp.csr_matrix:
         """Sum blocks into a CSR matrix (see :meth:`values` for the arguments)."""
-        data = self.values(element_blocks, node_blocks, diagonal)
+        return self.csr(self.values(element_blocks, node_blocks, diagonal))
+
+    def diagonal(self, data: FloatArray) -> FloatArray:
+        """The diagonal (n,) of the matrix of stored entries ``data`` (every node block, so
+        the whole diagonal, is in the pattern)."""
+        return data[self._diag_slot]
+
+    def dense(self, data: FloatArray) -> FloatArray:
+        """The matrix of stored entries ``data`` (storage order) as a numpy array."""
+        matrix = np.zeros((self.n, self.n))
+        matrix[self.rows, self.indices] = data
+        return matrix
+
+    def csr(self, data: FloatArray) -> sp.csr_matrix:
+        """The CSR matrix of stored entries ``data`` (storage order)."""
+        import scipy.sparse as sp
+
         return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
 
     def values(
@@ -111,28 +138,52 @@ class SparseFactor:
     narrow-banded (cables: nodes along lines), LAPACK's banded LU (``dgbtrf``/``dgbtrs``) is
     used, filled through a precomputed map from storage slots to band positions: cost linear
     in the number of unknowns and a few microseconds of Python per call. Otherwise SuperLU.
+    With ``small_below``, a narrow-banded system of fewer unknowns is factored by
+    :class:`moorline.solvers.band_lu.BandLU` instead (the same algorithm in Python, a
+    millisecond at 171 unknowns, no scipy): for a few solves, such as a statics' Newton
+    steps (:meth:`for_few_solves`); a time loop keeps LAPACK.
     """
 
-    def __init__(self, pattern: BlockPattern, max_band: int = 120) -> None:
+    def __init__(self, pattern: BlockPattern, max_band: int = 120,
+                 small_below: int = 0) -> None:
         self.pattern = pattern
         n = pattern.n
-        graph = sp.csr_matrix((np.ones(pattern.nnz), pattern.indices, pattern.indptr),
-                              shape=(n, n))
-        perm = reverse_cuthill_mckee(graph, symmetric_mode=True).astype(np.int64)
+        perm = reverse_cuthill_mckee(pattern.indptr, pattern.indices).astype(np.int64)
         inverse = np.empty_like(perm)
         inverse[perm] = np.arange(n)
         rows, cols = inverse[pattern.rows], inverse[pattern.indices]
         self.kl = int(np.max(rows - cols, initial=0))
         self.ku = int(np.max(cols - rows, initial=0))
         self.banded = n > 0 and self.kl + self.ku + 1 <= max_band
+        self.small = self.banded and n < small_below
         self.perm, self.inverse = perm, inverse
         self.shape = (2 * self.kl + self.ku + 1, n)
         self.band_slot = (self.kl + self.ku + rows - cols) * n + cols
+        self._permuted = (rows, cols)
         self._lu = None
 
+    @classmethod
+    def for_few_solves(cls, pattern: BlockPattern) -> SparseFactor:
+        """The factorization of a pattern factored a few times only (a statics' Newton
+        steps): in Python below :data:`~moorline.solvers.band_lu.MAX_SMALL` unknowns."""
+        return cls(pattern, small_below=MAX_SMALL)
+
     def factor(self, data: FloatArray) -> SparseFactor:
-        """Factorize the matrix with entries ``data`` (storage order of the pattern)."""
-        if self.banded:
+        """Factorize the matrix with entries ``data`` (storage order of the pattern).
+
+        Raises
+        ------
+        numpy.linalg.LinAlgError
+            When a pivot is exactly zero.
+        """
+        p = self.pattern
+        if self.small:
+            matrix = np.zeros((p.n, p.n))
+            matrix[self._permuted] = data
+            self._lu = BandLU(matrix, self.kl, self.ku)
+        elif self.banded:
+            from scipy.linalg.lapack import dgbtrf
+
             ab = np.zeros(self.shape[0] * self.shape[1])
             ab[self.band_slot] = data
             lu, piv, info = dgbtrf(ab.reshape(self.shape), self.kl, self.ku, overwrite_ab=1)
@@ -140,15 +191,17 @@ class SparseFactor:
                 raise np.linalg.LinAlgError(f"singular matrix (zero pivot at {info - 1})")
             self._lu = (lu, piv)
         else:
-            p = self.pattern
-            K = sp.csr_matrix((data, p.indices, p.indptr), shape=(p.n, p.n))
-            self._lu = MatrixFactor(K)
+            self._lu = MatrixFactor(p.csr(data))
         return self
 
     def solve(self, rhs: FloatArray) -> FloatArray:
         """Solve with the last factorization."""
+        if self.small:
+            return self._lu.solve(rhs[self.perm])[self.inverse]
         if not self.banded:
             return self._lu.solve(rhs)
+        from scipy.linalg.lapack import dgbtrs
+
         lu, piv = self._lu
         y, info = dgbtrs(lu, self.kl, self.ku, rhs[self.perm], piv)
         return y[self.inverse]
@@ -160,6 +213,7 @@ class MatrixFactor:
     harmonic balance, condensation)."""
 
     def __init__(self, matrix: sp.spmatrix) -> None:
+        import scipy.sparse as sp
         import scipy.sparse.linalg as spla  # imported on use (with scipy.linalg: 0.15 s)
 
         self.shape = matrix.shape

@@ -15,9 +15,9 @@ this module unpacks the model's :class:`~moorline.model.Body` for them.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
@@ -25,6 +25,9 @@ from ..model import Body
 from ..physics import rigid_body as rb
 from ..physics.rigid_body import inverse_left_jacobian, rotation_matrix, rotation_vector, skew
 from ..physics.rod_buoyancy import rod_buoyancy
+
+if TYPE_CHECKING:
+    import scipy.sparse as sp
 
 __all__ = ["BodyDofs", "BodyState", "body_loads", "body_mass_matrix", "hold_dofs",
            "inverse_left_jacobian", "long_wave_geometry", "place_slaves", "rotation_vector",
@@ -102,6 +105,8 @@ def transformation(mesh: Mesh, ext_dofs: int, n_free: int, body_dof: NDArray[np.
     node dofs (free nodes, then attached nodes), ``dx_ext = P du``: identity (times
     ``free_scale``) on the free node dofs and, for every attached node, ``T = [I, -[R a x]]``
     or its own (3, 6) block of ``blocks`` (n_slaves, 3, 6)."""
+    import scipy.sparse as sp
+
     rows, cols = [np.arange(n_free)], [np.arange(n_free)]
     vals = [np.full(n_free, float(free_scale))]
     for k, (b, arm) in enumerate(zip(mesh.slave_body, arms, strict=True)):
@@ -271,6 +276,8 @@ class BodyDofs:
         translation following its host, ``du = Q du~``: the identity, but a chained body's
         translation columns replaced by ``T = [I, -[R_p a x]]`` (or its (3, 6) block of
         ``blocks``, per body) in its host's columns."""
+        import scipy.sparse as sp
+
         n = self.n_unknowns
         diag = np.ones(n)
         rows, cols, vals = [np.arange(n)], [np.arange(n)], [diag]
@@ -299,6 +306,8 @@ class BodyDofs:
         """The host's tangent from its pin arm turning under the chained body's force ``F``
         (its translational residual in ``r``, before the transfer): ``-[F x][R_p a x]`` on
         the host's rotation block (for ``R <- exp([e x]) R``)."""
+        import scipy.sparse as sp
+
         n = self.n_unknowns
         out = sp.lil_matrix((n, n))
         for c, p in self.chains:
@@ -332,6 +341,8 @@ def spin_projection(layout: BodyDofs, poses: BodyState) -> tuple[sp.csr_matrix, 
     carry every load on their axis): ``S``, the identity with each such body's rotation block
     ``I - n n^T`` (the spin projected out of residual, tangent and step), and ``N``, its
     ``n n^T`` (scaled by the caller into the tangent so that it stays regular)."""
+    import scipy.sparse as sp
+
     n_u = layout.n_unknowns
     rows, cols, vals = [np.arange(n_u)], [np.arange(n_u)], [np.ones(n_u)]
     n_rows, n_cols, n_vals = [], [], []
@@ -371,6 +382,8 @@ def hold_dofs(K: sp.spmatrix, held: NDArray[np.bool_], scale: float = 1.0) -> sp
     """``K`` with the ``held`` unknowns' rows and columns replaced by ``scale`` times the
     identity (a pinned body's translations): with a zero residual there, a solve leaves
     them unchanged and the other unknowns see the constrained system."""
+    import scipy.sparse as sp
+
     if not held.any():
         return sp.csc_matrix(K)
     keep = sp.diags((~held).astype(float))

@@ -10,8 +10,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
-import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
@@ -88,6 +86,8 @@ class CoupledStatics:
         :meth:`moorline.solvers.equilibrium.StaticModel.tangent`; ``regularize``: add the
         vanishing diagonal of the body dofs and hold the held ones (``False``: the bare
         tangent, to find the directions nothing resists)."""
+        import scipy.sparse as sp
+
         arms = world_arms(self.mesh, poses)
         P = transformation(self.mesh, self.ext_dofs, self.n_free, self.body_dof, arms)
         K = (P.T @ self.model.tangent(x, self.pattern, taut_axial) @ P).tolil()
@@ -184,10 +184,14 @@ class _SchurStep:
     the one at the factorization point."""
 
     def __init__(self, K, R: FloatArray, n: int) -> None:
+        import scipy.linalg
+
         schur, self.correction = reduced_stiffness(K, n, R)
         self.lu = scipy.linalg.lu_factor(schur)
 
     def solve(self, r_bodies: FloatArray) -> FloatArray:
+        import scipy.linalg
+
         return scipy.linalg.lu_solve(self.lu, r_bodies - self.correction)
 
 

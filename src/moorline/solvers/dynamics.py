@@ -498,11 +498,13 @@ class _Recorder:
                        {key: np.asarray(value)[None] for key, value in record.items()})
 
     def add_block(self, times: FloatArray, records: dict[str, FloatArray]) -> None:
-        """Records at ``times`` (n,), each key stacked along a first axis of length n."""
+        """Records at ``times`` (n,), each key stacked along a first axis of length n
+        (arrays of their own, kept for the result and never changed: handed to the writer
+        as they are)."""
         self.blocks.append({"time": np.asarray(times, dtype=float), **records})
         self.last_time = float(times[-1])
         if self.writer is not None:
-            self.writer.append_block(times, records)
+            self.writer.append_block(times, records, owned=True)
 
     def _elevation(self, t: float) -> float:
         """Free-surface elevation at the origin (x = y = 0) [length]."""

@@ -21,14 +21,17 @@ their tangent blocks extend the element blocks over the mesh's
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
 from ..physics import bending, element, hydro, sag, seabed
 from .assembly import BlockPattern, gather_free
+
+if TYPE_CHECKING:
+    import scipy.sparse as sp
 
 FloatArray = NDArray[np.float64]
 
@@ -188,6 +191,13 @@ class StaticModel:
         ``slack_ratio EA / L0`` axially and no geometric stiffness.
         ``shift`` is added to the diagonal (a Levenberg-Marquardt shift).
         """
+        pattern = pattern or self.pattern
+        return pattern.csr(self.tangent_values(x, pattern, taut_axial, shift))
+
+    def tangent_values(self, x: FloatArray, pattern: BlockPattern | None = None,
+                       taut_axial: bool = False, shift: float = 0.0) -> FloatArray:
+        """The stored entries of :meth:`tangent` (the pattern's storage order), without
+        building the matrix."""
         m = self.mesh
         length, unit = element.element_geometry(x, m.elements)
         if self.sag is not None:
@@ -212,7 +222,7 @@ class StaticModel:
             node_blocks = -self._seabed(x).stiffness
         pattern = pattern or self.pattern
         diagonal = np.full(pattern.n, shift) if shift else None
-        return pattern.assemble(blocks, node_blocks, diagonal)
+        return pattern.values(blocks, node_blocks, diagonal)
 
     def _sag_blocks(self, x: FloatArray, length: FloatArray, unit: FloatArray,
                     taut_axial: bool) -> FloatArray:

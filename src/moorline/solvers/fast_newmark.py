@@ -25,15 +25,14 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from ..jit import numba
 from ..physics.fused import _kernel, set_dashpot_shares, set_viscoelastic_step
 from . import fast_bodies as fb
 from .fast_fluid import fluid_at_midpoints
 from .fast_path import fluid_parts
+from .rcm import edge_pattern, reverse_cuthill_mckee
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -54,9 +53,7 @@ def band_ordering(elements: IntArray, dof_of_node: IntArray) -> tuple[IntArray, 
     both = free[elements[:, 0]] & free[elements[:, 1]]
     a, b = index[elements[both, 0]], index[elements[both, 1]]
     n_free = int(free.sum())
-    graph = sp.csr_matrix((np.ones(2 * len(a)), (np.r_[a, b], np.r_[b, a])),
-                          shape=(n_free, n_free))
-    order = reverse_cuthill_mckee(graph, symmetric_mode=True) if n_free else np.zeros(0, int)
+    order = reverse_cuthill_mckee(*edge_pattern(a, b, n_free)) if n_free else np.zeros(0, int)
     rank = np.empty(n_free, dtype=np.int64)
     rank[order] = np.arange(n_free)
     band = np.full((n_nodes, 3), -1, dtype=np.int64)

@@ -32,9 +32,9 @@ only (the imbalance left by the previous step is not corrected).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..physics.rigid_body import left_jacobian as rb_left_jacobian
@@ -43,6 +43,9 @@ from .bodies import BodyState, hold_dofs, transformation
 from .body_model import BodyModel
 from .dynamic_model import DynamicModel, Evaluation, MaterialState
 from .newton import Counters, NewtonPolicy, TangentCache, max_norm, solve
+
+if TYPE_CHECKING:
+    import scipy.sparse as sp
 
 FloatArray = NDArray[np.float64]
 
@@ -254,6 +257,8 @@ class Stepper:
 
     def tangent_matrix(self, u, trial: _Trial) -> sp.csr_matrix:
         """The effective tangent ``-dr/du`` (eq. 4.2.9a) at the trial, assembled."""
+        import scipy.sparse as sp
+
         if not self.coupled:
             p = self.pattern
             return sp.csr_matrix((self._tangent_data(trial), p.indices, p.indptr),
@@ -411,6 +416,8 @@ class Stepper:
 
     def _body_matrix(self, blocks: list[FloatArray]) -> sp.csr_matrix:
         """The body blocks as a sparse matrix over the unknowns."""
+        import scipy.sparse as sp
+
         n = self.layout.n_unknowns
         rows, cols, vals = [], [], []
         for d, block in zip(self.bodies.body_dof, blocks, strict=True):
@@ -447,6 +454,8 @@ class Stepper:
 
     def _setup_rayleigh(self, s0: StepState) -> None:
         """Rayleigh damping ``a0 M + a1 K0`` from the mass and tangent at the start."""
+        import scipy.sparse as sp
+
         a0, a1 = self.rayleigh
         x, v, a = s0.x.copy(), np.zeros_like(s0.x), np.zeros_like(s0.x)
         bs, arms = None, np.zeros((0, 3))
@@ -515,13 +524,18 @@ def accelerated(model: DynamicModel, state: StepState, material: MaterialState,
     nodes_m = model.node_mass[:, None, None] * np.eye(3)
     if ev.node_M is not None:
         nodes_m = nodes_m + ev.node_M
-    M = sp.csc_matrix(BlockPattern(mesh.pattern_pairs, mesh.dof_of_node).assemble(ev.Ma, nodes_m))
-    massive = M.diagonal() > 0
+    pattern = BlockPattern(mesh.pattern_pairs, mesh.dof_of_node)
+    values = pattern.values(ev.Ma, nodes_m)
+    massive = pattern.diagonal(values) > 0
     if not np.any(massive):
         return StepState(state.t, x, v, a, ev.material, ev)
     rhs = gather_free(ev.nodal, mesh.dof_of_node)
     acc = np.zeros(mesh.n_dofs)
-    acc[massive] = solve_sparse(M[massive][:, massive], rhs[massive])
+    if massive.all():  # factored once: in Python when small (band_lu), no scipy
+        acc = SparseFactor.for_few_solves(pattern).factor(values).solve(rhs)
+    else:
+        M = pattern.csr(values).tocsc()
+        acc[massive] = solve_sparse(M[massive][:, massive], rhs[massive])
     a = a + scatter_free(acc, mesh.dof_of_node)
     ev = model.evaluate(x, v, a, state.t, material, dt, False, point_forces)
     return StepState(state.t, x, v, a, ev.material, ev, bs)

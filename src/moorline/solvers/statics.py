@@ -20,7 +20,6 @@ import logging
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..mesh import Mesh, discretize, with_loads_of
@@ -266,7 +265,7 @@ class _NewtonStatics:
     def __init__(self, model: StaticModel, lam: float, max_step: float) -> None:
         self.model, self.lam, self.max_step = model, lam, max_step
         self.dof = model.mesh.dof_of_node
-        self.factorizer = SparseFactor(model.pattern)
+        self.factorizer = SparseFactor.for_few_solves(model.pattern)
         self.shift = _shift(model)
 
     def residual(self, x: FloatArray, tangent: bool) -> _StaticTrial:
@@ -275,10 +274,10 @@ class _NewtonStatics:
     def factorize(self, x: FloatArray, trial: _StaticTrial) -> SparseFactor:
         if not self.model.friction:  # friction's stuck zone is near-singular: always shift
             try:
-                return self.factorizer.factor(self.model.tangent(x).data)
+                return self.factorizer.factor(self.model.tangent_values(x))
             except np.linalg.LinAlgError:  # a pile free to slide: the shifted matrix
                 pass
-        return self.factorizer.factor(self.model.tangent(x, shift=self.shift).data)
+        return self.factorizer.factor(self.model.tangent_values(x, shift=self.shift))
 
     def update(self, x: FloatArray, du: FloatArray) -> FloatArray:
         return x + scatter_free(du, self.dof)
@@ -382,6 +381,8 @@ def _relaxation(model, x, start, target, settings, counters):
     otherwise the damping decays by ``mu`` each step and the stiffness is refreshed every
     ``stiffness_update`` steps.
     """
+    import scipy.sparse as sp
+
     tol = _tolerance(model, x, settings)
     dof = model.mesh.dof_of_node
     damping, K, K_age = settings.damping, None, 0

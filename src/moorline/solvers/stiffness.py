@@ -18,6 +18,7 @@ from ..mesh import Mesh
 from ..physics.rigid_body import skew
 from ..results import StaticResult
 from .assembly import BlockPattern, factorize
+from .band_lu import MAX_SMALL, small_band_solver
 from .equilibrium import StaticModel
 
 FloatArray = NDArray[np.float64]
@@ -39,8 +40,10 @@ def condensed_stiffness(result: StaticResult, nodes: list[int]) -> FloatArray:
 def condensed_tangent(mesh: Mesh, positions: FloatArray, nodes: list[int]) -> FloatArray:
     """The condensed tangent of :func:`condensed_stiffness` at any node positions (not only
     an equilibrium: the current tangent of a time-domain state, :mod:`moorline.coupling`)."""
-    model = StaticModel(mesh)
-    return condense(model.tangent(positions, full_pattern(mesh)), mesh, nodes)
+    pattern = full_pattern(mesh)
+    values = StaticModel(mesh).tangent_values(positions, pattern)
+    small = pattern.n < MAX_SMALL  # solved in Python (band_lu) when narrow: no scipy
+    return condense(pattern.dense(values) if small else pattern.csr(values), mesh, nodes)
 
 
 def full_pattern(mesh: Mesh) -> BlockPattern:
@@ -50,12 +53,24 @@ def full_pattern(mesh: Mesh) -> BlockPattern:
 
 def condense(K, mesh: Mesh, nodes: list[int]) -> FloatArray:
     """``K_rr - K_rc K_cc^-1 K_cr`` of a matrix over every node dof (:func:`full_pattern`):
-    the dofs of ``nodes`` kept, every free dof condensed out, the other held."""
-    K = K.tocsr()
+    the dofs of ``nodes`` kept, every free dof condensed out, the other held. ``K``: a
+    sparse matrix, or a numpy array (solved dense)."""
     kept = (3 * np.asarray(nodes)[:, None] + np.arange(3)).ravel()
     free = mesh.dof_of_node >= 0
     free_flat = np.flatnonzero(free.ravel())
     condensed = np.setdiff1d(free_flat, kept)
+    if isinstance(K, np.ndarray):
+        K_rr = K[np.ix_(kept, kept)]
+        if condensed.size == 0:
+            return K_rr
+        K_cr = K[np.ix_(condensed, kept)]  # not K_rc^T: drag and damping tangents are not
+        solve = small_band_solver(K[np.ix_(condensed, condensed)])  # symmetric
+        if solve is not None:
+            return K_rr - K[np.ix_(kept, condensed)] @ solve(K_cr)
+        from scipy.sparse import csr_matrix
+
+        K = csr_matrix(K)
+    K = K.tocsr()
     K_rr = K[kept][:, kept].toarray()
     if condensed.size == 0:
         return K_rr
