@@ -195,7 +195,7 @@ def _compiled_problem(stepper, s0, h: float, constrained):
         state = inputs.state(s0.bodies, None)
         state[4][:] = u[n:].reshape(nb, 6)
         bodies = (inputs.links, inputs.loads, state, inputs.forces(np.array([s0.t + h])),
-                  tuple(np.zeros_like(w) for w in inputs.work))
+                  tuple(np.zeros_like(w) for w in inputs.work), inputs.memory(s0.memory))
         fb.place(bodies, False, h, beta, gamma, x1, v1, a1)
         uf, af = np.zeros((mesh.n_elements, 3)), np.zeros((mesh.n_elements, 3))
         if fluid[0] or fluid[6]:
@@ -325,7 +325,6 @@ def test_compiled_body_tangent_is_the_general_steppers(scheme):
 @pytest.mark.parametrize("change,reason", [
     ({"kind": "fixed"}, "a fixed body (box)"),
     ({"kind": "pinned"}, "a pinned body (box)"),
-    ({"radiation": "table"}, "a radiation table (Cummins memory) on body box"),
     ({"hydrostatics": Hydrostatics("rods", volume=1.0)}, "rods hydrostatics on body box"),
     ({"drag_area": (1.0, 0.0, 0.0)}, "drag on body box"),
     ({"wave_loads": True}, "long-wave loads on body box"),

@@ -20,14 +20,18 @@ factorization is the banded LU of ``A``, ``A^-1 B`` (``6 nb`` band solves) and t
 the Schur complement ``S = D - C A^-1 B`` (``6 nb`` square); a solve is one band solve, and
 ``dq = S^-1 (r_b - C y)``, ``dx = y - A^-1 B dq``. The cost stays that of the band.
 
-``bodies`` (:func:`pack`) = ``(links, loads, state, forces, work)``: the attached nodes
+``bodies`` = ``(links, loads, state, forces, work, memory)``: the attached nodes
 (node, body, body-frame arm, the attached index of every node or -1); the bodies' constants
 (:func:`moorline.solvers.fast_rigid.static_load`); the state (start of the step ``r0, R0,
 vel0, acc0``, the step ``dq`` and its line-search trial, the evaluated state ``r1, R1, vel1,
 acc1``, the attached nodes' world arms and weighted forces, the non-inertial generalized
 forces at the start of the step and at the evaluated state for HHT); the loads that depend
 on time alone per sub-step (force histories, exciting-force tables; ``(n_sub, nb, 6)``); the
-factorization (``(A^-1 B)^T``, ``C``, ``D``, ``S^-1``). Without bodies ``bodies`` is None:
+factorization (``(A^-1 B)^T``, ``C``, ``D``, ``S^-1``); the radiation memory of the bodies
+with a radiation table (Cummins 1962, :class:`moorline.physics.radiation.MemoryModel`: every
+mode's body, force and velocity dof, pole and coefficient; the complex states at the start of
+the step and at the evaluated state, and the step weight ``h phi_2(p h)`` of the mode's end
+velocity, :func:`advance_memory`; no modes without a table). Without bodies ``bodies`` is None:
 every function here returns at once, and numba prunes the rest, so a model without bodies
 does not compile the bodies' code.
 """
@@ -86,6 +90,7 @@ def place(bodies, trial, h, beta, gamma, x, v, a):
             if i < 3:
                 r1[b, i] = r0[b, i] + dq[b, i]
         R1[b] = mm(rotation_matrix(dq[b, 3:].copy()), R0[b])
+    advance_memory(bodies[5], h, vel0, vel1)
     for s in range(slave_node.shape[0]):
         b, n = slave_body[s], slave_node[s]
         arm = mv(R1[b], slave_arm[s])
@@ -97,6 +102,50 @@ def place(bodies, trial, h, beta, gamma, x, v, a):
             x[n, c] = r1[b, c] + arm[c]
             v[n, c] = vel1[b, c] + wa[c]
             a[n, c] = acc1[b, c] + turn[c]
+
+
+@numba.njit(**_JIT)
+def advance_memory(memory, h, vel0, vel1):
+    """The radiation memory states at the end of the step ``h`` for the body velocities
+    going linearly from ``vel0`` to ``vel1`` (nb, 6): ``z1 = e^{p h} z0 + h phi_1 v0 + h
+    phi_2 (v1 - v0)`` (:meth:`MemoryModel.step_weights` and :meth:`~MemoryModel.advance`,
+    exact; the weight ``h phi_2`` of ``v1`` kept for the tangent)."""
+    body, col, poles, z0, z1, w_end = memory[0], memory[2], memory[3], memory[5], memory[6], \
+        memory[7]
+    for m in range(poles.shape[0]):
+        x = poles[m] * h
+        e = np.exp(x)
+        if abs(x) < 1e-3:
+            phi1 = 1.0 + x / 2.0 + x * x / 6.0
+            phi2 = 0.5 + x / 6.0 + x * x / 24.0
+        else:
+            phi1 = (e - 1.0) / x
+            phi2 = (e - 1.0 - x) / (x * x)
+        a, w = h * phi1, h * phi2
+        w_end[m] = w
+        v0, v1 = vel0[body[m], col[m]], vel1[body[m], col[m]]
+        z1[m] = e * z0[m] + a * v0 + w * (v1 - v0)
+
+
+@numba.njit(**_JIT)
+def memory_forces(memory, nb):
+    """The memory forces ``mu = Re sum c z1`` (nb, 6) of the evaluated states (the bodies
+    feel ``-mu``; :meth:`MemoryModel.force`)."""
+    body, row, coef, z1 = memory[0], memory[1], memory[4], memory[6]
+    mu = np.zeros((nb, 6))
+    for m in range(coef.shape[0]):
+        mu[body[m], row[m]] += (coef[m] * z1[m]).real
+    return mu
+
+
+@numba.njit(**_JIT)
+def add_memory_damping(memory, b, damp):
+    """Adds ``d mu / d v1`` of body ``b`` (:meth:`MemoryModel.velocity_derivative` over the
+    step of the last :func:`advance_memory`) to its damping block ``damp`` (6, 6)."""
+    body, row, col, coef, w_end = memory[0], memory[1], memory[2], memory[4], memory[7]
+    for m in range(coef.shape[0]):
+        if body[m] == b:
+            damp[row[m], col[m]] += (coef[m] * w_end[m]).real
 
 
 @numba.njit(**_JIT)
@@ -120,8 +169,10 @@ def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
     d_vel = np.empty((6, 6))
     d_rot = np.empty((6, 6))
     inertial = np.zeros((nb, 6))
+    mu = memory_forces(bodies[5], nb)
     for b in range(nb):
-        gen = static_load(b, loads, r1[b], R1[b], K) + forces[j, b] - mv(damping[b], vel1[b])
+        gen = static_load(b, loads, r1[b], R1[b], K) + forces[j, b] \
+            - (mv(damping[b], vel1[b]) + mu[b])
         other1[b] = gen
         inertial[b] = -(inertia_load(mass[b], cog[b], inertia[b], R1[b], vel1[b], acc1[b],
                                      d_vel, d_rot) + mv(added[b], acc1[b]))
@@ -196,8 +247,9 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
     the element blocks ``ck K + cv C + ca M_a`` on an attached node's columns through its
     kinematic blocks, on its rows through ``T^T``; its node mass and seabed terms; and every
     body's block (:meth:`BodyModel.block_parts`: hydrostatics and weight, the attached
-    nodes' arms turning under their forces, damping, added mass and the exact rigid-body
-    inertia; rotation columns chained by the left Jacobian of the step)."""
+    nodes' arms turning under their forces, damping with the radiation memory's ``d mu / d
+    v1``, added mass and the exact rigid-body inertia; rotation columns chained by the left
+    Jacobian of the step)."""
     if bodies is None:  # no bodies: not compiled in
         return
     slave_node, slave_body, slave_of_node = bodies[0][0], bodies[0][1], bodies[0][3]
@@ -275,7 +327,9 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
             if slave_body[s] == b:
                 turned[3:, 3:] -= mm(skew(node_w[s]), skew(arms[s]))
         turned[:, 3:] = mm(turned[:, 3:].copy(), left_jacobian(dq[b, 3:].copy()))
-        block = turned + cv1 * (ck * damping[b] + d_vel) \
+        damp = damping[b].copy()
+        add_memory_damping(bodies[5], b, damp)
+        block = turned + cv1 * (ck * damp + d_vel) \
             + ca * (rigid_mass(mass[b], cog[b], inertia[b], R1[b]) + added[b])
         D[6 * b:6 * b + 6, 6 * b:6 * b + 6] += block
 
@@ -389,6 +443,7 @@ def commit(bodies):
     state[2][:, :] = state[8]
     state[3][:, :] = state[9]
     state[11][:, :] = state[12]
+    bodies[5][5][:] = bodies[5][6]
 
 
 @numba.njit(**_JIT)

@@ -587,8 +587,9 @@ class FastStepper:
         if inputs.nb and self.c.alpha:  # HHT: the bodies' F0
             body_other0 = self.general._body_other(s0)
         body_state = inputs.state(s0.bodies, body_other0)
+        memory = inputs.memory(s0.memory)
         bodies = None if not inputs.nb else (inputs.links, inputs.loads, body_state,
-                                             inputs.forces(times), inputs.work)
+                                             inputs.forces(times), inputs.work, memory)
         done, stopped, norm, n_written = advance_block(
             x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
             self._fluid_inputs(times), self.model_args, self.newton_args, self.tan,
@@ -603,14 +604,15 @@ class FastStepper:
             nodal = resid + self.model.node_mass[:, None] * a0  # F without structural inertia
             ev = Evaluation(nodal, f_am, tension,
                             MaterialState(strain, maxwell, material.peak), el_forces)
-            poses, body_other = None, None
+            poses, body_other, states = None, None, None
             if inputs.nb:
                 from .bodies import BodyState
 
                 poses = BodyState(*(q.copy() for q in body_state[:4]))
                 body_other = body_state[11].copy()
+                states = inputs.memory_states(memory)
             state = StepState(float(times[n_sub - 1]), x0, v0, a0, ev.material, ev, poses,
-                              body_other)
+                              body_other, states)
         return Block(state, int(done), int(stopped), float(norm), out[0][:n_written],
                      out[1][:n_written], out[2][:n_written], out[3][:n_written],
                      tuple(q[:n_written] for q in out[6:]))

@@ -70,14 +70,12 @@ def fluid_parts(fluid):
 def body_refusal(mesh) -> str | None:
     """Why the compiled step cannot run the bodies of ``mesh`` (None when it can): it takes
     free bodies with weight, constant loads and force histories, constant added mass and
-    damping, hydrostatics of :data:`HULL_KINDS` and exciting-force tables
-    (:mod:`moorline.solvers.fast_bodies`)."""
+    damping or a radiation table (Cummins memory), hydrostatics of :data:`HULL_KINDS` and
+    exciting-force tables (:mod:`moorline.solvers.fast_bodies`)."""
     for body in mesh.bodies:
         name = body.name
         if body.kind != "free":
             return f"a {body.kind} body ({name})"
-        if getattr(body, "radiation", None) is not None:
-            return f"a radiation table (Cummins memory) on body {name}"
         if body.hydrostatics.kind not in HULL_KINDS:
             return f"{body.hydrostatics.kind} hydrostatics on body {name}"
         if np.any(np.asarray(body.drag_area, dtype=float)):
