@@ -44,6 +44,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..jit import numba
+from ..physics.fused import hht_stiffness
 from .fast_rigid import (
     cross,
     inertia_load,
@@ -244,7 +245,8 @@ def _transposed_maps(arms):
 def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, ck, seabed_on):
     """The border of the effective tangent ``-dr/du`` (:meth:`Stepper.tangent_matrix`):
     ``B^T`` (6 nb, n), ``C`` (6 nb, n) and ``D`` (6 nb, 6 nb) into ``bodies``' work arrays:
-    the element blocks ``ck K + cv C + ca M_a`` on an attached node's columns through its
+    the element blocks ``ck K + cv C + ca M_a`` (the added-mass forces' part of ``K`` weighted
+    1, :func:`~moorline.physics.fused.hht_stiffness`) on an attached node's columns through its
     kinematic blocks, on its rows through ``T^T``; its node mass and seabed terms; and every
     body's block (:meth:`BodyModel.block_parts`: hydrostatics and weight, the attached
     nodes' arms turning under their forces, damping with the radiation memory's ``d mu / d
@@ -259,7 +261,7 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
     nb = r1.shape[0]
     if nb == 0:
         return
-    K, C, Ma = buf[6], buf[7], buf[8]
+    K, C, Ma, Ka = buf[6], buf[7], buf[8], buf[19]
     kzz, czz, fric_c, fric_kz, fric_cz = buf[12], buf[13], buf[14], buf[15], buf[16]
     BT[:, :] = 0.0
     Cr[:, :] = 0.0
@@ -281,7 +283,7 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
                 if col >= 0:
                     if s_r < 0:
                         continue
-                    val = ck * K[e, p, q] + cv * C[e, p, q]
+                    val = hht_stiffness(K, Ka, with_added_mass, ck, e, p, q) + cv * C[e, p, q]
                     if with_added_mass:
                         val += ca * Ma[e, p, q]
                     for i in range(6):
@@ -290,8 +292,9 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
                 if s_c < 0:
                     continue
                 mapped = np.empty(6)
+                k_pq = hht_stiffness(K, Ka, with_added_mass, ck, e, p, q)
                 for k in range(6):
-                    mapped[k] = ck * (K[e, p, q] * bx[s_c, c_q, k] + C[e, p, q] * bv[s_c, c_q, k])
+                    mapped[k] = k_pq * bx[s_c, c_q, k] + ck * C[e, p, q] * bv[s_c, c_q, k]
                     if with_added_mass:
                         mapped[k] += Ma[e, p, q] * ba[s_c, c_q, k]
                 d_c = 6 * slave_body[s_c]
