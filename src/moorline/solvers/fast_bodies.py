@@ -20,7 +20,7 @@ factorization is the banded LU of ``A``, ``A^-1 B`` (``6 nb`` band solves) and t
 the Schur complement ``S = D - C A^-1 B`` (``6 nb`` square); a solve is one band solve, and
 ``dq = S^-1 (r_b - C y)``, ``dx = y - A^-1 B dq``. The cost stays that of the band.
 
-``bodies`` = ``(links, loads, state, forces, work, memory)``: the attached nodes
+``bodies`` = ``(links, loads, state, forces, work, memory, pins)``: the attached nodes
 (node, body, body-frame arm, the attached index of every node or -1); the bodies' constants
 (:func:`moorline.solvers.fast_rigid.static_load`); the state (start of the step ``r0, R0,
 vel0, acc0``, the step ``dq`` and its line-search trial, the evaluated state ``r1, R1, vel1,
@@ -31,7 +31,11 @@ factorization (``(A^-1 B)^T``, ``C``, ``D``, ``S^-1``); the radiation memory of 
 with a radiation table (Cummins 1962, :class:`moorline.physics.radiation.MemoryModel`: every
 mode's body, force and velocity dof, pole and coefficient; the complex states at the start of
 the step and at the evaluated state, and the step weight ``h phi_2(p h)`` of the mode's end
-velocity, :func:`advance_memory`; no modes without a table). Without bodies ``bodies`` is None:
+velocity, :func:`advance_memory`; no modes without a table); the pinned bodies (which, the
+position, velocity and acceleration of every pin per sub-step (n_sub, nb, 3, 3), the sub-step,
+the pins' forces at the evaluated state and at the start of the step). A pinned body's origin
+follows its pin (:meth:`BodyModel.advance`): its translational rows are the pin's force, held
+out of the system (:func:`moorline.solvers.bodies.hold_dofs`). Without bodies ``bodies`` is None:
 every function here returns at once, and numba prunes the rest, so a model without bodies
 does not compile the bodies' code.
 """
@@ -62,10 +66,12 @@ _JIT = {"cache": True, "fastmath": False, "error_model": "numpy"}
 
 
 @numba.njit(**_JIT)
-def predict(bodies, h):
-    """The bodies' predictor ``dq = h v0 + h^2 a0 / 2`` (:meth:`Stepper._predict`)."""
+def predict(bodies, h, j):
+    """The bodies' predictor ``dq = h v0 + h^2 a0 / 2`` (:meth:`Stepper._predict`) for
+    sub-step ``j``."""
     if bodies is None:  # no bodies: not compiled in
         return
+    bodies[6][2][0] = j
     state = bodies[2]
     vel0, acc0, dq = state[2], state[3], state[4]
     for b in range(dq.shape[0]):
@@ -91,6 +97,13 @@ def place(bodies, trial, h, beta, gamma, x, v, a):
             if i < 3:
                 r1[b, i] = r0[b, i] + dq[b, i]
         R1[b] = mm(rotation_matrix(dq[b, 3:].copy()), R0[b])
+    pinned, pin, j = bodies[6][0], bodies[6][1], bodies[6][2][0]
+    for b in range(dq.shape[0]):
+        if pinned[b]:  # the origin where its pin is
+            for i in range(3):
+                r1[b, i] = r0[b, i] + (pin[j, b, 0, i] - r0[b, i])
+                vel1[b, i] = pin[j, b, 1, i]
+                acc1[b, i] = pin[j, b, 2, i]
     advance_memory(bodies[5], h, vel0, vel1)
     for s in range(slave_node.shape[0]):
         b, n = slave_body[s], slave_node[s]
@@ -154,8 +167,9 @@ def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
     """The bodies' rows of the step's residual (after the ``n`` band rows of ``rvec``): the
     weighted non-inertial forces plus the inertial ones, ``(1 + alpha) F - alpha F0 + F_i``
     (:meth:`Stepper.residual`, :meth:`BodyModel.forces`), with the attached nodes' forces
-    of ``buf`` through ``T^T``; returns the max-norm of the whole residual (``norm``: that of
-    the band rows; ``inf`` for a NaN)."""
+    of ``buf`` through ``T^T``; a pinned body's translational rows are minus its pin's
+    force (kept in ``bodies``) and held at zero; returns the max-norm of the whole residual
+    (``norm``: that of the band rows; ``inf`` for a NaN)."""
     if bodies is None:  # no bodies: not compiled in
         return norm
     slave_node, slave_body = bodies[0][0], bodies[0][1]
@@ -191,10 +205,14 @@ def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
             other1[b, 3 + c] += m_o[c]
             inertial[b, c] += f_i[c]
             inertial[b, 3 + c] += m_i[c]
+    pinned, pin_force = bodies[6][0], bodies[6][3]
     for b in range(nb):
         for i in range(6):
             row = other1[b, i] + inertial[b, i] if alpha == 0.0 else \
                 (1.0 + alpha) * other1[b, i] - alpha * other0[b, i] + inertial[b, i]
+            if pinned[b] and i < 3:
+                pin_force[b, i] = -row
+                row = 0.0
             rvec[n_line + 6 * b + i] = row
             r = abs(row)
             if not (r <= norm):
@@ -335,6 +353,26 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
         block = turned + cv1 * (ck * damp + d_vel) \
             + ca * (rigid_mass(mass[b], cog[b], inertia[b], R1[b]) + added[b])
         D[6 * b:6 * b + 6, 6 * b:6 * b + 6] += block
+    _hold_pins(bodies[6][0], BT, Cr, D)
+
+
+@numba.njit(**_JIT)
+def _hold_pins(pinned, BT, Cr, D):
+    """The pinned bodies' translations held: their rows and columns of the border zero,
+    their diagonal the largest of ``D``'s (:func:`moorline.solvers.bodies.hold_dofs`)."""
+    scale = 0.0
+    for k in range(D.shape[0]):
+        scale = max(scale, abs(D[k, k]))
+    for b in range(pinned.shape[0]):
+        if not pinned[b]:
+            continue
+        for i in range(3):
+            d = 6 * b + i
+            BT[d, :] = 0.0
+            Cr[d, :] = 0.0
+            D[d, :] = 0.0
+            D[:, d] = 0.0
+            D[d, d] = scale
 
 
 @numba.njit(**_JIT)
@@ -447,14 +485,17 @@ def commit(bodies):
     state[3][:, :] = state[9]
     state[11][:, :] = state[12]
     bodies[5][5][:] = bodies[5][6]
+    bodies[6][4][:, :] = bodies[6][3]
 
 
 @numba.njit(**_JIT)
 def record(bodies, r, out):
-    """The bodies' state into record ``r`` of ``out = (origins, rotations, velocities)``."""
+    """The bodies' state into record ``r`` of ``out = (origins, rotations, velocities,
+    pin forces)``."""
     if bodies is None:  # no bodies: not compiled in
         return
     state = bodies[2]
     out[0][r] = state[0]
     out[1][r] = state[1]
     out[2][r] = state[2]
+    out[3][r] = bodies[6][4]

@@ -1,7 +1,7 @@
 """The arrays the compiled step with bodies takes (:mod:`moorline.solvers.fast_bodies`), built
 from a :class:`~moorline.solvers.body_model.BodyModel`: the attached nodes, the bodies'
-constants, their state at the start of a block, their radiation memory (modes and states) and
-the loads that depend on time alone at its sub-steps (force histories,
+constants, their state at the start of a block, their radiation memory (modes and states), the
+pinned bodies' pins and the loads that depend on time alone at its sub-steps (force histories,
 :meth:`BodyModel._excitation`'s exciting-force tables)."""
 
 from __future__ import annotations
@@ -107,6 +107,23 @@ class BodyInputs:
                     z0[self.modes[0] == k] = z
         return (*self.modes, z0, z0.copy(), np.zeros(n, dtype=complex))
 
+    def pins(self, times: FloatArray, pin_force: FloatArray | None) -> tuple:
+        """The compiled pins (:mod:`moorline.solvers.fast_bodies`) of a block of sub-steps
+        ending at ``times``: which bodies are pinned, their pins' position, velocity and
+        acceleration (:func:`~moorline.solvers.body_model.pin_state`) per sub-step, the
+        sub-step, and the pins' forces (``pin_force`` at the start: None, zeros)."""
+        from .body_model import pin_state
+
+        bodies = self.model.bodies if self.nb else []
+        pinned = np.array([b.kind == "pinned" for b in bodies], dtype=np.bool_)
+        kin = np.zeros((len(times), self.nb, 3, 3))
+        if pinned.any():
+            for k, t in enumerate(times):
+                kin[k] = np.stack(pin_state(bodies, float(t)), axis=1)
+        force0 = np.zeros((self.nb, 3)) if pin_force is None else \
+            np.array(pin_force, dtype=float)
+        return pinned, kin, np.zeros(1, dtype=np.int64), force0.copy(), force0
+
     def memory_states(self, memory: tuple) -> tuple | None:
         """The states at the start of the step in :meth:`memory`'s tuple as
         :attr:`StepState.memory` (None when no body has a table)."""
@@ -137,9 +154,10 @@ class BodyInputs:
         return out
 
     def records(self, n: int) -> tuple:
-        """Record buffers (origins, rotations, velocities) for ``n`` records."""
+        """Record buffers (origins, rotations, velocities, pin forces) for ``n``
+        records."""
         return (np.empty((n, self.nb, 3)), np.empty((n, self.nb, 3, 3)),
-                np.empty((n, self.nb, 6)))
+                np.empty((n, self.nb, 6)), np.empty((n, self.nb, 3)))
 
     def tangent_state(self) -> tuple:
         """Copies of the factorization's border."""

@@ -343,7 +343,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
         if free[n]:
             for c in range(3):
                 x1[n, c] = x0[n, c] + h * v0[n, c]
-    fb.predict(bodies, h)
+    fb.predict(bodies, h, j)
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
     fb.place(bodies, False, h, beta, gamma, x1, v1, a1)
     moving = fluid[0] or fluid[6]
@@ -589,8 +589,9 @@ class FastStepper:
             body_other0 = self.general._body_other(s0)
         body_state = inputs.state(s0.bodies, body_other0)
         memory = inputs.memory(s0.memory)
+        pins = inputs.pins(times, s0.pin_force)
         bodies = None if not inputs.nb else (inputs.links, inputs.loads, body_state,
-                                             inputs.forces(times), inputs.work, memory)
+                                             inputs.forces(times), inputs.work, memory, pins)
         done, stopped, norm, n_written = advance_block(
             x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
             self._fluid_inputs(times), self.model_args, self.newton_args, self.tan,
@@ -605,15 +606,16 @@ class FastStepper:
             nodal = resid + self.model.node_mass[:, None] * a0  # F without structural inertia
             ev = Evaluation(nodal, f_am, tension,
                             MaterialState(strain, maxwell, material.peak), el_forces)
-            poses, body_other, states = None, None, None
+            poses, body_other, states, pin_force = None, None, None, None
             if inputs.nb:
                 from .bodies import BodyState
 
                 poses = BodyState(*(q.copy() for q in body_state[:4]))
                 body_other = body_state[11].copy()
                 states = inputs.memory_states(memory)
+                pin_force = pins[4].copy() if pins[0].any() else None
             state = StepState(float(times[n_sub - 1]), x0, v0, a0, ev.material, ev, poses,
-                              body_other, states)
+                              body_other, states, pin_force)
         return Block(state, int(done), int(stopped), float(norm), out[0][:n_written],
                      out[1][:n_written], out[2][:n_written], out[3][:n_written],
                      tuple(q[:n_written] for q in out[6:]))
