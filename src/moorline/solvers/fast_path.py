@@ -1,8 +1,8 @@
 """When the compiled time step (:mod:`moorline.solvers.fast_newmark`) can run a model.
 
 Kept apart from the compiled step so that deciding does not import numba: a model the
-compiled step cannot run (fixed or pinned bodies, MoorDyn's viscoelastic ropes, bending...)
-takes the general stepper without loading it.
+compiled step cannot run (fixed bodies, pins on bodies, MoorDyn's viscoelastic ropes,
+bending...) takes the general stepper without loading it.
 """
 
 from __future__ import annotations
