@@ -121,6 +121,41 @@ def test_compiled_bodies_equal_the_general_stepper(case, scheme, monkeypatch):
     assert np.allclose(fast.end_force, slow.end_force, rtol=0, atol=1e-7 * ends)
 
 
+def pinned_buoy() -> System:
+    """:func:`buoy` pinned at its origin, the pin surging and heaving (its centre of gravity
+    off the pin: the pin's acceleration turns it, with the waves' exciting moments)."""
+    system = buoy()
+    motion = Motion("harmonic", amplitude=(0.6, 0.2, 0.1), period=8.0)
+    body = replace(system.bodies["buoy"], kind="pinned", motion=motion)
+    return replace(system, bodies={"buoy": body})
+
+
+@pytest.mark.parametrize("scheme", ["newmark", "hht"])
+def test_compiled_pinned_body_equals_the_general_stepper(scheme, monkeypatch):
+    """A body pinned in space, its pin moving (held translations, the pin's force as their
+    residual): over 6 s the same poses, velocities, pin forces (to the Newton tolerance's
+    round-off of the largest) and line results as the general stepper, the same work."""
+    from backends import assert_same_run
+
+    system = pinned_buoy()
+    settings = DynamicsSettings(duration=6.0, dt=0.05, ramp_time=2.0, scheme=scheme,
+                                alpha=-0.1)
+    start = solve_statics(system)
+    assert type(dynamics.start(system, settings, start)[-1]).__name__ == "FastStepper"
+    fast, slow = _runs(system, settings, monkeypatch)
+    assert_same_run(fast, slow)
+    assert np.abs(slow.body_pose[:, 0, 3:]).max() > 1e-3  # it turns on its pin
+    assert np.abs(slow.body_pose[:, 0, 0] - slow.body_pose[0, 0, 0]).max() > 0.3  # moved
+    assert np.allclose(fast.body_pose, slow.body_pose, rtol=0, atol=1e-9 * 10.0)
+    assert np.allclose(fast.body_velocity, slow.body_velocity, rtol=0,
+                       atol=1e-8 * np.abs(slow.body_velocity).max())
+    pin = np.abs(slow.body_pin_force).max()
+    assert pin > 1e4  # [N]
+    assert np.allclose(fast.body_pin_force, slow.body_pin_force, rtol=0, atol=1e-7 * pin)
+    ends = np.abs(slow.end_force).max()
+    assert np.allclose(fast.end_force, slow.end_force, rtol=0, atol=1e-7 * ends)
+
+
 def test_step_cuts_restore_the_bodies():
     """One step at a time through :meth:`FastStepper.step` (the Python path of step cuts,
     :func:`moorline.solvers.dynamics._advance`): a step that does not converge (one
@@ -194,8 +229,12 @@ def _compiled_problem(stepper, s0, h: float, constrained):
         _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
         state = inputs.state(s0.bodies, None)
         state[4][:] = u[n:].reshape(nb, 6)
-        bodies = (inputs.links, inputs.loads, state, inputs.forces(np.array([s0.t + h])),
-                  tuple(np.zeros_like(w) for w in inputs.work))
+        times = np.array([s0.t + h])
+        bodies = (inputs.links, inputs.loads, state, inputs.forces(times),
+                  tuple(np.zeros_like(w) for w in inputs.work), inputs.memory(s0.memory),
+                  inputs.pins(times, None))
+        fb.predict(bodies, h, 0)  # the sub-step (the predicted step is overwritten)
+        state[4][:] = u[n:].reshape(nb, 6)
         fb.place(bodies, False, h, beta, gamma, x1, v1, a1)
         uf, af = np.zeros((mesh.n_elements, 3)), np.zeros((mesh.n_elements, 3))
         if fluid[0] or fluid[6]:
@@ -216,8 +255,8 @@ def _compiled_problem(stepper, s0, h: float, constrained):
         ca = 1.0 / (beta * h * h)
         cv, ck = (1 + alpha) * gamma / (beta * h), 1.0 + alpha
         ab = np.zeros((n, 2 * bw + 1))
-        _assemble(ab, bw, band, elements, buf[6], buf[7], buf[8], wam, node_mass, ca, cv, ck,
-                  buf[12], buf[13], buf[14], buf[15], buf[16], seabed_on)
+        _assemble(ab, bw, band, elements, buf[6], buf[7], buf[8], buf[19], wam, node_mass, ca,
+                  cv, ck, buf[12], buf[13], buf[14], buf[15], buf[16], seabed_on)
         fb.couplings(bodies, band, elements, buf, wam, node_mass, ca, cv, ck, seabed_on)
         K = np.zeros((n + 6 * nb, n + 6 * nb))
         for i in range(n):
@@ -234,17 +273,18 @@ def _compiled_problem(stepper, s0, h: float, constrained):
     return residual, tangent, u
 
 
-def _moving_buoy(scheme: str, line_added_mass: bool = True):
+def _moving_buoy(scheme: str, pinned: bool = False):
     """The still-water buoy (the lines' fluid loads then have an exact tangent; in waves the
     tangent leaves out how the fluid kinematics change with position, in both steppers) at
     its static state with a random body velocity and acceleration, its compiled stepper, the
-    compiled problem (:func:`_compiled_problem`) and unknowns with a finite body step."""
+    compiled problem (:func:`_compiled_problem`) and unknowns with a finite body step.
+    ``pinned``: the buoy pinned at its origin, the pin moving (:func:`pinned_buoy`)."""
     from moorline.solvers.bodies import BodyState
 
     system = buoy(waves=False)
-    if not line_added_mass:
-        chain = replace(system.line_types["chain"], Ca=0.0, Cat=0.0)
-        system = replace(system, line_types={"chain": chain})
+    if pinned:
+        body = replace(pinned_buoy().bodies["buoy"], excitation=None)
+        system = replace(system, bodies={"buoy": body})
     settings = DynamicsSettings(duration=2.0, dt=0.05, scheme=scheme, alpha=-0.1)
     start = solve_statics(system)
     _, _, excitation, state, stepper = dynamics.start(system, settings, start)
@@ -261,20 +301,15 @@ def _moving_buoy(scheme: str, line_added_mass: bool = True):
     return stepper, state, h, constrained, residual, tangent, u
 
 
-@pytest.mark.parametrize("scheme,line_added_mass", [("newmark", True), ("hht", False)])
-def test_compiled_body_tangent_matches_finite_differences(scheme, line_added_mass):
+@pytest.mark.parametrize("scheme", ["newmark", "hht"])
+def test_compiled_body_tangent_matches_finite_differences(scheme):
     """The border of the compiled effective tangent (coupling columns ``B``, rows ``C`` and
     the bodies' block ``D``: kinematic blocks, ``T^T``, the arms turning, hydrostatics,
     weight at an offset centre of gravity, gyroscopic and centripetal inertia, the left
-    Jacobian of a 0.2 rad step) against central differences of the compiled residual, within
-    1e-7 of each column's largest entry.
-
-    With HHT the lines have no added mass here: the element tangent weights the whole
-    position derivative of the nodal forces by ``1 + alpha``, that of the added-mass forces
-    (inertial, weighted 1 in the residual) included, in both steppers: a difference of order
-    ``alpha`` times that small term (1e-5 of the body rows here), which only slows Newton
-    down (:func:`test_compiled_body_tangent_is_the_general_steppers` checks the rest)."""
-    stepper, _, _, _, residual, tangent, u = _moving_buoy(scheme, line_added_mass)
+    Jacobian of a 0.2 rad step; with HHT the lines' added-mass forces' position derivative
+    weighted 1, as they are in the residual) against central differences of the compiled
+    residual, within 1e-7 of each column's largest entry."""
+    stepper, _, _, _, residual, tangent, u = _moving_buoy(scheme)
     n = stepper.lu.shape[0]
     K = tangent(u)
     fd = np.zeros_like(K)
@@ -288,6 +323,34 @@ def test_compiled_body_tangent_matches_finite_differences(scheme, line_added_mas
     for block, ref in ((K[:, body], fd[:, body]), (K[body, :], fd[body, :])):
         scale = np.abs(ref).max(axis=0, keepdims=True)
         assert np.allclose(block, ref, rtol=0, atol=1e-7 * scale)
+
+
+@pytest.mark.parametrize("scheme", ["newmark", "hht"])
+def test_compiled_pinned_body_tangent_matches_finite_differences(scheme):
+    """With the buoy pinned on a moving pin: the compiled tangent against central
+    differences of the compiled residual in every unknown but the held translations (their
+    rows, the pin's force, are zero in the residual; their rows and columns of the tangent
+    zero but the diagonal), within 1e-7 of each column's largest entry."""
+    stepper, _, _, _, residual, tangent, u = _moving_buoy(scheme, pinned=True)
+    n = stepper.lu.shape[0]
+    K = tangent(u)
+    held = np.zeros(len(u), dtype=bool)
+    held[n:n + 3] = True
+    keep = np.flatnonzero(~held)
+    fd = np.zeros((len(u), len(keep)))
+    for col, k in enumerate(keep):
+        eps = 1e-6 * max(1.0, abs(u[k]))
+        up, um = u.copy(), u.copy()
+        up[k] += eps
+        um[k] -= eps
+        fd[:, col] = -(residual(up) - residual(um)) / (2 * eps)
+    assert not fd[held].any()
+    assert not K[np.ix_(held, ~held)].any() and not K[np.ix_(~held, held)].any()
+    mine, ref = K[np.ix_(keep, keep)], fd[keep]
+    body = slice(n, None)  # the body's rotations (after the band in the kept unknowns)
+    for block, fd_block in ((mine[:, body], ref[:, body]), (mine[body, :], ref[body, :])):
+        scale = np.abs(fd_block).max(axis=0, keepdims=True)
+        assert np.allclose(block, fd_block, rtol=0, atol=1e-7 * scale)
 
 
 @pytest.mark.parametrize("scheme", ["newmark", "hht"])
@@ -324,8 +387,7 @@ def test_compiled_body_tangent_is_the_general_steppers(scheme):
 # ---------------------------------------------------------------- refusals
 @pytest.mark.parametrize("change,reason", [
     ({"kind": "fixed"}, "a fixed body (box)"),
-    ({"kind": "pinned"}, "a pinned body (box)"),
-    ({"radiation": "table"}, "a radiation table (Cummins memory) on body box"),
+    ({"kind": "pinned", "pin_body": "hull"}, "a pinned body on another body (box)"),
     ({"hydrostatics": Hydrostatics("rods", volume=1.0)}, "rods hydrostatics on body box"),
     ({"drag_area": (1.0, 0.0, 0.0)}, "drag on body box"),
     ({"wave_loads": True}, "long-wave loads on body box"),

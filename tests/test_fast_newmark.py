@@ -179,8 +179,9 @@ def test_both_backends_give_the_same_states_step_by_step_on_every_case_both_acce
     from moorline.solvers.fast_path import fast_path_reason
 
     if "hydrodynamics:" in path.read_text(encoding="utf-8"):
-        # a body with a hydrodynamic database (its BEM would be computed just to learn this)
-        pytest.skip("the compiled backend does not take bodies (a hydrodynamic database)")
+        # a body with a hydrodynamic database: its BEM takes about a minute (the compiled
+        # radiation memory: tests/test_fast_memory.py)
+        pytest.skip("a hydrodynamic database (BEM) is too slow to compute for this test")
     system = load_case(path)
     settings = next((a for a in system.analyses if isinstance(a, DynamicsSettings)),
                     DynamicsSettings())

@@ -341,3 +341,33 @@ def test_moordyn_options_equal_numpy(mode, options):
         args = (x, v, a, 3.0, material, 0.1, tangent)
         _assert_same(ref.evaluate(*args), new.evaluate(*args))
     assert not np.allclose(default.evaluate(*args).nodal, new.evaluate(*args).nodal)
+
+
+def test_added_mass_part_of_the_tangent_is_the_derivative_of_the_added_mass_forces():
+    """``Ka`` (the added-mass forces' part of ``K``, weighted 1 by HHT, the rest of ``K``
+    ``1 + alpha``) is ``-d(-M_a(x) a)/dx`` of the nodal added-mass forces (``inertial``):
+    against central differences in every node coordinate, within 1e-7 of the largest; and
+    a part of ``K`` (Cat != Ca: ``M_a`` turns with the element)."""
+    mesh = discretize(_system(Ca=1.0, Cat=0.3))
+    model = DynamicModel(mesh, FLUIDS["still"], kernel="numba")
+    x, v, a = _configuration(mesh, "taut", 0)
+    a = 1e3 * a  # a visible derivative next to the axial stiffness
+    material = model.initial_material(x)
+
+    def inertial(xx):
+        return model.evaluate(xx, v, a, 2.0, material, 0.1, False).inertial.ravel()
+
+    ev = model.evaluate(x, v, a, 2.0, material, 0.1, True)
+    n = 3 * mesh.n_nodes
+    Ka = np.zeros((n, n))
+    for e, (i, j) in enumerate(mesh.elements):
+        dofs = np.r_[3 * i:3 * i + 3, 3 * j:3 * j + 3]
+        Ka[np.ix_(dofs, dofs)] += ev.Ka[e]
+    fd = np.zeros((n, n))
+    for k in range(n):
+        step = np.zeros(n)
+        step[k] = 1e-6
+        fd[:, k] = -(inertial(x + step.reshape(x.shape))
+                     - inertial(x - step.reshape(x.shape))) / 2e-6
+    assert np.abs(fd).max() > 1.0
+    assert np.allclose(Ka, fd, rtol=0, atol=1e-7 * np.abs(fd).max())

@@ -323,7 +323,7 @@ def test_pinned_body_step_tangent_matches_finite_differences():
     system = replace(system, bodies={"pin": body}, points=points, lines=lines)
     start = solve_statics(system)
     assert start.success, start.message
-    settings = DynamicsSettings(dt=0.05)
+    settings = DynamicsSettings(dt=0.05, fast_path=False)
     fluid = _fluid(system, settings)
     model = DynamicModel(start.mesh, fluid)
     exc = Excitation(start.mesh, start.positions)

@@ -113,6 +113,10 @@ class ElementLoads(NamedTuple):
     K, C, Ma
         ``-dF/dx``, ``-dF/dv``, ``-dF/da`` element blocks (n_el, 6, 6); ``None`` unless
         ``tangent`` (and, for ``Ma``, ``with_added_mass``).
+    Ka
+        The added-mass forces' part of ``K``, ``-d(-M_a(x) a)/dx`` (n_el, 6, 6) (HHT weights
+        these inertial forces by 1, the rest of ``K`` by ``1 + alpha``); ``None`` unless
+        ``tangent`` and ``with_added_mass``.
     nodal
         ``total_forces`` summed to the nodes, (n_nodes, 3).
     nodal_added_mass
@@ -135,6 +139,7 @@ class ElementLoads(NamedTuple):
     nodal: FloatArray
     nodal_added_mass: FloatArray
     maxwell: FloatArray | None = None
+    Ka: FloatArray | None = None
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
@@ -309,12 +314,13 @@ def _drag_share(u0, u1, u2, t, cn, ct, inv_l, du_dv):
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
 def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, with_drag,
             with_added_mass, el_forces, total, f_am, tension, strain_out, taut_out, K, C, Ma,
-            nodal, nodal_am):
+            nodal, nodal_am, Ka):
     """The fused loop; see :func:`element_loads`. Every operation is written in the order the
     numpy path evaluates it, so that both agree to round-off. Small vectors are tuples so that
     the unrolled 3x3 loops keep them in registers. ``sag_on``: elements with ``phi != 0``
     follow the sag-corrected law (:mod:`moorline.physics.sag`), ``dphi`` (n_el, 2, 3) the
-    derivatives of their ``phi`` with respect to their nodes."""
+    derivatives of their ``phi`` with respect to their nodes. ``Ka``: the added-mass
+    forces' part of ``K`` (with ``tangent``)."""
     law, start, breaks, coef, end_slope = laws
     nodal[:, :] = 0.0
     nodal_am[:, :] = 0.0
@@ -508,6 +514,7 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
                         c11 = c11 - d
                     k10 = k10 + g
                     k11 = k11 - g
+                g0 = g1 = 0.0
                 if with_added_mass:
                     g = _projector(alpha_i, t, pi_, r, c)
                     g0 = _projector(alpha_0, t, p0, r, c)
@@ -521,6 +528,10 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
                     Ma[e, r, c + 3] = 0.0
                     Ma[e, r + 3, c] = 0.0
                     Ma[e, r + 3, c + 3] = mb
+                Ka[e, r, c] = g0
+                Ka[e, r, c + 3] = -g0
+                Ka[e, r + 3, c] = g1
+                Ka[e, r + 3, c + 3] = -g1
                 K[e, r, c] = k00
                 K[e, r, c + 3] = k01
                 K[e, r + 3, c] = k10
@@ -529,6 +540,16 @@ def _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, 
                 C[e, r, c + 3] = c01
                 C[e, r + 3, c] = c10
                 C[e, r + 3, c + 3] = c11
+
+
+@numba.njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def hht_stiffness(K, Ka, with_added_mass, ck, e, p, q):
+    """``ck K[e, p, q]`` of :func:`_kernel`'s blocks with their added-mass forces' part
+    ``Ka`` weighted 1 instead of ``ck`` (HHT, ``ck = 1 + alpha``: those forces are inertial,
+    weighted 1 in the residual; as :func:`moorline.solvers.newmark._hht_stiffness`)."""
+    if ck == 1.0 or not with_added_mass:
+        return ck * K[e, p, q]
+    return ck * (K[e, p, q] - (1.0 - 1.0 / ck) * Ka[e, p, q])
 
 
 @numba.njit(cache=True, fastmath=False, error_model="numpy")
@@ -761,21 +782,22 @@ class FusedLoads:
         self.with_drag = bool(with_drag)
         self.with_added_mass = bool(with_added_mass)
         self._zero_fluid = np.zeros((n_el, 3))
-        self._scratch_blocks = tuple(np.empty((n_el, 6, 6)) for _ in range(3))  # not tangent
+        self._scratch_blocks = tuple(np.empty((n_el, 6, 6)) for _ in range(4))  # not tangent
         self.reuse_buffers = reuse_buffers
         self._buffers = (self._allocate(True), self._allocate(False)) if reuse_buffers else None
 
     def _allocate(self, tangent: bool) -> tuple:
-        """Output arrays (``K``, ``C``, ``Ma``: a shared scratch unless ``tangent``)."""
+        """Output arrays (``K``, ``C``, ``Ma``, ``Ka``: a shared scratch unless
+        ``tangent``)."""
         n_el, n = self.n_el, self.n_nodes
         empty = np.empty
         if tangent:
-            K, C, Ma = empty((n_el, 6, 6)), empty((n_el, 6, 6)), empty((n_el, 6, 6))
+            K, C, Ma, Ka = (empty((n_el, 6, 6)) for _ in range(4))
         else:
-            K, C, Ma = self._scratch_blocks
+            K, C, Ma, Ka = self._scratch_blocks
         return (empty((n_el, 2, 3)), empty((n_el, 2, 3)), empty((n_el, 2, 3)), empty(n_el),
                 empty(n_el), empty(n_el, dtype=np.bool_), K, C, Ma, empty((n, 3)),
-                empty((n, 3)))
+                empty((n, 3)), Ka)
 
     def _fluid(self, value: ArrayLike | None) -> FloatArray:
         if value is None:
@@ -825,14 +847,16 @@ class FusedLoads:
                 self._fluid(fluid_velocity_mid), self._fluid(fluid_acceleration_mid),
                 self.elements, self.props, self.laws, self.sag is not None, phi, dphi,
                 tangent, self.with_drag, self.with_added_mass, *out)
+        maxwell_out = None
         if self.viscoelastic:
             maxwell_forces(out[4], self.props, maxwell)
-            out = (*out, maxwell)
+            maxwell_out = maxwell
+        K, C, Ma, Ka = out[6], out[7], out[8], out[11]
         if not tangent:
-            return ElementLoads(*out[:6], None, None, None, *out[9:])
-        if not self.with_added_mass:
-            return ElementLoads(*out[:8], None, *out[9:])
-        return ElementLoads(*out)
+            K = C = Ma = Ka = None
+        elif not self.with_added_mass:
+            Ma = Ka = None
+        return ElementLoads(*out[:6], K, C, Ma, out[9], out[10], maxwell_out, Ka)
 
 
 def element_loads(

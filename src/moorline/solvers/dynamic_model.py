@@ -61,6 +61,8 @@ class Evaluation:
     node_K: FloatArray | None = None  # (n_nodes, 3, 3)
     node_C: FloatArray | None = None
     node_M: FloatArray | None = None  # point added mass
+    Ka: FloatArray | None = None      # (n_el, 6, 6) the added-mass forces' part of K,
+    #                                   -d(-M_a(x) a)/dx (inertial: HHT weights it by 1)
 
 
 class DynamicModel:
@@ -209,7 +211,8 @@ relaxed_state`)."""
                             maxwell_before=previous.maxwell, dt=dt)
             out = {}
             if tangent:
-                out = {"K": r.K, "C": r.C, "Ma": r.Ma if self.has_added_mass else None}
+                out = {"K": r.K, "C": r.C, "Ma": r.Ma if self.has_added_mass else None,
+                       "Ka": r.Ka if self.has_added_mass else None}
             inertial = r.nodal_added_mass if self.has_added_mass else np.zeros((m.n_nodes, 3))
             nodal = r.nodal + self.external
             if point_forces is not None:
@@ -254,7 +257,8 @@ relaxed_state`)."""
         if tangent:
             pad = np.zeros((len(m.bend_nodes), 6, 6))
             out = dict(out, K=K, **{key: np.concatenate((out[key], pad))
-                                    for key in ("C", "Ma") if out.get(key) is not None})
+                                    for key in ("C", "Ma", "Ka")
+                                    if out.get(key) is not None})
         return (nodal + hydro.sum_to_nodes(shear, m.elements, m.n_nodes), el_forces + shear,
                 out)
 
@@ -359,6 +363,7 @@ relaxed_state`)."""
                                                               m.Ca, m.Cat, self.rho)
                 out["K"] = out["K"] - dFin_dx - dMa_dx
                 out["Ma"] = Ma
+                out["Ka"] = -dMa_dx
         return forces, out
 
     def _friction(self, x, v, contact, nodal, node_K, node_C, tangent):

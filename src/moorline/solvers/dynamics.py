@@ -246,7 +246,6 @@ class _BlockRunner:
                 "tension": block.tensions,
                 "end_force": ends.reshape(n_rec, self.n_lines, 2, 3),
                 **self.body_records.records(block),
-                "body_pin_force": np.zeros((n_rec, self.n_bodies, 3)),
                 "wave_elevation": self.recorder.elevations(rec_times)})
         if block.stopped < 0:
             return block.state, k + done, None
@@ -564,21 +563,24 @@ class _BodyRecords:
                       for k, node in enumerate(mesh.slave_node)]
 
     def records(self, block) -> dict[str, FloatArray]:
-        """``body_pose``, ``body_velocity``, ``body_mooring_force`` (n_rec, nb, 6)."""
+        """``body_pose``, ``body_velocity``, ``body_mooring_force`` (n_rec, nb, 6) and
+        ``body_pin_force`` (n_rec, nb, 3)."""
         n_rec = len(block.tensions)
         if not self.n_bodies:
             return {"body_pose": np.zeros((n_rec, 0, 6)), "body_velocity": np.zeros((n_rec, 0, 6)),
-                    "body_mooring_force": np.zeros((n_rec, 0, 6))}
+                    "body_mooring_force": np.zeros((n_rec, 0, 6)),
+                    "body_pin_force": np.zeros((n_rec, 0, 3))}
         from ..physics.rigid_body import rotation_vector
 
-        r, R, vel = block.bodies
+        r, R, vel, pin_force = block.bodies
         mooring = np.zeros((n_rec, self.n_bodies, 6))
         for ends, b, node in self.pairs:
             force = block.end_forces[:, ends].sum(axis=1)
             mooring[:, b, :3] += force
             mooring[:, b, 3:] += np.cross(block.positions[:, node] - r[:, b], force)
         return {"body_pose": np.concatenate((r, rotation_vector(R)), axis=-1),
-                "body_velocity": vel.copy(), "body_mooring_force": mooring}
+                "body_velocity": vel.copy(), "body_mooring_force": mooring,
+                "body_pin_force": pin_force.copy()}
 
 
 def _end_forces(mesh: Mesh, state: StepState) -> FloatArray:

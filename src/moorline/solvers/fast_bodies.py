@@ -20,14 +20,22 @@ factorization is the banded LU of ``A``, ``A^-1 B`` (``6 nb`` band solves) and t
 the Schur complement ``S = D - C A^-1 B`` (``6 nb`` square); a solve is one band solve, and
 ``dq = S^-1 (r_b - C y)``, ``dx = y - A^-1 B dq``. The cost stays that of the band.
 
-``bodies`` (:func:`pack`) = ``(links, loads, state, forces, work)``: the attached nodes
+``bodies`` = ``(links, loads, state, forces, work, memory, pins)``: the attached nodes
 (node, body, body-frame arm, the attached index of every node or -1); the bodies' constants
 (:func:`moorline.solvers.fast_rigid.static_load`); the state (start of the step ``r0, R0,
 vel0, acc0``, the step ``dq`` and its line-search trial, the evaluated state ``r1, R1, vel1,
 acc1``, the attached nodes' world arms and weighted forces, the non-inertial generalized
 forces at the start of the step and at the evaluated state for HHT); the loads that depend
 on time alone per sub-step (force histories, exciting-force tables; ``(n_sub, nb, 6)``); the
-factorization (``(A^-1 B)^T``, ``C``, ``D``, ``S^-1``). Without bodies ``bodies`` is None:
+factorization (``(A^-1 B)^T``, ``C``, ``D``, ``S^-1``); the radiation memory of the bodies
+with a radiation table (Cummins 1962, :class:`moorline.physics.radiation.MemoryModel`: every
+mode's body, force and velocity dof, pole and coefficient; the complex states at the start of
+the step and at the evaluated state, and the step weight ``h phi_2(p h)`` of the mode's end
+velocity, :func:`advance_memory`; no modes without a table); the pinned bodies (which, the
+position, velocity and acceleration of every pin per sub-step (n_sub, nb, 3, 3), the sub-step,
+the pins' forces at the evaluated state and at the start of the step). A pinned body's origin
+follows its pin (:meth:`BodyModel.advance`): its translational rows are the pin's force, held
+out of the system (:func:`moorline.solvers.bodies.hold_dofs`). Without bodies ``bodies`` is None:
 every function here returns at once, and numba prunes the rest, so a model without bodies
 does not compile the bodies' code.
 """
@@ -40,6 +48,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..jit import numba
+from ..physics.fused import hht_stiffness
 from .fast_rigid import (
     cross,
     inertia_load,
@@ -57,10 +66,12 @@ _JIT = {"cache": True, "fastmath": False, "error_model": "numpy"}
 
 
 @numba.njit(**_JIT)
-def predict(bodies, h):
-    """The bodies' predictor ``dq = h v0 + h^2 a0 / 2`` (:meth:`Stepper._predict`)."""
+def predict(bodies, h, j):
+    """The bodies' predictor ``dq = h v0 + h^2 a0 / 2`` (:meth:`Stepper._predict`) for
+    sub-step ``j``."""
     if bodies is None:  # no bodies: not compiled in
         return
+    bodies[6][2][0] = j
     state = bodies[2]
     vel0, acc0, dq = state[2], state[3], state[4]
     for b in range(dq.shape[0]):
@@ -86,6 +97,14 @@ def place(bodies, trial, h, beta, gamma, x, v, a):
             if i < 3:
                 r1[b, i] = r0[b, i] + dq[b, i]
         R1[b] = mm(rotation_matrix(dq[b, 3:].copy()), R0[b])
+    pinned, pin, j = bodies[6][0], bodies[6][1], bodies[6][2][0]
+    for b in range(dq.shape[0]):
+        if pinned[b]:  # the origin where its pin is
+            for i in range(3):
+                r1[b, i] = r0[b, i] + (pin[j, b, 0, i] - r0[b, i])
+                vel1[b, i] = pin[j, b, 1, i]
+                acc1[b, i] = pin[j, b, 2, i]
+    advance_memory(bodies[5], h, vel0, vel1)
     for s in range(slave_node.shape[0]):
         b, n = slave_body[s], slave_node[s]
         arm = mv(R1[b], slave_arm[s])
@@ -100,12 +119,57 @@ def place(bodies, trial, h, beta, gamma, x, v, a):
 
 
 @numba.njit(**_JIT)
+def advance_memory(memory, h, vel0, vel1):
+    """The radiation memory states at the end of the step ``h`` for the body velocities
+    going linearly from ``vel0`` to ``vel1`` (nb, 6): ``z1 = e^{p h} z0 + h phi_1 v0 + h
+    phi_2 (v1 - v0)`` (:meth:`MemoryModel.step_weights` and :meth:`~MemoryModel.advance`,
+    exact; the weight ``h phi_2`` of ``v1`` kept for the tangent)."""
+    body, col, poles, z0, z1, w_end = memory[0], memory[2], memory[3], memory[5], memory[6], \
+        memory[7]
+    for m in range(poles.shape[0]):
+        x = poles[m] * h
+        e = np.exp(x)
+        if abs(x) < 1e-3:
+            phi1 = 1.0 + x / 2.0 + x * x / 6.0
+            phi2 = 0.5 + x / 6.0 + x * x / 24.0
+        else:
+            phi1 = (e - 1.0) / x
+            phi2 = (e - 1.0 - x) / (x * x)
+        a, w = h * phi1, h * phi2
+        w_end[m] = w
+        v0, v1 = vel0[body[m], col[m]], vel1[body[m], col[m]]
+        z1[m] = e * z0[m] + a * v0 + w * (v1 - v0)
+
+
+@numba.njit(**_JIT)
+def memory_forces(memory, nb):
+    """The memory forces ``mu = Re sum c z1`` (nb, 6) of the evaluated states (the bodies
+    feel ``-mu``; :meth:`MemoryModel.force`)."""
+    body, row, coef, z1 = memory[0], memory[1], memory[4], memory[6]
+    mu = np.zeros((nb, 6))
+    for m in range(coef.shape[0]):
+        mu[body[m], row[m]] += (coef[m] * z1[m]).real
+    return mu
+
+
+@numba.njit(**_JIT)
+def add_memory_damping(memory, b, damp):
+    """Adds ``d mu / d v1`` of body ``b`` (:meth:`MemoryModel.velocity_derivative` over the
+    step of the last :func:`advance_memory`) to its damping block ``damp`` (6, 6)."""
+    body, row, col, coef, w_end = memory[0], memory[1], memory[2], memory[4], memory[7]
+    for m in range(coef.shape[0]):
+        if body[m] == b:
+            damp[row[m], col[m]] += (coef[m] * w_end[m]).real
+
+
+@numba.njit(**_JIT)
 def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
     """The bodies' rows of the step's residual (after the ``n`` band rows of ``rvec``): the
     weighted non-inertial forces plus the inertial ones, ``(1 + alpha) F - alpha F0 + F_i``
     (:meth:`Stepper.residual`, :meth:`BodyModel.forces`), with the attached nodes' forces
-    of ``buf`` through ``T^T``; returns the max-norm of the whole residual (``norm``: that of
-    the band rows; ``inf`` for a NaN)."""
+    of ``buf`` through ``T^T``; a pinned body's translational rows are minus its pin's
+    force (kept in ``bodies``) and held at zero; returns the max-norm of the whole residual
+    (``norm``: that of the band rows; ``inf`` for a NaN)."""
     if bodies is None:  # no bodies: not compiled in
         return norm
     slave_node, slave_body = bodies[0][0], bodies[0][1]
@@ -120,8 +184,10 @@ def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
     d_vel = np.empty((6, 6))
     d_rot = np.empty((6, 6))
     inertial = np.zeros((nb, 6))
+    mu = memory_forces(bodies[5], nb)
     for b in range(nb):
-        gen = static_load(b, loads, r1[b], R1[b], K) + forces[j, b] - mv(damping[b], vel1[b])
+        gen = static_load(b, loads, r1[b], R1[b], K) + forces[j, b] \
+            - (mv(damping[b], vel1[b]) + mu[b])
         other1[b] = gen
         inertial[b] = -(inertia_load(mass[b], cog[b], inertia[b], R1[b], vel1[b], acc1[b],
                                      d_vel, d_rot) + mv(added[b], acc1[b]))
@@ -139,10 +205,14 @@ def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
             other1[b, 3 + c] += m_o[c]
             inertial[b, c] += f_i[c]
             inertial[b, 3 + c] += m_i[c]
+    pinned, pin_force = bodies[6][0], bodies[6][3]
     for b in range(nb):
         for i in range(6):
             row = other1[b, i] + inertial[b, i] if alpha == 0.0 else \
                 (1.0 + alpha) * other1[b, i] - alpha * other0[b, i] + inertial[b, i]
+            if pinned[b] and i < 3:
+                pin_force[b, i] = -row
+                row = 0.0
             rvec[n_line + 6 * b + i] = row
             r = abs(row)
             if not (r <= norm):
@@ -193,11 +263,13 @@ def _transposed_maps(arms):
 def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, ck, seabed_on):
     """The border of the effective tangent ``-dr/du`` (:meth:`Stepper.tangent_matrix`):
     ``B^T`` (6 nb, n), ``C`` (6 nb, n) and ``D`` (6 nb, 6 nb) into ``bodies``' work arrays:
-    the element blocks ``ck K + cv C + ca M_a`` on an attached node's columns through its
+    the element blocks ``ck K + cv C + ca M_a`` (the added-mass forces' part of ``K`` weighted
+    1, :func:`~moorline.physics.fused.hht_stiffness`) on an attached node's columns through its
     kinematic blocks, on its rows through ``T^T``; its node mass and seabed terms; and every
     body's block (:meth:`BodyModel.block_parts`: hydrostatics and weight, the attached
-    nodes' arms turning under their forces, damping, added mass and the exact rigid-body
-    inertia; rotation columns chained by the left Jacobian of the step)."""
+    nodes' arms turning under their forces, damping with the radiation memory's ``d mu / d
+    v1``, added mass and the exact rigid-body inertia; rotation columns chained by the left
+    Jacobian of the step)."""
     if bodies is None:  # no bodies: not compiled in
         return
     slave_node, slave_body, slave_of_node = bodies[0][0], bodies[0][1], bodies[0][3]
@@ -207,7 +279,7 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
     nb = r1.shape[0]
     if nb == 0:
         return
-    K, C, Ma = buf[6], buf[7], buf[8]
+    K, C, Ma, Ka = buf[6], buf[7], buf[8], buf[19]
     kzz, czz, fric_c, fric_kz, fric_cz = buf[12], buf[13], buf[14], buf[15], buf[16]
     BT[:, :] = 0.0
     Cr[:, :] = 0.0
@@ -229,7 +301,7 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
                 if col >= 0:
                     if s_r < 0:
                         continue
-                    val = ck * K[e, p, q] + cv * C[e, p, q]
+                    val = hht_stiffness(K, Ka, with_added_mass, ck, e, p, q) + cv * C[e, p, q]
                     if with_added_mass:
                         val += ca * Ma[e, p, q]
                     for i in range(6):
@@ -238,8 +310,9 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
                 if s_c < 0:
                     continue
                 mapped = np.empty(6)
+                k_pq = hht_stiffness(K, Ka, with_added_mass, ck, e, p, q)
                 for k in range(6):
-                    mapped[k] = ck * (K[e, p, q] * bx[s_c, c_q, k] + C[e, p, q] * bv[s_c, c_q, k])
+                    mapped[k] = k_pq * bx[s_c, c_q, k] + ck * C[e, p, q] * bv[s_c, c_q, k]
                     if with_added_mass:
                         mapped[k] += Ma[e, p, q] * ba[s_c, c_q, k]
                 d_c = 6 * slave_body[s_c]
@@ -275,9 +348,31 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
             if slave_body[s] == b:
                 turned[3:, 3:] -= mm(skew(node_w[s]), skew(arms[s]))
         turned[:, 3:] = mm(turned[:, 3:].copy(), left_jacobian(dq[b, 3:].copy()))
-        block = turned + cv1 * (ck * damping[b] + d_vel) \
+        damp = damping[b].copy()
+        add_memory_damping(bodies[5], b, damp)
+        block = turned + cv1 * (ck * damp + d_vel) \
             + ca * (rigid_mass(mass[b], cog[b], inertia[b], R1[b]) + added[b])
         D[6 * b:6 * b + 6, 6 * b:6 * b + 6] += block
+    _hold_pins(bodies[6][0], BT, Cr, D)
+
+
+@numba.njit(**_JIT)
+def _hold_pins(pinned, BT, Cr, D):
+    """The pinned bodies' translations held: their rows and columns of the border zero,
+    their diagonal the largest of ``D``'s (:func:`moorline.solvers.bodies.hold_dofs`)."""
+    scale = 0.0
+    for k in range(D.shape[0]):
+        scale = max(scale, abs(D[k, k]))
+    for b in range(pinned.shape[0]):
+        if not pinned[b]:
+            continue
+        for i in range(3):
+            d = 6 * b + i
+            BT[d, :] = 0.0
+            Cr[d, :] = 0.0
+            D[d, :] = 0.0
+            D[:, d] = 0.0
+            D[d, d] = scale
 
 
 @numba.njit(**_JIT)
@@ -389,14 +484,18 @@ def commit(bodies):
     state[2][:, :] = state[8]
     state[3][:, :] = state[9]
     state[11][:, :] = state[12]
+    bodies[5][5][:] = bodies[5][6]
+    bodies[6][4][:, :] = bodies[6][3]
 
 
 @numba.njit(**_JIT)
 def record(bodies, r, out):
-    """The bodies' state into record ``r`` of ``out = (origins, rotations, velocities)``."""
+    """The bodies' state into record ``r`` of ``out = (origins, rotations, velocities,
+    pin forces)``."""
     if bodies is None:  # no bodies: not compiled in
         return
     state = bodies[2]
     out[0][r] = state[0]
     out[1][r] = state[1]
     out[2][r] = state[2]
+    out[3][r] = bodies[6][4]

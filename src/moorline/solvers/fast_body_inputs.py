@@ -1,7 +1,8 @@
 """The arrays the compiled step with bodies takes (:mod:`moorline.solvers.fast_bodies`), built
 from a :class:`~moorline.solvers.body_model.BodyModel`: the attached nodes, the bodies'
-constants, their state at the start of a block and the loads that depend on time alone at its
-sub-steps (force histories, :meth:`BodyModel._excitation`'s exciting-force tables)."""
+constants, their state at the start of a block, their radiation memory (modes and states), the
+pinned bodies' pins and the loads that depend on time alone at its sub-steps (force histories,
+:meth:`BodyModel._excitation`'s exciting-force tables)."""
 
 from __future__ import annotations
 
@@ -22,6 +23,16 @@ def _square(value, n: int = 6) -> FloatArray:
         return np.zeros((n, n))
     value = np.asarray(value, dtype=float)
     return np.diag(value) if value.ndim == 1 else value
+
+
+def _modes(models: list) -> tuple:
+    """Every radiation-memory mode of the bodies (:class:`MemoryModel` per body, None
+    without a table): its body, force dof, velocity dof, pole and coefficient."""
+    parts = [(np.full(mem.n_states, k), mem.row, mem.col, mem.poles, mem.coefficients)
+             for k, mem in enumerate(models) if mem is not None]
+    kinds = (np.int64, np.int64, np.int64, complex, complex)
+    return tuple(np.concatenate([p[i] for p in parts]).astype(t) if parts
+                 else np.zeros(0, dtype=t) for i, t in enumerate(kinds))
 
 
 class BodyInputs:
@@ -64,6 +75,7 @@ class BodyInputs:
         self.exciting = [None if b.excitation is None else
                          _exciting_terms(b.excitation, body_model.fluid, body_model.origin0[k])
                          for k, b in enumerate(bodies)]
+        self.modes = _modes(body_model.memory if nb else [])
         m = 6 * nb
         self.work = (np.zeros((m, n_band)), np.zeros((m, n_band)), np.zeros((m, m)),
                      np.zeros((m, m)))
@@ -82,6 +94,45 @@ class BodyInputs:
                 acc.copy(), np.zeros((ns, 3)),
                 z6.copy() if other0 is None else np.array(other0, dtype=float), z6.copy(),
                 np.zeros((ns, 3)))
+
+    def memory(self, states: tuple | None) -> tuple:
+        """The compiled memory (:mod:`moorline.solvers.fast_bodies`) at the start of a
+        block: the modes and the states ``states`` (one complex array per body, None for a
+        body without a table; None: at rest)."""
+        n = len(self.modes[0])
+        z0 = np.zeros(n, dtype=complex)
+        if states is not None:
+            for k, z in enumerate(states):
+                if z is not None:
+                    z0[self.modes[0] == k] = z
+        return (*self.modes, z0, z0.copy(), np.zeros(n, dtype=complex))
+
+    def pins(self, times: FloatArray, pin_force: FloatArray | None) -> tuple:
+        """The compiled pins (:mod:`moorline.solvers.fast_bodies`) of a block of sub-steps
+        ending at ``times``: which bodies are pinned, their pins' position, velocity and
+        acceleration (:func:`~moorline.solvers.body_model.pin_state`) per sub-step, the
+        sub-step, and the pins' forces (``pin_force`` at the start: None, zeros)."""
+        from .body_model import pin_state
+
+        bodies = self.model.bodies if self.nb else []
+        pinned = np.array([b.kind == "pinned" for b in bodies], dtype=np.bool_)
+        kin = np.zeros((len(times), self.nb, 3, 3))
+        if pinned.any():
+            for k, t in enumerate(times):
+                kin[k] = np.stack(pin_state(bodies, float(t)), axis=1)
+        force0 = np.zeros((self.nb, 3)) if pin_force is None else \
+            np.array(pin_force, dtype=float)
+        return pinned, kin, np.zeros(1, dtype=np.int64), force0.copy(), force0
+
+    def memory_states(self, memory: tuple) -> tuple | None:
+        """The states at the start of the step in :meth:`memory`'s tuple as
+        :attr:`StepState.memory` (None when no body has a table)."""
+        models = self.model.memory if self.nb else []
+        if all(mem is None for mem in models):
+            return None
+        body, z0 = memory[0], memory[5]
+        return tuple(None if mem is None else z0[body == k].copy()
+                     for k, mem in enumerate(models))
 
     def forces(self, times: FloatArray) -> FloatArray:
         """Loads on the bodies that depend on time alone at ``times`` (n,): (n, nb, 6)
@@ -103,9 +154,10 @@ class BodyInputs:
         return out
 
     def records(self, n: int) -> tuple:
-        """Record buffers (origins, rotations, velocities) for ``n`` records."""
+        """Record buffers (origins, rotations, velocities, pin forces) for ``n``
+        records."""
         return (np.empty((n, self.nb, 3)), np.empty((n, self.nb, 3, 3)),
-                np.empty((n, self.nb, 6)))
+                np.empty((n, self.nb, 6)), np.empty((n, self.nb, 3)))
 
     def tangent_state(self) -> tuple:
         """Copies of the factorization's border."""

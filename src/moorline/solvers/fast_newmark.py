@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..jit import numba
-from ..physics.fused import _kernel, set_dashpot_shares, set_viscoelastic_step
+from ..physics.fused import _kernel, hht_stiffness, set_dashpot_shares, set_viscoelastic_step
 from . import fast_bodies as fb
 from .fast_fluid import fluid_at_midpoints
 from .fast_path import fluid_parts
@@ -196,13 +196,13 @@ def _evaluate(x, v, a, uf, af, elements, props, laws, with_drag, with_added_mass
               sag_active, sag_load, tangent, buf):
     """All nodal forces minus structural inertia at (x, v, a); fills ``buf``'s arrays."""
     (el_forces, total, f_am, tension, strain, taut, K, C, Ma, nodal, nodal_am, resid,
-     kzz, czz, fric_c, fric_kz, fric_cz, phi, dphi) = buf
+     kzz, czz, fric_c, fric_kz, fric_cz, phi, dphi, Ka) = buf
     if sag_on:
         _sag_share(x, elements, sag_active, seabed_on, seabed_z, k_sb, ramp, sag_load, phi,
                    dphi)
     _kernel(x, v, a, uf, af, elements, props, laws, sag_on, phi, dphi, tangent, with_drag,
             with_added_mass, el_forces, total, f_am, tension, strain, taut, K, C, Ma, nodal,
-            nodal_am)
+            nodal_am, Ka)
     for n in range(x.shape[0]):
         for c in range(3):
             resid[n, c] = nodal[n, c] + external[n, c] + point_force[n, c] \
@@ -254,10 +254,11 @@ def _residual_norm(buf, band, rvec, alpha, node_mass, a, f_am, other0):
 
 
 @numba.njit(**_JIT)
-def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, cv, ck, kzz,
-              czz, fric_c, fric_kz, fric_cz, seabed_on):
+def _assemble(ab, bw, band, elements, K, C, Ma, Ka, with_added_mass, node_mass, ca, cv, ck,
+              kzz, czz, fric_c, fric_kz, fric_cz, seabed_on):
     """The effective tangent ``ca (M_s + M_a) + cv C + ck K`` in band storage (with HHT
-    ``ck = 1 + alpha`` and ``cv`` weighted by it, eq. 4.2.9a)."""
+    ``ck = 1 + alpha`` and ``cv`` weighted by it, eq. 4.2.9a; the added-mass forces' part
+    ``Ka`` of ``K`` weighted 1, as they are in the residual)."""
     ab[:, :] = 0.0
     for e in range(elements.shape[0]):
         for p in range(6):
@@ -268,7 +269,7 @@ def _assemble(ab, bw, band, elements, K, C, Ma, with_added_mass, node_mass, ca, 
                 col = band[elements[e, q // 3], q % 3]
                 if col < 0:
                     continue
-                val = ck * K[e, p, q] + cv * C[e, p, q]
+                val = hht_stiffness(K, Ka, with_added_mass, ck, e, p, q) + cv * C[e, p, q]
                 if with_added_mass:
                     val += ca * Ma[e, p, q]
                 ab[row, col - row + bw] += val
@@ -339,7 +340,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
         if free[n]:
             for c in range(3):
                 x1[n, c] = x0[n, c] + h * v0[n, c]
-    fb.predict(bodies, h)
+    fb.predict(bodies, h, j)
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
     fb.place(bodies, False, h, beta, gamma, x1, v1, a1)
     moving = fluid[0] or fluid[6]
@@ -368,9 +369,9 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                 counters[1] += 1
                 norm = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
                 norm = fb.residual(bodies, j, buf, rvec, alpha, node_mass, a1, norm)
-            _assemble(lu, bw, band, elements, buf[6], buf[7], buf[8], with_added_mass,
-                      node_mass, ca, cv, ck, buf[12], buf[13], buf[14], buf[15], buf[16],
-                      seabed_on)
+            _assemble(lu, bw, band, elements, buf[6], buf[7], buf[8], buf[19],
+                      with_added_mass, node_mass, ca, cv, ck, buf[12], buf[13], buf[14],
+                      buf[15], buf[16], seabed_on)
             fb.couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, ck,
                          seabed_on)
             if not _band_lu(lu, bw) or not _factor_border(bodies, lu, bw):
@@ -448,7 +449,7 @@ def make_buffers(n_el: int, n_nodes: int) -> tuple:
             e(n_el, dtype=np.bool_), e((n_el, 6, 6)), e((n_el, 6, 6)), e((n_el, 6, 6)),
             e((n_nodes, 3)), e((n_nodes, 3)), e((n_nodes, 3)), np.zeros(n_nodes),
             np.zeros(n_nodes), np.zeros((n_nodes, 2, 2)), np.zeros((n_nodes, 2)),
-            np.zeros((n_nodes, 2)), np.zeros(n_el), np.zeros((n_el, 2, 3)))
+            np.zeros((n_nodes, 2)), np.zeros(n_el), np.zeros((n_el, 2, 3)), e((n_el, 6, 6)))
 
 
 class FastStepper:
@@ -584,8 +585,10 @@ class FastStepper:
         if inputs.nb and self.c.alpha:  # HHT: the bodies' F0
             body_other0 = self.general._body_other(s0)
         body_state = inputs.state(s0.bodies, body_other0)
+        memory = inputs.memory(s0.memory)
+        pins = inputs.pins(times, s0.pin_force)
         bodies = None if not inputs.nb else (inputs.links, inputs.loads, body_state,
-                                             inputs.forces(times), inputs.work)
+                                             inputs.forces(times), inputs.work, memory, pins)
         done, stopped, norm, n_written = advance_block(
             x0, v0, a0, x1, v1, a1, hs, per_step, record, *kinematics, self.fixed, *forces,
             self._fluid_inputs(times), self.model_args, self.newton_args, self.tan,
@@ -600,14 +603,16 @@ class FastStepper:
             nodal = resid + self.model.node_mass[:, None] * a0  # F without structural inertia
             ev = Evaluation(nodal, f_am, tension,
                             MaterialState(strain, maxwell, material.peak), el_forces)
-            poses, body_other = None, None
+            poses, body_other, states, pin_force = None, None, None, None
             if inputs.nb:
                 from .bodies import BodyState
 
                 poses = BodyState(*(q.copy() for q in body_state[:4]))
                 body_other = body_state[11].copy()
+                states = inputs.memory_states(memory)
+                pin_force = pins[4].copy() if pins[0].any() else None
             state = StepState(float(times[n_sub - 1]), x0, v0, a0, ev.material, ev, poses,
-                              body_other)
+                              body_other, states, pin_force)
         return Block(state, int(done), int(stopped), float(norm), out[0][:n_written],
                      out[1][:n_written], out[2][:n_written], out[3][:n_written],
                      tuple(q[:n_written] for q in out[6:]))

@@ -1,8 +1,8 @@
 """When the compiled time step (:mod:`moorline.solvers.fast_newmark`) can run a model.
 
 Kept apart from the compiled step so that deciding does not import numba: a model the
-compiled step cannot run (fixed or pinned bodies, MoorDyn's viscoelastic ropes, bending...)
-takes the general stepper without loading it.
+compiled step cannot run (fixed bodies, pins on bodies, MoorDyn's viscoelastic ropes,
+bending...) takes the general stepper without loading it.
 """
 
 from __future__ import annotations
@@ -69,15 +69,15 @@ def fluid_parts(fluid):
 
 def body_refusal(mesh) -> str | None:
     """Why the compiled step cannot run the bodies of ``mesh`` (None when it can): it takes
-    free bodies with weight, constant loads and force histories, constant added mass and
-    damping, hydrostatics of :data:`HULL_KINDS` and exciting-force tables
-    (:mod:`moorline.solvers.fast_bodies`)."""
+    free bodies and bodies pinned in space with weight, constant loads and force histories,
+    constant added mass and damping or a radiation table (Cummins memory), hydrostatics of
+    :data:`HULL_KINDS` and exciting-force tables (:mod:`moorline.solvers.fast_bodies`)."""
     for body in mesh.bodies:
         name = body.name
-        if body.kind != "free":
+        if body.kind not in ("free", "pinned"):
             return f"a {body.kind} body ({name})"
-        if getattr(body, "radiation", None) is not None:
-            return f"a radiation table (Cummins memory) on body {name}"
+        if getattr(body, "pin_body", None) is not None:
+            return f"a pinned body on another body ({name})"
         if body.hydrostatics.kind not in HULL_KINDS:
             return f"{body.hydrostatics.kind} hydrostatics on body {name}"
         if np.any(np.asarray(body.drag_area, dtype=float)):

@@ -267,7 +267,8 @@ class Stepper:
         ca, cv, ck = self._factors(h)
         cv1 = cv / ck  # d vel / d u (Newmark), not HHT-weighted
         ev, arms = trial.ev, trial.arms
-        K, C = self.pattern.assemble(ev.K, ev.node_K), self.pattern.assemble(ev.C, ev.node_C)
+        K = self.pattern.assemble(_hht_stiffness(ev, ck), ev.node_K)
+        C = self.pattern.assemble(ev.C, ev.node_C)
         nodes_m = self.model.node_mass[:, None, None] * np.eye(3)
         if ev.node_M is not None:
             nodes_m = nodes_m + ev.node_M
@@ -328,7 +329,7 @@ class Stepper:
         return 1.0 / (b * h * h), (1 + alpha) * g / (b * h), 1 + alpha
 
     def _line_blocks(self, ev: Evaluation, ca: float, cv: float, ck: float):
-        blocks = ck * ev.K + cv * ev.C
+        blocks = ck * _hht_stiffness(ev, ck) + cv * ev.C
         if ev.Ma is not None:
             blocks = blocks + ca * ev.Ma
         nodes = ca * self.model.node_mass[:, None, None] * np.eye(3)
@@ -502,6 +503,15 @@ class Stepper:
         dq = (h * s0.bodies.vel + 0.5 * h * h * s0.bodies.acc if s0.bodies is not None
               else np.zeros((0, 6)))
         return x1, dq
+
+
+def _hht_stiffness(ev: Evaluation, ck: float) -> FloatArray:
+    """The element blocks ``K`` with HHT's weights as ``ck K`` will apply them: the
+    added-mass forces' part ``Ka`` (inertial, weighted 1 in the residual) scaled by
+    ``1 / ck`` (``ck = 1 + alpha``), the rest left (weighted ``1 + alpha``)."""
+    if ck == 1.0 or ev.Ka is None:
+        return ev.K
+    return ev.K - (1.0 - 1.0 / ck) * ev.Ka
 
 
 def accelerated(model: DynamicModel, state: StepState, material: MaterialState,
