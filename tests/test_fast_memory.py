@@ -9,6 +9,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from differences import central_tangent
 from test_fast_bodies import _compiled_problem
 
 from moorline.model import DynamicsSettings, RadiationTable, WaveExcitation, Waves
@@ -143,13 +144,7 @@ def test_compiled_memory_tangent_matches_finite_differences(scheme):
     fast, _, h, _, residual, tangent, u = _memory_problem(scheme)
     n = fast.lu.shape[0]
     K = tangent(u)
-    fd = np.zeros_like(K)
-    for k in range(len(u)):
-        eps = 1e-6 * max(1.0, abs(u[k]))
-        up, um = u.copy(), u.copy()
-        up[k] += eps
-        um[k] -= eps
-        fd[:, k] = -(residual(up) - residual(um)) / (2 * eps)
+    fd = central_tangent(residual, u)
     # 1e-7 of the column's largest entry, plus the differences' round-off in a row of
     # large entries (1e-16 of them over eps, ~1e-9 of the row's largest derivative)
     tol = 1e-7 * np.abs(fd).max(axis=0, keepdims=True) + 1e-9 * np.abs(fd).max(axis=1,
