@@ -103,7 +103,7 @@ def bench_fused(repeat: int, table: bool = False) -> None:
         el = mesh.elements
         length, unit = element.element_geometry(x, el)
         dv = v[el[:, 1]] - v[el[:, 0]]
-        T, dT_dl, _, share = ref._axial_tension(length, unit, dv, material, 0.1)
+        T, dT_dl, _, share, _ = ref._axial_tension(x, length, unit, dv, material, 0.1)
         forces = element.nodal_forces(T, unit).copy()
         out = {"K": ref._axial_tangent(length, unit, dv, T, dT_dl, share),
                "C": np.zeros((len(T), 6, 6))}

@@ -231,3 +231,16 @@ def test_one_blas_thread_leaves_an_imported_numpy_and_bem_alone(
     assert "OPENBLAS_NUM_THREADS" not in os.environ
     assert one_blas_thread("statics")
     assert os.environ["OPENBLAS_NUM_THREADS"] == "1"
+
+
+def test_lean_loading_only_on_tested_numba_versions():
+    """The cache-loading shortcut keys on numba's (major, minor); a version string it cannot
+    read falls outside the tested range (numba then loads as it always does)."""
+    from moorline import jit
+
+    assert jit._version("0.68.1") == (0, 68)
+    assert jit._version("0.59.0rc1") == (0, 59)
+    assert jit._version("dev") == (0, 0)
+    low, high = jit._TESTED_NUMBA
+    assert low <= jit._version("0.68.1") < high
+    assert not low <= jit._version("dev") < high

@@ -24,6 +24,20 @@ import numba  # noqa: E402  (after the cache directory is set)
 __all__ = ["numba"]
 
 
+_TESTED_NUMBA = ((0, 59), (0, 69))
+"""numba versions whose ``Cache.load_overload`` is the refresh, then ``_load_overload``
+that :func:`_lean_cache_loading` replaces (outside them numba loads as it does)."""
+
+
+def _version(text: str) -> tuple[int, int]:
+    """``(major, minor)`` of a version string (``(0, 0)`` when it does not start so)."""
+    parts = text.split(".")
+    try:
+        return int(parts[0]), int(parts[1])
+    except (IndexError, ValueError):
+        return 0, 0
+
+
 def _lean_cache_loading() -> None:
     """Load moorline's cached kernels without numba's compiler-context refresh (see the
     module docstring); nothing changes when numba's cache lacks the expected methods."""
@@ -34,7 +48,8 @@ def _lean_cache_loading() -> None:
 
     cache = caching.Cache
     full = cache.load_overload
-    if getattr(full, "_moorline_lean", False) or not hasattr(cache, "_load_overload"):
+    if getattr(full, "_moorline_lean", False) or not hasattr(cache, "_load_overload") \
+            or not _TESTED_NUMBA[0] <= _version(numba.__version__) < _TESTED_NUMBA[1]:
         return
     kernels = frozenset(KERNEL_MODULES)
 
