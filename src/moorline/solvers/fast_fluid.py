@@ -10,9 +10,17 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..jit import numba
 
 _JIT = {"cache": True, "fastmath": False, "error_model": "numpy"}
+
+DEEP = -36.0
+"""``k z`` below which a wave component's depth factor ``exp(k z)`` (< 2.4e-16) is skipped."""
+
+NEGLIGIBLE = math.exp(DEEP)
+"""The depth factor of :data:`DEEP`."""
 
 
 @numba.njit(**_JIT)
@@ -29,12 +37,23 @@ def fluid_at_midpoints(x, elements, j, fluid, uf, af):
     a w^2 sin b, a w^2, 1 - exp(-2 k h)`` per component (those of ``WaveComponents``),
     ``offset[j]`` the phases ``phi - w t`` at the sub-step's time, ``wave_ramp[j]`` and
     ``current_ramp[j]`` the ramp factors and their rates, ``current`` the current's velocity.
+
+    Each component's phase and its cosine are computed once per midpoint (the elevation and
+    the kinematics share them). A component whose depth factor ``exp(k z)`` is below
+    :data:`NEGLIGIBLE` (``k z < -36``: a short wave at a deep midpoint) adds nothing at
+    double precision relative to the surface values and is skipped; where ``2 k (z + h) >
+    40`` the finite-depth factor ``expm1(-2 k (z + h))`` is -1 to double precision and is not
+    evaluated (on the OC3 lines in a 319-component sea most midpoints are deep: the
+    kinematics took ~95 % of the step).
     """
     (waves_on, coef, depth, wheeler, offset, wave_ramp, current_on, current,
      current_ramp) = fluid
     finite = math.isfinite(depth)
     r, dr = wave_ramp[j, 0], wave_ramp[j, 1]
     rc, drc = current_ramp[j, 0], current_ramp[j, 1]
+    n_comp = coef.shape[1] if waves_on else 0
+    phase = np.empty(n_comp)
+    cosine = np.empty(n_comp)
     for e in range(elements.shape[0]):
         mx = 0.5 * (x[elements[e, 0], 0] + x[elements[e, 1], 0])
         my = 0.5 * (x[elements[e, 0], 1] + x[elements[e, 1], 1])
@@ -43,8 +62,11 @@ def fluid_at_midpoints(x, elements, j, fluid, uf, af):
         eta = 0.0
         if waves_on:
             s = 0.0
-            for i in range(coef.shape[1]):
-                s += math.cos(mx * coef[1, i] + my * coef[2, i] + offset[j, i]) * coef[3, i]
+            for i in range(n_comp):
+                theta = mx * coef[1, i] + my * coef[2, i] + offset[j, i]
+                phase[i] = theta
+                cosine[i] = math.cos(theta)
+                s += cosine[i] * coef[3, i]
             eta = r * s
             zc = max(z, -depth)
             if wheeler:
@@ -52,13 +74,15 @@ def fluid_at_midpoints(x, elements, j, fluid, uf, af):
             else:
                 ze = zc
             ze = min(ze, 0.0)
-            for i in range(coef.shape[1]):
+            for i in range(n_comp):
                 k = coef[0, i]
-                theta = mx * coef[1, i] + my * coef[2, i] + offset[j, i]
-                ct, st = math.cos(theta), math.sin(theta)
+                if ze * k < DEEP:
+                    continue
+                ct, st = cosine[i], math.sin(phase[i])
                 ekz = math.exp(ze * k)
                 if finite:
-                    em = math.expm1(-2.0 * k * (ze + depth))
+                    reach = -2.0 * k * (ze + depth)
+                    em = math.expm1(reach) if reach > -40.0 else -1.0
                     cfac = ekz * (2.0 + em) / coef[10, i]
                     sfac = -ekz * em / coef[10, i]
                 else:
