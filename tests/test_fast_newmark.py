@@ -18,6 +18,7 @@ from moorline.model import (
     Point,
     Seabed,
     System,
+    Waves,
 )
 from moorline.solvers.assembly import BlockPattern
 from moorline.solvers.dynamics import simulate
@@ -60,6 +61,35 @@ def assert_fast_equals_slow(system: System, duration: float = 12.0) -> None:
 @pytest.mark.parametrize("friction,current", [(0.0, 0.0), (0.5, 0.8)])
 def test_fast_step_reproduces_the_general_stepper(friction, current):
     assert_fast_equals_slow(_system(friction, current))
+
+
+@pytest.mark.parametrize("waves", [False, True])
+def test_compiled_step_with_a_sheared_current_equals_the_general_stepper(waves, caplog):
+    """A current profile over depth (speed 0.2 -> 0.6 -> 1.0 m/s and heading 10 -> 40 -> 350
+    deg from the seabed to the surface: the heading turns the short way through 0) on the
+    compiled step, with and without an Airy wave, against the general stepper evaluating
+    :meth:`moorline.waves.CurrentProfile.velocity`; the profile changes the run against the
+    uniform current of its surface value."""
+    import logging
+
+    base = _system(0.0, 0.0)
+    profile = Current(z_levels=(-150.0, -60.0, 0.0), speeds=(0.2, 0.6, 1.0),
+                      headings_deg=(10.0, 40.0, 350.0))
+    env = replace(base.environment, current=profile,
+                  waves=Waves(kind="airy", height=2.0, period=7.0) if waves else Waves())
+    system = replace(base, environment=env)
+    with caplog.at_level(logging.INFO, logger="moorline"):
+        assert_fast_equals_slow(system)
+    # only the reference run (fast_path off) took the general stepper
+    reasons = [r.getMessage() for r in caplog.records if "general stepper" in r.getMessage()]
+    assert reasons == ["general stepper (compiled step not used: disabled)"]
+    uniform = replace(system, environment=replace(env, current=Current(speed=1.0,
+                                                                       heading_deg=350.0)))
+    start = solve_statics(system)
+    settings = DynamicsSettings(duration=6.0, dt=0.05, ramp_time=4.0)
+    sheared = simulate(system, settings, initial=start, output_every=0.5)
+    flat = simulate(uniform, settings, initial=solve_statics(uniform), output_every=0.5)
+    assert np.abs(sheared.positions - flat.positions).max() > 0.1
 
 
 def _with_viscoelastic_line(friction: float, current: float, EA1: float) -> System:

@@ -36,7 +36,10 @@ def fluid_at_midpoints(x, elements, j, fluid, uf, af):
     current_ramp)``: ``coef`` rows ``k, kx, ky, a, a w cos b, a w sin b, a w, a w^2 cos b,
     a w^2 sin b, a w^2, 1 - exp(-2 k h)`` per component (those of ``WaveComponents``),
     ``offset[j]`` the phases ``phi - w t`` at the sub-step's time, ``wave_ramp[j]`` and
-    ``current_ramp[j]`` the ramp factors and their rates, ``current`` the current's velocity.
+    ``current_ramp[j]`` the ramp factors and their rates, ``current`` a uniform current's
+    velocity, ``profile`` a sheared one's levels (rows: heights ascending, speeds, unwrapped
+    headings [rad]; one column for a uniform current), evaluated at the midpoint's ``z`` as
+    :meth:`moorline.waves.CurrentProfile.velocity`.
 
     Each component's phase and its cosine are computed once per midpoint (the elevation and
     the kinematics share them). A component whose depth factor ``exp(k z)`` is below
@@ -47,7 +50,8 @@ def fluid_at_midpoints(x, elements, j, fluid, uf, af):
     kinematics took ~95 % of the step).
     """
     (waves_on, coef, depth, wheeler, offset, wave_ramp, current_on, current,
-     current_ramp) = fluid
+     current_ramp, profile) = fluid
+    sheared = profile.shape[1] > 1
     finite = math.isfinite(depth)
     r, dr = wave_ramp[j, 0], wave_ramp[j, 1]
     rc, drc = current_ramp[j, 0], current_ramp[j, 1]
@@ -100,15 +104,40 @@ def fluid_at_midpoints(x, elements, j, fluid, uf, af):
             u0, u1, u2 = r * u0, r * u1, r * u2
         wet = z <= eta
         if current_on and wet:
-            u0 += rc * current[0]
-            u1 += rc * current[1]
-            u2 += rc * current[2]
-            a0 += drc * current[0]
-            a1 += drc * current[1]
-            a2 += drc * current[2]
+            if sheared:
+                c0, c1, c2 = _profile_velocity(profile, z)
+            else:
+                c0, c1, c2 = current[0], current[1], current[2]
+            u0 += rc * c0
+            u1 += rc * c1
+            u2 += rc * c2
+            a0 += drc * c0
+            a1 += drc * c1
+            a2 += drc * c2
         uf[e, 0] = u0 if wet else 0.0
         uf[e, 1] = u1 if wet else 0.0
         uf[e, 2] = u2 if wet else 0.0
         af[e, 0] = a0 if wet else 0.0
         af[e, 1] = a1 if wet else 0.0
         af[e, 2] = a2 if wet else 0.0
+
+
+@numba.njit(**_JIT)
+def _profile_velocity(profile, z):
+    """A current profile's velocity at height ``z``: speed and heading interpolated linearly
+    between the levels and held beyond the end ones (``numpy.interp``, the arithmetic of
+    :meth:`moorline.waves.CurrentProfile.velocity`)."""
+    zp = profile[0]
+    n = zp.shape[0]
+    if z <= zp[0]:
+        speed, heading = profile[1, 0], profile[2, 0]
+    elif z >= zp[n - 1]:
+        speed, heading = profile[1, n - 1], profile[2, n - 1]
+    else:
+        i = 0
+        while zp[i + 1] <= z:
+            i += 1
+        dz = zp[i + 1] - zp[i]
+        speed = (profile[1, i + 1] - profile[1, i]) / dz * (z - zp[i]) + profile[1, i]
+        heading = (profile[2, i + 1] - profile[2, i]) / dz * (z - zp[i]) + profile[2, i]
+    return speed * math.cos(heading), speed * math.sin(heading), 0.0

@@ -510,6 +510,11 @@ class FastStepper:
             self.wave_coef = np.zeros((11, 0))
         self.current_velocity = np.zeros(3) if self.current is None else \
             np.ascontiguousarray(self.current.velocity(np.zeros(1))[0], dtype=float)
+        # a sheared profile: heights (ascending), speeds, unwrapped headings [rad] per level
+        # (one level: the uniform velocity above is used)
+        self.current_profile = np.zeros((3, 1)) if self.current is None else \
+            np.ascontiguousarray(np.vstack((self.current._z, self.current._speed,
+                                            self.current._heading)), dtype=float)
 
     @staticmethod
     def _sag(model) -> tuple:
@@ -555,7 +560,8 @@ class FastStepper:
         depth = math.inf if waves is None else float(waves.depth)
         wheeler = waves is not None and waves.stretching == "wheeler"
         return (waves is not None, self.wave_coef, depth, wheeler, offset, ramps(waves),
-                self.current is not None, self.current_velocity, ramps(self.current))
+                self.current is not None, self.current_velocity, ramps(self.current),
+                self.current_profile)
 
     def run_block(self, s0, times: FloatArray, hs: FloatArray, per_step: int,
                   record: NDArray[np.bool_], kinematics: tuple, forces: tuple,

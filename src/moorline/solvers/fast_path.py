@@ -38,18 +38,15 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
     if model.mesh.bathymetry is not None:
         return "a sloped or gridded seabed"
     if fluid_parts(fluid) is None:
-        return "a sheared current or a fluid field other than Airy waves and a uniform current"
+        return "a fluid field other than Airy waves and a current profile"
     return None
 
 
 def fluid_parts(fluid):
     """``(waves, current)`` of a fluid field the compiled step takes (linear wave components
-    and a uniform current, each or both or neither), or None when it takes no such field."""
+    and a current profile, uniform or sheared, each or both or neither), or None when it takes
+    no such field."""
     from ..waves import AiryWave, CombinedField, CurrentProfile, StillWater, WaveComponents
-
-    def uniform(current) -> bool:
-        return len(set(np.atleast_1d(current.speeds))) == 1 \
-            and len(set(np.atleast_1d(current.headings_deg))) == 1
 
     waves, current = fluid, None
     if isinstance(fluid, StillWater):
@@ -62,7 +59,7 @@ def fluid_parts(fluid):
         waves = waves.components
     if waves is not None and not isinstance(waves, WaveComponents):
         return None
-    if current is not None and not (isinstance(current, CurrentProfile) and uniform(current)):
+    if current is not None and not isinstance(current, CurrentProfile):
         return None
     return waves, current
 
