@@ -92,6 +92,30 @@ def test_compiled_step_with_a_sheared_current_equals_the_general_stepper(waves, 
     assert np.abs(sheared.positions - flat.positions).max() > 0.1
 
 
+def test_compiled_step_with_axial_and_transverse_friction_equals_the_general_stepper(caplog):
+    """Seabed friction 0.3 along the line and 1.0 across it (MoorDyn's mu_kA, mu_kT) on the
+    compiled step against the general stepper (``DynamicModel._friction``); the law differs
+    from the isotropic one of either coefficient."""
+    import logging
+
+    base = _system(0.0, 0.8)
+    seabed = Seabed(friction=1.0, friction_axial=0.3, friction_transverse=1.0,
+                    slip_velocity=0.05)
+    system = replace(base, environment=replace(base.environment, seabed=seabed))
+    with caplog.at_level(logging.INFO, logger="moorline"):
+        assert_fast_equals_slow(system)
+    reasons = [r.getMessage() for r in caplog.records if "general stepper" in r.getMessage()]
+    assert reasons == ["general stepper (compiled step not used: disabled)"]
+    settings = DynamicsSettings(duration=12.0, dt=0.05, ramp_time=4.0)
+    runs = []
+    for law in (seabed, Seabed(friction=1.0, slip_velocity=0.05),
+                Seabed(friction=0.3, slip_velocity=0.05)):
+        case = replace(base, environment=replace(base.environment, seabed=law))
+        runs.append(simulate(case, settings, initial=solve_statics(case), output_every=0.5))
+    for isotropic in runs[1:]:
+        assert np.abs(runs[0].positions - isotropic.positions).max() > 1e-3
+
+
 def _with_viscoelastic_line(friction: float, current: float, EA1: float) -> System:
     """:func:`_system` with its second line a polyester rope (standard linear solid:
     long-term stiffness ``EA``, Maxwell branch ``EA1`` with a 2 s relaxation time)."""

@@ -1,11 +1,12 @@
 """Compiled implicit step for the common case: elastic lines (constant ``EA``, tension-strain
 tables, the fibre-rope dynamic stiffness, sag-corrected elements, whose ``phi`` on the flat
 seabed is computed here) and viscoelastic ones (the standard linear solid, exponential
-update, its state carried from step to step) in still water, a uniform current, Airy waves or a
-sea of linear components (no or Wheeler stretching), on a seabed with contact, damping and
-(isotropic) friction, Newmark beta = 1/4, gamma = 1/2 or HHT-alpha (Hilber, Hughes and
-Taylor 1977: the non-inertial forces weighted ``1 + alpha`` at the new time and ``-alpha`` at
-the old) with equilibrium iterations (Tuah 1982 eq. 4.2.7-4.2.11).
+update, its state carried from step to step) in still water, a current (uniform or a profile
+over depth), Airy waves or a sea of linear components (no or Wheeler stretching), on a seabed
+with contact, damping and friction (isotropic, or axial and transverse), Newmark beta = 1/4,
+gamma = 1/2 or HHT-alpha (Hilber, Hughes and Taylor 1977: the non-inertial forces weighted
+``1 + alpha`` at the new time and ``-alpha`` at the old) with equilibrium iterations (Tuah
+1982 eq. 4.2.7-4.2.11).
 
 It is the same algorithm as :class:`moorline.solvers.newmark.Stepper` (same residual, same
 exact tangent, same modified-Newton refresh rule, backtracking on the residual norm), moved
@@ -96,10 +97,17 @@ def _band_solve(lu, bw, b):
 
 
 @numba.njit(**_JIT)
-def _seabed(x, v, seabed_z, k, c, ramp, mu, v_slip, force, kzz, czz, fric_c, fric_kz, fric_cz):
+def _seabed(x, v, seabed_z, k, c, ramp, mu, v_slip, force, kzz, czz, fric_c, fric_kz, fric_cz,
+            elements):
     """Seabed contact (:func:`moorline.physics.seabed.contact_force`, pushing only) and
-    isotropic regularized friction (:func:`~moorline.physics.seabed.friction_force` with equal
-    coefficients) per node, with their tangent terms (K = -dF/dx, C = -dF/dv)."""
+    regularized friction (:func:`~moorline.physics.seabed.friction_force`; ``mu`` the axial
+    and transverse coefficients: equal, the isotropic law; different, each resists the
+    velocity's part along / across the line, whose direction at a node is the horizontal
+    mean of its elements' chords, ``DynamicModel._friction``, its change with the positions
+    left out of the tangent as there) per node, with their tangent terms (K = -dF/dx,
+    C = -dF/dv)."""
+    mu_a, mu_t = mu
+    axes = _node_axes(x, elements) if mu_a != mu_t else np.zeros((0, 2))
     for n in range(x.shape[0]):
         kzz[n] = 0.0
         czz[n] = 0.0
@@ -123,14 +131,19 @@ def _seabed(x, v, seabed_z, k, c, ramp, mu, v_slip, force, kzz, czz, fric_c, fri
         d_damp = 0.0 if full else c[n] * v[n, 2] / ramp[n]
         kzz[n] = d_spring - d_damp  # -d(total)/dz
         czz[n] = c[n] * share       # -d(total)/dvz
-        if mu == 0.0:
+        if mu_a != mu_t:
+            _directional_friction(n, v, total, axes[n, 0], axes[n, 1], mu_a, mu_t, v_slip,
+                                  force, kzz, czz, fric_c, fric_kz, fric_cz)
+            continue
+        mu_i = mu_a
+        if mu_i == 0.0:
             continue
         vx, vy = v[n, 0], v[n, 1]
         speed = math.sqrt(vx * vx + vy * vy)
         th = math.tanh(speed / v_slip)
         ratio = th / speed if speed > 0.0 else 1.0 / v_slip
-        force[n, 0] += -mu * total * ratio * vx
-        force[n, 1] += -mu * total * ratio * vy
+        force[n, 0] += -mu_i * total * ratio * vx
+        force[n, 1] += -mu_i * total * ratio * vy
         ux = vx / speed if speed > 0.0 else 0.0
         uy = vy / speed if speed > 0.0 else 0.0
         for r in range(2):
@@ -138,12 +151,60 @@ def _seabed(x, v, seabed_z, k, c, ramp, mu, v_slip, force, kzz, czz, fric_c, fri
             for s in range(2):
                 us = ux if s == 0 else uy
                 eye = 1.0 if r == s else 0.0
-                dfdv = -mu * total * (ratio * (eye - ur * us)
-                                      + (1.0 - th * th) / v_slip * ur * us)
+                dfdv = -mu_i * total * (ratio * (eye - ur * us)
+                                        + (1.0 - th * th) / v_slip * ur * us)
                 fric_c[n, r, s] = -dfdv
-            dfdn = -mu * ratio * (vx if r == 0 else vy)
+            dfdn = -mu_i * ratio * (vx if r == 0 else vy)
             fric_kz[n, r] = dfdn * kzz[n]  # -dF_r/dz = -dfdn dN/dz
             fric_cz[n, r] = dfdn * czz[n]  # -dF_r/dvz = -dfdn dN/dvz
+
+
+@numba.njit(**_JIT)
+def _node_axes(x, elements):
+    """Unit horizontal direction of the line at each node: the sum of its elements' chords,
+    horizontal part, normalized (+x where it vanishes), as ``DynamicModel._friction`` on a
+    flat seabed."""
+    axes = np.zeros((x.shape[0], 2))
+    for e in range(elements.shape[0]):
+        i, j = elements[e, 0], elements[e, 1]
+        for c in range(2):
+            chord = x[j, c] - x[i, c]
+            axes[i, c] += chord
+            axes[j, c] += chord
+    for n in range(x.shape[0]):
+        norm = math.sqrt(axes[n, 0] * axes[n, 0] + axes[n, 1] * axes[n, 1])
+        if norm > 0.0:
+            axes[n, 0] /= max(norm, 1e-300)
+            axes[n, 1] /= max(norm, 1e-300)
+        else:
+            axes[n, 0], axes[n, 1] = 1.0, 0.0
+    return axes
+
+
+@numba.njit(**_JIT)
+def _directional_friction(n, v, total, ax, ay, mu_a, mu_t, v_slip, force, kzz, czz, fric_c,
+                          fric_kz, fric_cz):
+    """Node ``n``'s friction along the line (``(ax, ay)``, coefficient ``mu_a``) and across it
+    (``(-ay, ax)``, ``mu_t``), each ``-mu N tanh(v_d / v_s)`` along its direction
+    (:func:`moorline.physics.seabed.friction_force`), and its tangent terms."""
+    for d in range(2):
+        mu_d = mu_a if d == 0 else mu_t
+        if mu_d == 0.0:
+            continue
+        dx, dy = (ax, ay) if d == 0 else (-ay, ax)
+        th = math.tanh((v[n, 0] * dx + v[n, 1] * dy) / v_slip)
+        f = -mu_d * total * th
+        force[n, 0] += f * dx
+        force[n, 1] += f * dy
+        slope = -mu_d * total * (1.0 - th * th) / v_slip
+        for r in range(2):
+            dr = dx if r == 0 else dy
+            for s in range(2):
+                ds = dx if s == 0 else dy
+                fric_c[n, r, s] -= slope * dr * ds
+            dfdn = -mu_d * th * dr
+            fric_kz[n, r] += dfdn * kzz[n]
+            fric_cz[n, r] += dfdn * czz[n]
 
 
 @numba.njit(**_JIT)
@@ -209,7 +270,7 @@ def _evaluate(x, v, a, uf, af, elements, props, laws, with_drag, with_added_mass
                 - node_mass[n] * a[n, c]
     if seabed_on:
         _seabed(x, v, seabed_z, k_sb, c_sb, ramp, mu, v_slip, resid, kzz, czz, fric_c,
-                fric_kz, fric_cz)
+                fric_kz, fric_cz, elements)
 
 
 @numba.njit(**_JIT)
@@ -488,12 +549,14 @@ class FastStepper:
                      np.zeros((n_nodes, 3)),
                      np.zeros((n_nodes, 3)), np.zeros((n_el, 3)), np.zeros((n_el, 3)))
         f = model._fused
-        mu, v_slip = (model.friction[0], model.friction[2]) if model.friction else (0.0, 1.0)
+        # (axial, transverse) friction coefficients
+        mu, v_slip = ((float(model.friction[0]), float(model.friction[1])), model.friction[2]) \
+            if model.friction else ((0.0, 0.0), 1.0)
         self.model_args = (
             self.free, self.band, self.bw, mesh.elements, f.props, f.laws, f.with_drag,
             f.with_added_mass, model.node_mass, model.external,
             bool(np.isfinite(mesh.seabed_z)), float(mesh.seabed_z), model.k_seabed,
-            model.c_seabed, model.seabed_ramp, float(mu), float(v_slip), *self._sag(model),
+            model.c_seabed, model.seabed_ramp, mu, float(v_slip), *self._sag(model),
             float(coefficients.beta),
             float(coefficients.gamma), float(coefficients.alpha))
         pol = policy

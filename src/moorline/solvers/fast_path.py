@@ -33,8 +33,6 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
         return f"scheme {scheme!r} / variant {variant!r}"
     if model.has_point_hydro:
         return "points with their own drag or added mass"
-    if model.friction is not None and model.friction[0] != model.friction[1]:
-        return "anisotropic seabed friction"
     if model.mesh.bathymetry is not None:
         return "a sloped or gridded seabed"
     if fluid_parts(fluid) is None:
