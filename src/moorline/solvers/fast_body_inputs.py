@@ -35,6 +35,17 @@ def _modes(models: list) -> tuple:
                  else np.zeros(0, dtype=t) for i, t in enumerate(kinds))
 
 
+def _rods(hydrostatics: list) -> tuple:
+    """The rods of ``rods`` hydrostatics, all bodies' in one list: the first rod of each body
+    (nb + 1,), then the rods' body-frame ends A and B (n, 3) and diameters (n,) [length]."""
+    rods = [rod for h in hydrostatics if h.kind == "rods" for rod in h.rods]
+    counts = [len(h.rods) if h.kind == "rods" else 0 for h in hydrostatics]
+    first = np.concatenate(([0], np.cumsum(counts))).astype(np.int64)
+    ends = np.array([(a, b) for a, b, _ in rods], dtype=np.float64).reshape(-1, 2, 3)
+    return (first, ends[:, 0].copy(), ends[:, 1].copy(),
+            np.array([d for *_, d in rods], dtype=np.float64))
+
+
 class BodyInputs:
     """The compiled step's ``bodies`` argument for the free bodies of ``body_model`` (None:
     no bodies, every array empty) on a band of ``n_band`` rows."""
@@ -71,7 +82,7 @@ class BodyInputs:
             np.array([_square(h.stiffness) for h in hs], dtype=f8).reshape(nb, 6, 6),
             np.array([b.position for b in bodies], dtype=f8).reshape(nb, 3),
             rotation_matrix(np.array([b.rotation for b in bodies], dtype=f8).reshape(nb, 3)),
-            float(mesh.gravity), float(mesh.water_density))
+            float(mesh.gravity), float(mesh.water_density), *_rods(hs))
         self.exciting = [None if b.excitation is None else
                          _exciting_terms(b.excitation, body_model.fluid, body_model.origin0[k])
                          for k, b in enumerate(bodies)]

@@ -11,10 +11,11 @@ import numpy as np
 
 __all__ = ["HULL_KINDS", "body_refusal", "fast_path_reason", "fluid_parts"]
 
-HULL_KINDS = {"none": 0, "box": 1, "cylinder": 1, "matrix": 2}
+HULL_KINDS = {"none": 0, "box": 1, "cylinder": 1, "matrix": 2, "rods": 3}
 """Hydrostatics the compiled step takes (:func:`moorline.solvers.fast_rigid.static_load`),
 by its code there: 0 none, 1 a wall-sided hull (box or vertical cylinder), 2 a constant
-stiffness matrix with a constant buoyancy."""
+stiffness matrix with a constant buoyancy, 3 rods (buoyancy of slender cylinders at each pose,
+:func:`moorline.solvers.fast_rigid.rods_load`) with a constant buoyancy."""
 
 
 def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
