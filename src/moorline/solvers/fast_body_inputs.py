@@ -82,7 +82,10 @@ class BodyInputs:
             np.array([_square(h.stiffness) for h in hs], dtype=f8).reshape(nb, 6, 6),
             np.array([b.position for b in bodies], dtype=f8).reshape(nb, 3),
             rotation_matrix(np.array([b.rotation for b in bodies], dtype=f8).reshape(nb, 3)),
-            float(mesh.gravity), float(mesh.water_density), *_rods(hs))
+            float(mesh.gravity), float(mesh.water_density), *_rods(hs),
+            np.array([float(mesh.water_density) * np.asarray(b.Cd, dtype=f8)
+                      * np.asarray(b.drag_area, dtype=f8) for b in bodies],
+                     dtype=f8).reshape(nb, 3))
         self.exciting = [None if b.excitation is None else
                          _exciting_terms(b.excitation, body_model.fluid, body_model.origin0[k])
                          for k, b in enumerate(bodies)]
@@ -146,10 +149,15 @@ class BodyInputs:
                      for k, mem in enumerate(models))
 
     def forces(self, times: FloatArray) -> FloatArray:
-        """Loads on the bodies that depend on time alone at ``times`` (n,): (n, nb, 6)
-        (:meth:`BodyModel.forces`'s force histories and exciting forces)."""
+        """Loads on the bodies that depend on time alone at ``times`` (n,), (n, nb, 9):
+        :meth:`BodyModel.forces`'s force histories and exciting forces ``[..., :6]``, then
+        the fluid velocity at a wet body origin ``[..., 6:]`` (a uniform current, ramped; the
+        compiled step takes body drag without waves only)."""
         times = np.asarray(times, dtype=float)
-        out = np.zeros((len(times), self.nb, 6))
+        out = np.zeros((len(times), self.nb, 9))
+        if self.nb and self.loads[-1].any():  # the current for the bodies' drag
+            for i, t in enumerate(times):
+                out[i, :, 6:] = self.model.fluid.kinematics(np.zeros((1, 3)), float(t))[0][0]
         for k in range(self.nb):
             body = self.model.bodies[k]
             if body.force_history is not None:
@@ -161,7 +169,7 @@ class BodyInputs:
                 scaled = a[:, None] * amp
                 load = np.cos(arg) @ (scaled * np.cos(phase)) \
                     - np.sin(arg) @ (scaled * np.sin(phase))
-                out[:, k] += ramps(times, ramp_time)[0][:, None] * load
+                out[:, k, :6] += ramps(times, ramp_time)[0][:, None] * load
         return out
 
     def records(self, n: int) -> tuple:

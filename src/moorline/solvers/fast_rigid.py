@@ -11,7 +11,8 @@ restoring), Wang, Er and Iu eq. 24-30 (the box's buoyancy and waterplane restori
 Newton-Euler rigid-body equations about a point off the centre of gravity; the rods'
 buoyancy is :func:`moorline.physics.rod_buoyancy.rod_buoyancy` (MoorDyn-C v2.7
 ``source/Rod.cpp``, ``Rod::doRHS``, ``h0``, for the submerged length; the waterplane couple
-derived and sourced there).
+derived and sourced there); the drag of a body is
+:func:`moorline.physics.rigid_body.body_drag` (Morison drag of a small body, Tuah sec. 3.2).
 """
 
 from __future__ import annotations
@@ -301,7 +302,7 @@ def static_load(b, model, r, R, K):
     :func:`~moorline.physics.rigid_body.matrix_restoring` with a constant buoyancy, the rods'
     buoyancy (:func:`rods_load`) with a constant buoyancy)."""
     (mass, cog, inertia, added, damping, force, kind, area, height, wp_inertia, volume,
-     cob, stiffness, ref_r, ref_R, gravity, rho, rod_first, rod_a, rod_b, rod_d) = model
+     cob, stiffness, ref_r, ref_R, gravity, rho, rod_first, rod_a, rod_b, rod_d, _) = model
     K[:, :] = 0.0
     load = force[b].copy()
     _point_load(np.array([0.0, 0.0, -mass[b] * gravity]), cog[b], R, load, K)
@@ -343,3 +344,16 @@ def static_load(b, model, r, R, K):
         jac[3:, 3:] = inverse_left_jacobian(turn)
         K += mm(stiffness[b], jac)
     return load
+
+
+@numba.njit(**_JIT)
+def drag_load(coef, u, v, load, damp):
+    """Adds the quadratic drag ``F_i = coef_i |u_i - v_i| (u_i - v_i) / 2`` per world axis
+    (``coef = rho Cd A`` (3,) [mass / length], fluid velocity ``u``, body velocity ``v``
+    (3,) [length / time]) to ``load`` (6,) and its damping ``-dF / dv``, the diagonal
+    ``coef_i |u_i - v_i|``, to ``damp`` (6, 6)
+    (:func:`moorline.physics.rigid_body.body_drag`)."""
+    for i in range(3):
+        rel = u[i] - v[i]
+        load[i] += 0.5 * coef[i] * abs(rel) * rel
+        damp[i, i] += coef[i] * abs(rel)
