@@ -29,3 +29,17 @@ def assert_same_run(fast, slow) -> None:
     assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
     assert fast.counters["iterations"] == slow.counters["iterations"]
     assert fast.counters["factorizations"] == slow.counters["factorizations"]
+
+
+def assert_same_bodies(fast, slow, size: float) -> None:
+    """The same body poses (within 1e-9 of the body's ``size`` [m]), velocities, lines'
+    forces on the bodies and line end forces (to the Newton tolerance's round-off of their
+    largest)."""
+    assert np.allclose(fast.body_pose, slow.body_pose, rtol=0, atol=1e-9 * size)
+    assert np.allclose(fast.body_velocity, slow.body_velocity, rtol=0,
+                       atol=1e-8 * np.abs(slow.body_velocity).max())
+    scale = np.abs(slow.body_mooring_force).max()
+    assert np.allclose(fast.body_mooring_force, slow.body_mooring_force, rtol=0,
+                       atol=1e-7 * scale)
+    ends = np.abs(slow.end_force).max()
+    assert np.allclose(fast.end_force, slow.end_force, rtol=0, atol=1e-7 * ends)

@@ -26,7 +26,8 @@ the Schur complement ``S = D - C A^-1 B`` (``6 nb`` square); a solve is one band
 vel0, acc0``, the step ``dq`` and its line-search trial, the evaluated state ``r1, R1, vel1,
 acc1``, the attached nodes' world arms and weighted forces, the non-inertial generalized
 forces at the start of the step and at the evaluated state for HHT); the loads that depend
-on time alone per sub-step (force histories, exciting-force tables; ``(n_sub, nb, 6)``); the
+on time alone per sub-step (force histories, exciting-force tables; ``(n_sub, nb, 6)``) and
+the current at the body origins for their drag (``(n_sub, nb, 3)`` more); the
 factorization (``(A^-1 B)^T``, ``C``, ``D``, ``S^-1``); the radiation memory of the bodies
 with a radiation table (Cummins 1962, :class:`moorline.physics.radiation.MemoryModel`: every
 mode's body, force and velocity dof, pole and coefficient; the complex states at the start of
@@ -51,6 +52,7 @@ from ..jit import numba
 from ..physics.fused import hht_stiffness
 from .fast_rigid import (
     cross,
+    drag_load,
     inertia_load,
     left_jacobian,
     mm,
@@ -163,6 +165,14 @@ def add_memory_damping(memory, b, damp):
 
 
 @numba.njit(**_JIT)
+def fluid_at(forces, j, b, r):
+    """The fluid velocity at body ``b``'s origin ``r`` at sub-step ``j``: the current of
+    ``forces`` where the origin is wet (``z <= 0``), zero above the still water level (as
+    :meth:`moorline.waves.CurrentProfile.kinematics`)."""
+    return forces[j, b, 6:].copy() if r[2] <= 0.0 else np.zeros(3)
+
+
+@numba.njit(**_JIT)
 def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
     """The bodies' rows of the step's residual (after the ``n`` band rows of ``rvec``): the
     weighted non-inertial forces plus the inertial ones, ``(1 + alpha) F - alpha F0 + F_i``
@@ -186,8 +196,9 @@ def residual(bodies, j, buf, rvec, alpha, node_mass, a, norm):
     inertial = np.zeros((nb, 6))
     mu = memory_forces(bodies[5], nb)
     for b in range(nb):
-        gen = static_load(b, loads, r1[b], R1[b], K) + forces[j, b] \
-            - (mv(damping[b], vel1[b]) + mu[b])
+        gen = static_load(b, loads, r1[b], R1[b], K) - (mv(damping[b], vel1[b]) + mu[b])
+        gen += forces[j, b, :6]
+        drag_load(loads[-1][b], fluid_at(forces, j, b, r1[b]), vel1[b], gen, K)  # K: scratch
         other1[b] = gen
         inertial[b] = -(inertia_load(mass[b], cog[b], inertia[b], R1[b], vel1[b], acc1[b],
                                      d_vel, d_rot) + mv(added[b], acc1[b]))
@@ -350,6 +361,8 @@ def couplings(bodies, band, elements, buf, with_added_mass, node_mass, ca, cv, c
         turned[:, 3:] = mm(turned[:, 3:].copy(), left_jacobian(dq[b, 3:].copy()))
         damp = damping[b].copy()
         add_memory_damping(bodies[5], b, damp)
+        drag_load(loads[-1][b], fluid_at(bodies[3], bodies[6][2][0], b, r1[b]), vel1[b],
+                  np.zeros(6), damp)
         block = turned + cv1 * (ck * damp + d_vel) \
             + ca * (rigid_mass(mass[b], cog[b], inertia[b], R1[b]) + added[b])
         D[6 * b:6 * b + 6, 6 * b:6 * b + 6] += block

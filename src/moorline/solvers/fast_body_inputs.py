@@ -35,6 +35,17 @@ def _modes(models: list) -> tuple:
                  else np.zeros(0, dtype=t) for i, t in enumerate(kinds))
 
 
+def _rods(hydrostatics: list) -> tuple:
+    """The rods of ``rods`` hydrostatics, all bodies' in one list: the first rod of each body
+    (nb + 1,), then the rods' body-frame ends A and B (n, 3) and diameters (n,) [length]."""
+    rods = [rod for h in hydrostatics if h.kind == "rods" for rod in h.rods]
+    counts = [len(h.rods) if h.kind == "rods" else 0 for h in hydrostatics]
+    first = np.concatenate(([0], np.cumsum(counts))).astype(np.int64)
+    ends = np.array([(a, b) for a, b, _ in rods], dtype=np.float64).reshape(-1, 2, 3)
+    return (first, ends[:, 0].copy(), ends[:, 1].copy(),
+            np.array([d for *_, d in rods], dtype=np.float64))
+
+
 class BodyInputs:
     """The compiled step's ``bodies`` argument for the free bodies of ``body_model`` (None:
     no bodies, every array empty) on a band of ``n_band`` rows."""
@@ -71,7 +82,10 @@ class BodyInputs:
             np.array([_square(h.stiffness) for h in hs], dtype=f8).reshape(nb, 6, 6),
             np.array([b.position for b in bodies], dtype=f8).reshape(nb, 3),
             rotation_matrix(np.array([b.rotation for b in bodies], dtype=f8).reshape(nb, 3)),
-            float(mesh.gravity), float(mesh.water_density))
+            float(mesh.gravity), float(mesh.water_density), *_rods(hs),
+            np.array([float(mesh.water_density) * np.asarray(b.Cd, dtype=f8)
+                      * np.asarray(b.drag_area, dtype=f8) for b in bodies],
+                     dtype=f8).reshape(nb, 3))
         self.exciting = [None if b.excitation is None else
                          _exciting_terms(b.excitation, body_model.fluid, body_model.origin0[k])
                          for k, b in enumerate(bodies)]
@@ -135,10 +149,15 @@ class BodyInputs:
                      for k, mem in enumerate(models))
 
     def forces(self, times: FloatArray) -> FloatArray:
-        """Loads on the bodies that depend on time alone at ``times`` (n,): (n, nb, 6)
-        (:meth:`BodyModel.forces`'s force histories and exciting forces)."""
+        """Loads on the bodies that depend on time alone at ``times`` (n,), (n, nb, 9):
+        :meth:`BodyModel.forces`'s force histories and exciting forces ``[..., :6]``, then
+        the fluid velocity at a wet body origin ``[..., 6:]`` (a uniform current, ramped; the
+        compiled step takes body drag without waves only)."""
         times = np.asarray(times, dtype=float)
-        out = np.zeros((len(times), self.nb, 6))
+        out = np.zeros((len(times), self.nb, 9))
+        if self.nb and self.loads[-1].any():  # the current for the bodies' drag
+            for i, t in enumerate(times):
+                out[i, :, 6:] = self.model.fluid.kinematics(np.zeros((1, 3)), float(t))[0][0]
         for k in range(self.nb):
             body = self.model.bodies[k]
             if body.force_history is not None:
@@ -150,7 +169,7 @@ class BodyInputs:
                 scaled = a[:, None] * amp
                 load = np.cos(arg) @ (scaled * np.cos(phase)) \
                     - np.sin(arg) @ (scaled * np.sin(phase))
-                out[:, k] += ramps(times, ramp_time)[0][:, None] * load
+                out[:, k, :6] += ramps(times, ramp_time)[0][:, None] * load
         return out
 
     def records(self, n: int) -> tuple:

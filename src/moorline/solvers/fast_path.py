@@ -11,10 +11,11 @@ import numpy as np
 
 __all__ = ["HULL_KINDS", "body_refusal", "fast_path_reason", "fluid_parts"]
 
-HULL_KINDS = {"none": 0, "box": 1, "cylinder": 1, "matrix": 2}
+HULL_KINDS = {"none": 0, "box": 1, "cylinder": 1, "matrix": 2, "rods": 3}
 """Hydrostatics the compiled step takes (:func:`moorline.solvers.fast_rigid.static_load`),
 by its code there: 0 none, 1 a wall-sided hull (box or vertical cylinder), 2 a constant
-stiffness matrix with a constant buoyancy."""
+stiffness matrix with a constant buoyancy, 3 rods (buoyancy of slender cylinders at each pose,
+:func:`moorline.solvers.fast_rigid.rods_load`) with a constant buoyancy."""
 
 
 def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = False,
@@ -23,6 +24,10 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
     model's mesh has rigid bodies (:func:`body_refusal`)."""
     if bodies and (reason := body_refusal(model.mesh)) is not None:
         return reason
+    if bodies and (parts := fluid_parts(fluid)) is not None and parts[0] is not None:
+        for body in model.mesh.bodies:
+            if np.any(np.asarray(body.drag_area, dtype=float)):
+                return f"drag on body {body.name} in waves"
     if rayleigh:
         return "Rayleigh damping"
     if model._fused is None:  # the numpy kernel, the incremental SLS update, MoorDyn's ropes
@@ -66,7 +71,8 @@ def body_refusal(mesh) -> str | None:
     """Why the compiled step cannot run the bodies of ``mesh`` (None when it can): it takes
     free bodies and bodies pinned in space with weight, constant loads and force histories,
     constant added mass and damping or a radiation table (Cummins memory), hydrostatics of
-    :data:`HULL_KINDS` and exciting-force tables (:mod:`moorline.solvers.fast_bodies`)."""
+    :data:`HULL_KINDS`, exciting-force tables and drag (in still water or a uniform current:
+    :func:`fast_path_reason` refuses it in waves) (:mod:`moorline.solvers.fast_bodies`)."""
     for body in mesh.bodies:
         name = body.name
         if body.kind not in ("free", "pinned"):
@@ -75,8 +81,6 @@ def body_refusal(mesh) -> str | None:
             return f"a pinned body on another body ({name})"
         if body.hydrostatics.kind not in HULL_KINDS:
             return f"{body.hydrostatics.kind} hydrostatics on body {name}"
-        if np.any(np.asarray(body.drag_area, dtype=float)):
-            return f"drag on body {name}"
         if body.wave_loads:
             return f"long-wave loads on body {name}"
     return None

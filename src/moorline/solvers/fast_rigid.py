@@ -8,7 +8,11 @@ time in numba, with the same conventions: ``R <- exp([dtheta x]) R``, tangents
 ``K = -d load / d(dr, dtheta)``, loads about the body origin in world axes. Sources as
 there: Tuah (1982) eq. 3.2.c.20 / 3.3.1 (constant added mass, damping, hydrostatic
 restoring), Wang, Er and Iu eq. 24-30 (the box's buoyancy and waterplane restoring), and the
-Newton-Euler rigid-body equations about a point off the centre of gravity.
+Newton-Euler rigid-body equations about a point off the centre of gravity; the rods'
+buoyancy is :func:`moorline.physics.rod_buoyancy.rod_buoyancy` (MoorDyn-C v2.7
+``source/Rod.cpp``, ``Rod::doRHS``, ``h0``, for the submerged length; the waterplane couple
+derived and sourced there); the drag of a body is
+:func:`moorline.physics.rigid_body.body_drag` (Morison drag of a small body, Tuah sec. 3.2).
 """
 
 from __future__ import annotations
@@ -196,6 +200,98 @@ def _point_load(force, arm, R, load, K):
 
 
 @numba.njit(**_JIT)
+def _submerged_span(za, zb):
+    """Submerged fractions ``(s0, s1)`` of a rod's axis from end A (heights ``za``, ``zb``
+    of its ends [length]) and their derivatives with respect to ``(za, zb)`` (2,) each
+    (:func:`moorline.physics.rod_buoyancy.submerged_span`)."""
+    ds0, ds1 = np.zeros(2), np.zeros(2)
+    a_wet, b_wet = za < 0.0, zb < 0.0
+    if a_wet == b_wet:
+        return 0.0, (1.0 if a_wet else 0.0), ds0, ds1
+    diff = za - zb
+    s = za / diff
+    if a_wet:
+        ds1[0], ds1[1] = -zb / diff**2, za / diff**2
+        return 0.0, s, ds0, ds1
+    ds0[0], ds0[1] = -zb / diff**2, za / diff**2
+    return s, 1.0, ds0, ds1
+
+
+@numba.njit(**_JIT)
+def _waterplane_moment(D, length, diameter, up_sign, wet, d_wet, rho_g, load, K):
+    """Adds the waterplane couple of a rod piercing the surface (world axis ``D`` (3,) of
+    norm ``length``, ``up_sign`` 1 when end A is wet, else -1; wet fraction ``wet`` and its
+    derivative ``d_wet`` (6,)) to ``load`` and its tangent to ``K``
+    (:func:`moorline.physics.rod_buoyancy.waterplane_moment`)."""
+    up = (up_sign / length) * D  # t: from the wet end up
+    c = up[2]
+    sin2 = max(1.0 - c * c, 0.0)
+    h_wet = wet * length
+    dry_shorter = length - h_wet < h_wet
+    h = length - h_wet if dry_shorter else h_wet
+    dh = ((-1.0 if dry_shorter else 1.0) * length) * d_wet
+    tan_cap = 2.0 * h / diameter
+    capped = sin2 > (tan_cap * c) ** 2  # tan(phi) beyond the cap
+    c_free = 1.0 if capped else c
+    f = 1.0 + 0.5 * (tan_cap * tan_cap if capped else sin2 / (c_free * c_free))
+    arm = np.array([up[1], -up[0], 0.0])  # t x e_z
+    if capped:  # df = tan dtan, dtan = 2 dh / d
+        df = (tan_cap * 2.0 / diameter) * dh
+    else:  # f = (1 + 1 / c^2) / 2, df = -dc / c^3, dc = dtheta . (t x e_z)
+        df = np.zeros(6)
+        df[3:] = -arm / c_free**3
+    scale = rho_g * math.pi * diameter**4 / 64.0
+    # d(t x e_z) = [e_z x][t x] dtheta
+    turn = mm(skew(np.array([0.0, 0.0, 1.0])), skew(up))
+    for i in range(3):
+        load[3 + i] += scale * f * arm[i]
+        for j in range(6):
+            K[3 + i, j] -= scale * arm[i] * df[j]
+        for j in range(3):
+            K[3 + i, 3 + j] -= scale * f * turn[i, j]
+
+
+@numba.njit(**_JIT)
+def rods_load(first, last, rod_a, rod_b, rod_d, r, R, rho_g, load, K):
+    """Adds the buoyancy of rods ``first:last`` (body-frame ends ``rod_a``, ``rod_b`` (n, 3),
+    diameters ``rod_d`` (n,) [length]) of a body at ``r``, ``R`` to ``load`` (6,) and its
+    exact tangent to ``K`` (6, 6) (:func:`moorline.physics.rod_buoyancy.rod_buoyancy`)."""
+    for k in range(first, last):
+        A, B = mv(R, rod_a[k]), mv(R, rod_b[k])
+        za, zb = r[2] + A[2], r[2] + B[2]
+        s0, s1, ds0, ds1 = _submerged_span(za, zb)
+        D = B - A
+        length = math.sqrt(D[0] * D[0] + D[1] * D[1] + D[2] * D[2])
+        weight = rho_g * math.pi * rod_d[k] ** 2 / 4.0 * length  # per unit fraction
+        lift = weight * (s1 - s0)
+        arm = A + (0.5 * (s0 + s1)) * D
+        load[2] += lift
+        load[3] += arm[1] * lift
+        load[4] -= arm[0] * lift
+        # dz_end = dr_z + dtheta . (arm_end x e_z)
+        gz_a = np.array([0.0, 0.0, 1.0, A[1], -A[0], 0.0])
+        gz_b = np.array([0.0, 0.0, 1.0, B[1], -B[0], 0.0])
+        d_s0 = ds0[0] * gz_a + ds0[1] * gz_b
+        d_s1 = ds1[0] * gz_a + ds1[1] * gz_b
+        d_wet = d_s1 - d_s0
+        d_mid = 0.5 * (d_s0 + d_s1)
+        # d arm = dtheta x arm + D d_mid;  dM = d arm x F + arm x dF, F = lift e_z
+        d_arm = np.zeros((3, 6))
+        d_arm[:, 3:] = -skew(arm)
+        for i in range(3):
+            for j in range(6):
+                d_arm[i, j] += D[i] * d_mid[j]
+        for j in range(6):
+            d_lift = weight * d_wet[j]
+            K[2, j] -= d_lift
+            K[3, j] -= lift * d_arm[1, j] + arm[1] * d_lift
+            K[4, j] -= -lift * d_arm[0, j] - arm[0] * d_lift
+        if (za < 0.0) != (zb < 0.0):
+            _waterplane_moment(D, length, rod_d[k], 1.0 if za < 0.0 else -1.0, s1 - s0,
+                               d_wet, rho_g, load, K)
+
+
+@numba.njit(**_JIT)
 def static_load(b, model, r, R, K):
     """Weight, constant load and hydrostatics of body ``b`` (6,) and their tangent ``K``
     (6, 6, filled) (:func:`moorline.solvers.bodies.body_loads` for the kinds of
@@ -203,9 +299,10 @@ def static_load(b, model, r, R, K):
     :func:`~moorline.physics.rigid_body.gravity_load`,
     :func:`~moorline.physics.rigid_body.hull_buoyancy` and
     :func:`~moorline.physics.rigid_body.waterplane_restoring` of a box or cylinder,
-    :func:`~moorline.physics.rigid_body.matrix_restoring` with a constant buoyancy)."""
+    :func:`~moorline.physics.rigid_body.matrix_restoring` with a constant buoyancy, the rods'
+    buoyancy (:func:`rods_load`) with a constant buoyancy)."""
     (mass, cog, inertia, added, damping, force, kind, area, height, wp_inertia, volume,
-     cob, stiffness, ref_r, ref_R, gravity, rho) = model
+     cob, stiffness, ref_r, ref_R, gravity, rho, rod_first, rod_a, rod_b, rod_d, _) = model
     K[:, :] = 0.0
     load = force[b].copy()
     _point_load(np.array([0.0, 0.0, -mass[b] * gravity]), cog[b], R, load, K)
@@ -234,8 +331,11 @@ def static_load(b, model, r, R, K):
             load[3 + i] -= restoring * tilt[i]
             for j in range(3):
                 K[3 + i, 3 + j] += restoring * J_inv[i, j]
-    elif kind[b] == 2:  # constant buoyancy at the centre of buoyancy, constant stiffness
+    elif kind[b] >= 2:  # constant buoyancy at the centre of buoyancy
         _point_load(np.array([0.0, 0.0, rg * volume[b]]), cob[b], R, load, K)
+    if kind[b] == 3:  # and the rods' buoyancy at this pose
+        rods_load(rod_first[b], rod_first[b + 1], rod_a, rod_b, rod_d, r, R, rg, load, K)
+    elif kind[b] == 2:  # and a constant stiffness
         turn = rotation_vector(mm(R, ref_R[b].T.copy()))
         q = np.empty(6)
         q[:3], q[3:] = r - ref_r[b], turn
@@ -244,3 +344,16 @@ def static_load(b, model, r, R, K):
         jac[3:, 3:] = inverse_left_jacobian(turn)
         K += mm(stiffness[b], jac)
     return load
+
+
+@numba.njit(**_JIT)
+def drag_load(coef, u, v, load, damp):
+    """Adds the quadratic drag ``F_i = coef_i |u_i - v_i| (u_i - v_i) / 2`` per world axis
+    (``coef = rho Cd A`` (3,) [mass / length], fluid velocity ``u``, body velocity ``v``
+    (3,) [length / time]) to ``load`` (6,) and its damping ``-dF / dv``, the diagonal
+    ``coef_i |u_i - v_i|``, to ``damp`` (6, 6)
+    (:func:`moorline.physics.rigid_body.body_drag`)."""
+    for i in range(3):
+        rel = u[i] - v[i]
+        load[i] += 0.5 * coef[i] * abs(rel) * rel
+        damp[i, i] += coef[i] * abs(rel)
