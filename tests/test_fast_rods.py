@@ -146,16 +146,20 @@ def test_compiled_rods_tangent_matches_finite_differences(scheme, variant):
     assert_border_matches_differences(stepper.lu.shape[0], residual, tangent, u, 1e-5)
 
 
-def test_body_drag_in_waves_keeps_the_general_stepper():
-    """Body drag runs compiled in still water or a current, not in waves (the fluid
-    velocity at the body origin would move with it)."""
-    from moorline.model import Waves
+def test_body_drag_in_waves_or_a_sheared_current_keeps_the_general_stepper():
+    """Body drag runs compiled in still water or a uniform current, not in waves or a
+    current that changes over depth (the fluid velocity at the body origin would move with
+    it)."""
+    from moorline.model import Current, Waves
 
     system = rod_buoy(**DRAGGED)
     wavy = replace(system, environment=replace(system.environment,
                                                waves=Waves(kind="airy", height=2.0,
                                                            period=8.0)))
+    sheared = replace(system, environment=replace(
+        system.environment, current=Current(z_levels=(-50.0, 0.0), speeds=(0.2, 0.8),
+                                            headings_deg=(0.0, 0.0))))
     settings = DynamicsSettings(duration=1.0, dt=0.05)
-    for case, kind in ((system, "FastStepper"), (wavy, "Stepper")):
+    for case, kind in ((system, "FastStepper"), (wavy, "Stepper"), (sheared, "Stepper")):
         stepper = dynamics.start(case, settings, solve_statics(case))[-1]
         assert type(stepper).__name__ == kind

@@ -24,10 +24,13 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
     model's mesh has rigid bodies (:func:`body_refusal`)."""
     if bodies and (reason := body_refusal(model.mesh)) is not None:
         return reason
-    if bodies and (parts := fluid_parts(fluid)) is not None and parts[0] is not None:
+    parts = fluid_parts(fluid) if bodies else None
+    if parts is not None and (parts[0] is not None or _sheared(parts[1])):
+        # the compiled bodies' drag takes a fluid velocity that depends on time alone
         for body in model.mesh.bodies:
             if np.any(np.asarray(body.drag_area, dtype=float)):
-                return f"drag on body {body.name} in waves"
+                where = "waves" if parts[0] is not None else "a sheared current"
+                return f"drag on body {body.name} in {where}"
     if rayleigh:
         return "Rayleigh damping"
     if model._fused is None:  # the numpy kernel, the incremental SLS update, MoorDyn's ropes
@@ -43,6 +46,12 @@ def fast_path_reason(model, fluid, scheme: str, variant: str, bodies: bool = Fal
     if fluid_parts(fluid) is None:
         return "a fluid field other than Airy waves and a current profile"
     return None
+
+
+def _sheared(current) -> bool:
+    """Whether a current profile's velocity changes over depth."""
+    return current is not None and (len(set(current.speeds)) > 1
+                                    or len(set(current.headings_deg)) > 1)
 
 
 def fluid_parts(fluid):
