@@ -124,6 +124,26 @@ def pinned_buoy() -> System:
     return replace(system, bodies={"buoy": body})
 
 
+def cut_step(fast, slow, excitation, state, s_slow, h):
+    """A step of ``h`` the compiled stepper is given one Newton iteration for (so it may
+    fail), then the two halves ``_advance`` would take, on both steppers from fresh
+    tangents. Returns (the failed attempt's (new state, converged)), the compiled and the
+    general stepper's states after the halves."""
+    strict = fast.newton_args
+    fast.newton_args = (strict[0], 1, *strict[2:])
+    new, ok, _ = fast.step(state, h, excitation.constrained_state(state.t + h), None)
+    fast.newton_args = strict
+    attempt = (new, ok)
+    fast.forget_tangent()
+    slow.forget_tangent()
+    for _ in range(2):  # two halves, as _advance cuts
+        c = excitation.constrained_state(state.t + h / 2)
+        state, ok, _ = fast.step(state, h / 2, c, None)
+        s_slow, ok_slow, _ = slow.step(s_slow, h / 2, c, None)
+        assert ok and ok_slow
+    return attempt, state, s_slow
+
+
 @pytest.mark.parametrize("scheme", ["newmark", "hht"])
 def test_compiled_pinned_body_equals_the_general_stepper(scheme, monkeypatch):
     """A body pinned in space, its pin moving (held translations, the pin's force as their
@@ -164,20 +184,11 @@ def test_step_cuts_restore_the_bodies():
     failed = 0
     h = 0.1
     for _ in range(8):
-        strict = fast.newton_args
-        fast.newton_args = (strict[0], 1, *strict[2:])
-        new, ok, _ = fast.step(state, h, excitation.constrained_state(state.t + h), None)
-        fast.newton_args = strict
+        start_state = state
+        (new, ok), state, s_slow = cut_step(fast, slow, excitation, state, s_slow, h)
         if not ok:
             failed += 1
-            assert new is state
-        fast.forget_tangent()
-        slow.forget_tangent()
-        for _ in range(2):  # two halves, as _advance cuts
-            c = excitation.constrained_state(state.t + h / 2)
-            state, ok, _ = fast.step(state, h / 2, c, None)
-            s_slow, ok_slow, _ = slow.step(s_slow, h / 2, c, None)
-            assert ok and ok_slow
+            assert new is start_state
         np.testing.assert_allclose(state.bodies.r, s_slow.bodies.r, rtol=0, atol=1e-10)
         np.testing.assert_allclose(state.bodies.R, s_slow.bodies.R, rtol=0, atol=1e-11)
         np.testing.assert_allclose(state.bodies.vel, s_slow.bodies.vel, rtol=0, atol=1e-9)
