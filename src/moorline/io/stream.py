@@ -243,8 +243,10 @@ class HistoryWriter:
         with signals_deferred():
             for times, block in self._pending:
                 n = len(times)
+                derived = dict(block)  # each variable derived once (end_tension: fairlead)
                 for var in self.variables:
-                    put_rows(self._targets[var.name], var.derive(block), i)
+                    derived[var.name] = values = var.derive(derived)
+                    put_rows(self._targets[var.name], values, i)
                 put_rows(self._time, times, i)
                 self.envelope.add_records(times, block["tension"])
                 i += n
