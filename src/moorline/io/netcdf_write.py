@@ -84,7 +84,10 @@ def write_into(root: Any, ds: Any, *, group: str | None = None,
     stream) are defined in netCDF's no-fill mode: HDF5 does not fill their new chunks before
     they are written (with their ``_FillValue`` attribute as the others: readers see the same
     dataset), so a chunk written whole is written once, straight from the caller's array,
-    when it does not fit the variable's chunk cache. ``chunk_cache``: that cache's size
+    when it does not fit the variable's chunk cache. One difference remains: read past its
+    own length (shorter than its unlimited dimension, which a stream's variables never are
+    but after a SIGKILL in the middle of a sync), such a variable gives netCDF's default
+    fill (9.97e36) where a filled one gives its ``_FillValue``. ``chunk_cache``: that cache's size
     [bytes] per variable name, set at definition (later, netCDF reopens the dataset).
 
     Raises
