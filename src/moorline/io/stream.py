@@ -41,6 +41,7 @@ from ..mesh import Mesh
 from ..signals import Terminated, signals_deferred
 from ..status import Status
 from .netcdf_write import nc_attrs, put_rows, write_into
+from .preallocate import reserve
 
 FloatArray = NDArray[np.float64]
 
@@ -148,6 +149,8 @@ class HistoryWriter:
             raise
         self._targets = {var.name: self.ds[var.name] for var in self.variables}
         self._time = self.ds["time"]
+        self._record_bytes = sum(8 * int(np.prod(chunks[1:], dtype=np.int64))
+                                 for chunks in chunking.values())
         self.attrs: dict[str, Any] = nc_attrs(skeleton.attrs)
         self.envelope = TensionEnvelope(mesh.n_elements, skeleton.attrs["envelope_start"],
                                         static_tension)
@@ -236,11 +239,13 @@ class HistoryWriter:
 
     def flush(self) -> None:
         """Write the waiting records, segment by segment in order (a held block, the
-        records copied between held ones), and sync the file (signals held back)."""
+        records copied between held ones), and sync the file (signals held back); their
+        disk space is reserved first (:func:`moorline.io.preallocate.reserve`)."""
         if self._n_pending == 0 or not self.root.isopen():
             return
         i = self.written
         with signals_deferred():
+            reserve(self.path, self._n_pending * self._record_bytes)
             for times, block in self._pending:
                 n = len(times)
                 derived = dict(block)  # each variable derived once (end_tension: fairlead)
