@@ -200,3 +200,74 @@ def test_modes_rewrites_the_other_groups_as_xarray_did(tmp_path: Path) -> None:
         write_group(_reread(tmp_path / "run.nc", group), expected, group)
         assert _structure(results, group) == _structure(expected, group)
     assert _reread(results, "modal").sizes["mode"] == 2
+
+
+class _Sliced:
+    """A netCDF4 variable seen through its slicing alone (no ``_put``): :func:`put_rows`'
+    fallback."""
+
+    def __init__(self, variable) -> None:
+        self.variable, self.shape, self.dtype = variable, variable.shape, variable.dtype
+
+    def __setitem__(self, key, values) -> None:
+        self.variable[key] = values
+
+
+def test_put_rows_writes_what_slicing_writes(tmp_path: Path) -> None:
+    """Rows appended in pieces along an unlimited dimension (floats, integers, strings), and
+    whole fixed variables, by netCDF4's ``_put`` and by its slicing: the same values bit for
+    bit, the same lengths."""
+    import netCDF4
+
+    from moorline.io.netcdf_write import put_rows
+
+    rng = np.random.default_rng(5)
+    floats, ints = rng.normal(size=(9, 4, 3)), rng.integers(-9, 9, size=(9, 4))
+    words = np.array([f"w{k}" * (k % 3 + 1) for k in range(9)], dtype=object)
+    path = tmp_path / "rows.nc"
+    with netCDF4.Dataset(path, "w") as root:
+        root.createDimension("time", None)
+        root.createDimension("n", 4)
+        root.createDimension("xyz", 3)
+        for way in ("put", "sliced"):
+            targets = (root.createVariable(f"f_{way}", "f8", ("time", "n", "xyz"),
+                                           fill_value=np.nan, chunksizes=(2, 4, 3)),
+                       root.createVariable(f"i_{way}", "i8", ("time", "n")),
+                       root.createVariable(f"s_{way}", str, ("time",)))
+            fixed = root.createVariable(f"fixed_{way}", "f8", ("n",))
+            if way == "sliced":
+                targets = tuple(_Sliced(v) for v in targets)
+                fixed = _Sliced(fixed)
+            for first, last in ((0, 1), (1, 5), (5, 9)):
+                for target, values in zip(targets, (floats, ints, words), strict=True):
+                    put_rows(target, values[first:last], first)
+            put_rows(fixed, floats[0, :, 1])
+    with netCDF4.Dataset(path) as root:
+        for name in ("f", "i", "s", "fixed"):
+            put, sliced = root[f"{name}_put"][...], root[f"{name}_sliced"][...]
+            assert put.shape == sliced.shape
+            assert put.dtype == sliced.dtype and np.all(put == sliced), name
+        assert root["f_put"][...].tobytes() == floats.tobytes()
+        assert list(root["s_put"][...]) == list(words)
+
+
+def test_unfilled_variables_keep_their_fill_value_attribute(tmp_path: Path) -> None:
+    """``unfilled``: no HDF5 fill (netCDF's no-fill mode) for the named variables only; their
+    ``_FillValue`` attribute is there as for the others, so xarray reads the same dataset."""
+    import netCDF4
+
+    from moorline.io.netcdf_write import write_into
+
+    ds = xr.Dataset({"a": (("time", "n"), np.arange(6.0).reshape(3, 2)),
+                     "b": (("time", "n"), -np.arange(6.0).reshape(3, 2))},
+                    coords={"time": [0.0, 1.0, 2.0]})
+    paths = tmp_path / "filled.nc", tmp_path / "unfilled.nc"
+    for path, unfilled in zip(paths, ((), ("a", "time")), strict=True):
+        with netCDF4.Dataset(path, "w") as root:
+            write_into(root, ds, unlimited_dims=["time"], unfilled=unfilled,
+                       chunk_cache={"a": 0})
+    with netCDF4.Dataset(paths[1]) as root:
+        assert root["a"].get_fill_value() is None and root["time"].get_fill_value() is None
+        assert np.isnan(root["b"].get_fill_value())
+        assert all(np.isnan(root[name].getncattr("_FillValue")) for name in ("a", "b", "time"))
+    xr.testing.assert_identical(_reread(paths[0]), _reread(paths[1]))

@@ -95,3 +95,43 @@ def test_owned_blocks_are_written_as_given_and_in_order(tmp_path: Path,
                      "end_tension", "fairlead_tension"):
             np.testing.assert_array_equal(owned[name], copied[name], err_msg=name)
         assert owned.attrs["envelope_records"] == total
+
+
+def test_reserved_space_changes_nothing_in_the_file(tmp_path: Path) -> None:
+    """The space reserved past the end of a file holds no byte of it: reserving leaves the
+    size as it was; a stream written with its blocks' space reserved is, byte for byte, the
+    file written without."""
+    from moorline.io.preallocate import reserve
+
+    path = tmp_path / "f.bin"
+    path.write_bytes(b"x" * 5000)
+    if not reserve(path, 1 << 20):
+        pytest.skip("no fallocate here: nothing is reserved")
+    assert path.stat().st_size == 5000 and path.read_bytes() == b"x" * 5000
+    assert path.stat().st_blocks * 512 >= 1 << 20
+
+    mesh = discretize(load_case(OC3_DYNAMICS))
+    n, m, lines = mesh.n_nodes, mesh.n_elements, len(mesh.line_names)
+    rng = np.random.default_rng(7)
+    total = 300
+    records = {"position": rng.normal(size=(total, n, 3)),
+               "velocity": rng.normal(size=(total, n, 3)),
+               "tension": 1.0e5 * rng.random((total, m)),
+               "end_force": rng.normal(size=(total, lines, 2, 3)),
+               "wave_elevation": rng.normal(size=total),
+               **{key: np.zeros((total, 0, 6))
+                  for key in ("body_pose", "body_velocity", "body_mooring_force")}}
+    times = 0.05 * np.arange(total)
+    written = []
+    for name, reserving in (("reserved.nc", True), ("plain.nc", False)):
+        with pytest.MonkeyPatch.context() as patch:
+            if not reserving:
+                patch.setattr(stream, "reserve", lambda path, nbytes: False)
+            with HistoryWriter(tmp_path / name, mesh, {"case": "x", "units": "SI"}) as writer:
+                for first in range(0, total, 100):
+                    writer.append_block(times[first:first + 100],
+                                        {k: v[first:first + 100] for k, v in records.items()},
+                                        owned=True)
+                    writer.flush()
+        written.append((tmp_path / name).read_bytes())
+    assert written[0] == written[1]

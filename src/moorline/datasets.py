@@ -374,7 +374,7 @@ DYNAMIC_VARIABLES: tuple[RecordVariable, ...] = (
     RecordVariable("tension", ("element",), _field("tension")),
     RecordVariable("end_force", ("line", "end", "xyz"), _field("end_force")),
     RecordVariable("end_tension", ("line", "end"), _end_tension),
-    RecordVariable("fairlead_tension", ("line",), lambda r: _end_tension(r)[..., 1]),
+    RecordVariable("fairlead_tension", ("line",), lambda r: _fairlead_tension(r)),
     RecordVariable("wave_elevation", (), _field("wave_elevation")),
     RecordVariable("body_pose", ("body", "dof"), _field("body_pose"), bodies=True),
     RecordVariable("body_velocity", ("body", "dof"), _field("body_velocity"), bodies=True),
@@ -382,6 +382,13 @@ DYNAMIC_VARIABLES: tuple[RecordVariable, ...] = (
                    bodies=True),
     RecordVariable("body_pin_force", ("body", "xyz"), lambda r: _pin_force(r), bodies=True),
 )
+
+
+def _fairlead_tension(record: Mapping[str, Any]) -> FloatArray:
+    """Tension at end b of each line: the record's ``end_tension`` when the caller has put
+    it there (derived before, in order), else worked out."""
+    ends = record["end_tension"] if "end_tension" in record else _end_tension(record)
+    return np.asarray(ends)[..., 1]
 
 
 def _pin_force(record: Mapping[str, Any]) -> FloatArray:

@@ -10,14 +10,15 @@ passed since the last write by the next record (judged from the last interval be
 or the buffer is full (:data:`BLOCK_RECORDS`, :data:`BLOCK_BYTES`). So a run killed outright
 (SIGKILL) loses at most about the last second of wall time (more only when one output interval
 suddenly takes far longer than those before it), while the output costs little beside the
-stepping even at one record per step: a netCDF4 write has a fixed cost per call of about 0.07
-ms per variable, paid once per block instead of once per record, and the envelope is updated
-per block, vectorized; what remains is moving the data: into the buffer (not for a held block),
-through a chunk cache of two chunks per variable (:data:`CACHE_CHUNKS`), to the operating
-system. Fresh memory is what made that dear (on a virtual machine a page touched for the first
-time costs about as much as copying it ten times): the buffer is reused from block to block and
-the chunk cache recycles its two chunks. A block is written with SIGINT and SIGTERM held back,
-so a signal never leaves a half-written record.
+stepping even at one record per step: a block costs one write per variable and held segment
+(:func:`moorline.io.netcdf_write.put_rows`, without netCDF4's slicing, which cost 0.14 ms a
+call), the envelope is updated per block, vectorized, and what remains is moving the data:
+into the buffer (not for a held block) and to the operating system, the chunks of the large
+variables straight from the block (:func:`_chunking`). Fresh memory is what made that dear
+(on a virtual machine a page touched for the first time costs about as much as copying it ten
+times): the buffer is reused from block to block, and no chunk cache holds a block's copy.
+A block is written with SIGINT and SIGTERM held back, so a signal never leaves a half-written
+record.
 :class:`HistoryWriter` is a context manager: leaving it (normally, by an exception, by
 Ctrl-C or SIGTERM) writes what is buffered and closes the file with its final attributes:
 ``success`` and ``complete`` (1 or 0), ``status`` (``completed``, ``failed``,
@@ -39,7 +40,8 @@ from ..envelope import TensionEnvelope
 from ..mesh import Mesh
 from ..signals import Terminated, signals_deferred
 from ..status import Status
-from .netcdf_write import nc_attrs, write_into
+from .netcdf_write import nc_attrs, put_rows, write_into
+from .preallocate import reserve
 
 FloatArray = NDArray[np.float64]
 
@@ -136,18 +138,19 @@ class HistoryWriter:
         start = {**attrs, "units": units or attrs.get("units", "SI"), "success": 0,
                  "complete": 0, "status": str(Status.RUNNING)}
         skeleton = dynamics_dataset(mesh, np.zeros(0), {}, start, static_tension)
-        chunking = _chunking(skeleton)
+        chunking, cache = _chunking(skeleton)
         self.root = netCDF4.Dataset(self.path, "a" if append else "w", format="NETCDF4")
         try:
             self.ds = write_into(self.root, skeleton, group=group, unlimited_dims=["time"],
-                                 chunksizes=chunking)
+                                 chunksizes=chunking, unfilled=chunking, chunk_cache=cache)
             self.root.sync()  # the group is on disk before the first (maybe slow) step
         except BaseException:
             self.root.close()
             raise
         self._targets = {var.name: self.ds[var.name] for var in self.variables}
-        for name, chunks in chunking.items():
-            _small_chunk_cache(self.ds[name], chunks)
+        self._time = self.ds["time"]
+        self._record_bytes = sum(8 * int(np.prod(chunks[1:], dtype=np.int64))
+                                 for chunks in chunking.values())
         self.attrs: dict[str, Any] = nc_attrs(skeleton.attrs)
         self.envelope = TensionEnvelope(mesh.n_elements, skeleton.attrs["envelope_start"],
                                         static_tension)
@@ -236,16 +239,20 @@ class HistoryWriter:
 
     def flush(self) -> None:
         """Write the waiting records, segment by segment in order (a held block, the
-        records copied between held ones), and sync the file (signals held back)."""
+        records copied between held ones), and sync the file (signals held back); their
+        disk space is reserved first (:func:`moorline.io.preallocate.reserve`)."""
         if self._n_pending == 0 or not self.root.isopen():
             return
         i = self.written
         with signals_deferred():
+            reserve(self.path, self._n_pending * self._record_bytes)
             for times, block in self._pending:
                 n = len(times)
+                derived = dict(block)  # each variable derived once (end_tension: fairlead)
                 for var in self.variables:
-                    self._targets[var.name][i:i + n] = var.derive(block)
-                self.ds["time"][i:i + n] = times
+                    derived[var.name] = values = var.derive(derived)
+                    put_rows(self._targets[var.name], values, i)
+                put_rows(self._time, times, i)
                 self.envelope.add_records(times, block["tension"])
                 i += n
             self._write_envelope()
@@ -258,7 +265,7 @@ class HistoryWriter:
     def _write_envelope(self) -> None:
         """Write the envelope of the records so far."""
         for name, values in self.envelope.values().items():
-            self.ds[name][:] = values
+            put_rows(self.ds[name], values)
         self.ds.setncattr("envelope_records", self.envelope.count)
         self.attrs["envelope_records"] = self.envelope.count
 
@@ -299,34 +306,38 @@ class HistoryWriter:
                     "message": f"{reason}; {self.count} records kept{when}"})
 
 
-CHUNK_BYTES = 1 << 18
+CHUNK_BYTES = 1 << 20
 """Target size of a NetCDF chunk of a time-dependent variable [bytes]: netCDF4's default
 for an unlimited dimension is one record per chunk, which makes every block write (and every
-read) thousands of small chunk operations."""
+read) thousands of small chunk operations. A chunk is allocated whole, so the file holds up
+to one chunk per large variable more than its records (the benchmark's 6000 records: 24.0 MB
+instead of 23.0 MB at 256 kB chunks, whose writing cost ~0.7 ms more: median of 30)."""
+
+CHUNK_RECORDS = 4096
+"""Records per chunk at most (variables of small records: ``time``, ``wave_elevation``,
+the line ends' forces)."""
 
 
-CACHE_CHUNKS = 2
-"""Chunks of a time-dependent variable in its HDF5 chunk cache: the one a block ends in,
-kept for the next block, and the one being filled. netCDF's default cache (64 MiB per
-variable) held a whole block until the sync, allocating and touching as much memory again;
-two chunks recycled made writing the benchmark's 22 MB a quarter cheaper (35 -> 28 ms)."""
+def _chunking(skeleton: Any) -> tuple[dict[str, tuple[int, ...]], dict[str, int]]:
+    """Chunk shapes and chunk cache sizes [bytes] of the time-dependent variables.
 
-
-def _small_chunk_cache(variable: Any, chunks: tuple[int, ...]) -> None:
-    """Give ``variable`` (an open netCDF4 variable of float64 chunked as ``chunks``) a chunk
-    cache of :data:`CACHE_CHUNKS` chunks."""
-    size = CACHE_CHUNKS * 8 * int(np.prod(chunks, dtype=np.int64))
-    variable.set_var_chunk_cache(size=size)
-
-
-def _chunking(skeleton: Any) -> dict[str, tuple[int, ...]]:
-    """Chunk sizes of the time-dependent variables: about :data:`CHUNK_BYTES` per chunk
-    along ``time``, whole along the other dimensions."""
-    encoding = {}
+    A chunk holds about :data:`CHUNK_BYTES` along ``time`` (at most :data:`CHUNK_RECORDS`
+    records), whole along the other dimensions. The variables are written in netCDF's
+    no-fill mode (every value of them is written), so HDF5 writes a chunk that does not fit
+    the variable's chunk cache straight from the block, once: the variables of large records
+    get no cache (a block covers whole chunks of them but their edges; through a cache of
+    two chunks the 22 MB of the benchmark cost ~2.5 ms more: a copy, and the chunks written
+    at the sync); those of small records, which a block only covers a piece of, keep a
+    cache of two chunks (the one being filled is written at the sync; written straight, each
+    piece cost ~0.1 ms)."""
+    chunks: dict[str, tuple[int, ...]] = {}
+    cache: dict[str, int] = {}
     for name, var in skeleton.variables.items():
         if not var.dims or var.dims[0] != "time":
             continue
         rest = tuple(max(1, int(n)) for n in var.shape[1:])
         per_record = 8 * int(np.prod(rest, dtype=np.int64))
-        encoding[name] = (int(max(1, min(4096, CHUNK_BYTES // per_record))), *rest)
-    return encoding
+        records = int(max(1, min(CHUNK_RECORDS, CHUNK_BYTES // per_record)))
+        chunks[name] = (records, *rest)
+        cache[name] = 2 * records * per_record if records == CHUNK_RECORDS else 0
+    return chunks, cache
