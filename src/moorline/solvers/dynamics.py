@@ -298,6 +298,14 @@ elements 5,166 -> 4,140 iterations and 1.21 -> 1.08 s from ratio 0.2; 100 elemen
 P1 three-line run likewise faster)."""
 
 
+LOCAL_ITERATIONS = 20
+"""Local (windowed) Newton iterations after a full one in a time step of a line-only model
+(:mod:`moorline.solvers.newton`: nonlinear elimination). The hard slack-snap steps converge
+slowly because after one or two full iterations the residual sits on a few small groups of
+nodes near touchdown where Newton creeps (~0.9 per iteration); a window around them converges
+cheaply (issue 16, P4)."""
+
+
 def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: float,
              system: System | None = None, start: StepState | None = None):
     """The time stepper of the settings: the compiled backend when the model allows it, else
@@ -308,7 +316,8 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     coefficients = Coefficients.for_scheme(settings.scheme, settings.alpha)
     policy = NewtonPolicy(tolerance=tolerance, max_iterations=settings.max_iterations,
                           stiffness_update=settings.stiffness_update, age_per="solve",
-                          refresh_ratio=REFRESH_RATIO)
+                          refresh_ratio=REFRESH_RATIO,
+                          local_iterations=0 if model.mesh.body_names else LOCAL_ITERATIONS)
     rayleigh = _rayleigh(settings)
     has_bodies = bool(model.mesh.body_names)
     reason = fast_path_reason(model, fluid, settings.scheme, settings.variant, has_bodies,
