@@ -232,21 +232,9 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
             load_l[q] = sag_load[g]
         laws_l = (law_l, start, breaks, coef, end_slope)
         sub = fn.make_buffers(ne, nn)
-        # the tangent at the iterate (its residual is the iterate's)
-        if moving:
-            fluid_at_midpoints(x_l, el_l, j, fluid, uf_l, af_l)
-        fn._evaluate(x_l, v_l, a_l, uf_l, af_l, el_l, props_l, laws_l, with_drag,
-                     with_added_mass, mass_l, ext_l, pf_l, seabed_on, seabed_z, k_l, c_l,
-                     ramp_l, mu, v_slip, sag_on, active_l, load_l, True, sub)
         nw = 3 * window.shape[0]
         ab = np.zeros((nw, 2 * bw + 1))
-        fn._assemble(ab, bw, band_l, el_l, sub[6], sub[7], sub[8], sub[19], with_added_mass,
-                     mass_l, ca, cv, ck, sub[12], sub[13], sub[14], sub[15], sub[16],
-                     seabed_on)
-        counters[3] += 1
-        worked = True
-        if not fn._band_lu(ab, bw):
-            break
+        dx = np.empty(nw)
         # the merit (residual 2-norm squared): the frozen nodes' part and the ring's
         base = 0.0
         for n in range(n_nodes):
@@ -254,33 +242,26 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
                 for c in range(3):
                     base += rvec[band[n, c]] * rvec[band[n, c]]
         merit0 = base
-        dx = np.empty(nw)
-        for q in range(nn):
-            g = sub_nodes[q]
-            if not (ring[g] == it and free[g]):
-                continue
-            for c in range(3):
-                r = _node_residual(sub, q, c, alpha, mass_l[q], a_l, oth_l)
-                merit0 += r * r
-                if band_l[q, c] >= 0:
-                    dx[band_l[q, c]] = r
-        fn._band_solve(ab, bw, dx)
-        step = 1.0
+        step = 2.0
         accepted = False
-        for _ls in range(max_halvings + 1):
-            for g in window:
-                q = local_of[g]
-                for c in range(3):
-                    x_l[q, c] = x1[g, c] + step * dx[band_l[q, c]]
-                    acc = (x_l[q, c] - x0[g, c] - h * v0[g, c]
-                           - h * h * (0.5 - beta) * a0[g, c]) / (beta * h * h)
-                    a_l[q, c] = acc
-                    v_l[q, c] = v0[g, c] + h * ((1.0 - gamma) * a0[g, c] + gamma * acc)
+        # attempt 0: the tangent at the iterate (its residual is the iterate's), then the
+        # line search's trials; one call site of the kernels keeps the compiled code small
+        for attempt in range(max_halvings + 2):
+            if attempt > 0:
+                step *= 0.5
+                for g in window:
+                    q = local_of[g]
+                    for c in range(3):
+                        x_l[q, c] = x1[g, c] + step * dx[band_l[q, c]]
+                        acc = (x_l[q, c] - x0[g, c] - h * v0[g, c]
+                               - h * h * (0.5 - beta) * a0[g, c]) / (beta * h * h)
+                        a_l[q, c] = acc
+                        v_l[q, c] = v0[g, c] + h * ((1.0 - gamma) * a0[g, c] + gamma * acc)
             if moving:
                 fluid_at_midpoints(x_l, el_l, j, fluid, uf_l, af_l)
             fn._evaluate(x_l, v_l, a_l, uf_l, af_l, el_l, props_l, laws_l, with_drag,
                          with_added_mass, mass_l, ext_l, pf_l, seabed_on, seabed_z, k_l, c_l,
-                         ramp_l, mu, v_slip, sag_on, active_l, load_l, False, sub)
+                         ramp_l, mu, v_slip, sag_on, active_l, load_l, attempt == 0, sub)
             merit = base
             for q in range(nn):
                 g = sub_nodes[q]
@@ -288,10 +269,21 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
                     for c in range(3):
                         r = _node_residual(sub, q, c, alpha, mass_l[q], a_l, oth_l)
                         merit += r * r
-            if merit < merit0:
+                        if attempt == 0 and band_l[q, c] >= 0:
+                            dx[band_l[q, c]] = r
+            if attempt == 0:
+                merit0 = merit
+                fn._assemble(ab, bw, band_l, el_l, sub[6], sub[7], sub[8], sub[19],
+                             with_added_mass, mass_l, ca, cv, ck, sub[12], sub[13], sub[14],
+                             sub[15], sub[16], seabed_on)
+                counters[3] += 1
+                worked = True
+                if not fn._band_lu(ab, bw):
+                    break
+                fn._band_solve(ab, bw, dx)
+            elif merit < merit0:
                 accepted = True
                 break
-            step *= 0.5
         if not accepted:
             break
         _take(sub, sub_el, sub_nodes, ring, it, window, local_of, x_l, v_l, a_l, uf_l,

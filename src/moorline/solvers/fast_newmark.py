@@ -549,7 +549,7 @@ class FastStepper:
         n_dof = int(self.free.sum()) * 3
         self.lu = np.zeros((n_dof, 2 * self.bw + 1))
         self.tan = np.zeros(3)  # factorization valid, its step size, its age [steps]
-        self.buf = make_buffers(mesh.n_elements, mesh.n_nodes)
+        self.buf = make_buffers.py_func(mesh.n_elements, mesh.n_nodes)  # no kernel load
         self.counts = np.zeros(4, dtype=np.int64)
         self.fixed = np.flatnonzero(~self.free)
         n_el, n_nodes = mesh.n_elements, mesh.n_nodes
