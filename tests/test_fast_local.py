@@ -19,6 +19,13 @@ from moorline.verification.oc3_system import oc3_one_line
 BA = 6.2358e6  # the P4 benchmark's line damping (benchmarks/bench_p1.py)
 
 
+@pytest.fixture(autouse=True)
+def _small_models_too(monkeypatch):
+    """The local phase on this module's 40-element line (below the size from which
+    dynamics uses it by default)."""
+    monkeypatch.setattr(dynamics, "LOCAL_MIN_FREE_NODES", 0)
+
+
 def _case():
     """One OC3 line at 40 elements under the P1 fairlead motion, unramped: its first steps
     snap the line near touchdown, where the local phase works."""
@@ -104,3 +111,25 @@ def test_compiled_window_is_the_general_stepper_window():
         nodes = np.flatnonzero(np.isin(mesh.dof_of_node[:, 0], dofs))
         assert np.array_equal(compiled, nodes)
     assert seen == [False, False, True]
+
+
+def test_small_models_step_without_the_local_phase(monkeypatch):
+    """Below :data:`dynamics.LOCAL_MIN_FREE_NODES` free nodes the policy has no local
+    iterations and the compiled step gets ``local`` None (compiled without that code)."""
+    system, start = _case()
+    monkeypatch.setattr(dynamics, "LOCAL_MIN_FREE_NODES", 10_000)
+    run = simulate(system, DynamicsSettings(duration=0.5, dt=0.05), initial=start)
+    assert run.counters["local_iterations"] == 0
+    from moorline.solvers.fast_newmark import FastStepper
+
+    made = []
+    monkeypatch.setattr(FastStepper, "__init__", _recording(FastStepper.__init__, made))
+    simulate(system, DynamicsSettings(duration=0.1, dt=0.05), initial=start)
+    assert made and made[0].newton_args[-1] is None
+
+
+def _recording(init, made):
+    def wrapped(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        made.append(self)
+    return wrapped

@@ -392,7 +392,8 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     None without bodies); ``rvec`` then has their ``6 nb`` rows after the band's.
     ``local``: the local phase's (iterations, fraction, pad, max share, node incidence)
     (:func:`moorline.solvers.fast_local.local_phase`; without bodies), ``counters[3]`` its
-    iterations. Returns (converged, final max-norm, whether the tangent was factored this step).
+    iterations; None: no local phase (numba then compiles this step without its code, which
+    loads faster: :data:`moorline.solvers.dynamics.LOCAL_MIN_FREE_NODES`). Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
     cv = (1 + alpha) * gamma / (beta * h)
@@ -488,7 +489,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
         x1[:, :] = trial
         fb.take_trial(bodies)
         norm = n_new
-        if bodies is None and local[0] > 0 and norm > tol:
+        if local is not None and norm > tol:  # None: compiled without the local phase
             norm, worked = local_phase(
                 x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
                 with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
@@ -578,6 +579,7 @@ class FastStepper:
                             np.inf if pol.refresh_ratio is None else float(pol.refresh_ratio),
                             float(pol.stall_ratio), int(pol.stall_limit),
                             int(pol.max_halvings), float(pol.stiffness_update),
+                            None if not pol.local_iterations or bodies is not None else
                             (float(pol.local_iterations), float(pol.local_fraction),
                              float(pol.local_pad), float(pol.local_max_share),
                              *incidence(mesh.elements, mesh.n_nodes)))
