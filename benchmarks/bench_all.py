@@ -400,6 +400,7 @@ def p4_p5(quick: bool, repeat: int) -> list[Line]:
             c = r["counters"]
             print(f"  {n:5d} elements, ramped: {1e3 * r['per_step']:8.2f} ms/step over "
                   f"{duration:g} s at dt 0.05 s ({c.get('iterations')} iterations, "
+                  f"{c.get('local_iterations', 0)} local iterations, "
                   f"{c.get('step_cuts')} step cuts, {1e3 * r['per_iteration']:.3f} ms/iteration)")
         else:
             print(f"  {n:5d} elements, ramped: FAILED at t = {r['failed_at']}")

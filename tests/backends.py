@@ -22,13 +22,15 @@ def reference_run(system, settings: DynamicsSettings, start, every: float, monke
 
 def assert_same_run(fast, slow) -> None:
     """The same states to the Newton tolerance's round-off (positions to 1e-7 of their
-    largest, tensions to 1e-6) and the same work (iterations, factorizations)."""
+    largest, tensions to 1e-6) and the same work (iterations, factorizations, local
+    iterations)."""
     assert fast.success and slow.success
     scale = float(np.abs(slow.positions).max())
     assert np.allclose(fast.positions, slow.positions, rtol=0, atol=1e-7 * scale)
     assert np.allclose(fast.tension, slow.tension, rtol=1e-6, atol=1e-6 * slow.tension.max())
     assert fast.counters["iterations"] == slow.counters["iterations"]
     assert fast.counters["factorizations"] == slow.counters["factorizations"]
+    assert fast.counters["local_iterations"] == slow.counters["local_iterations"]
 
 
 def assert_same_bodies(fast, slow, size: float) -> None:

@@ -13,7 +13,8 @@ import sys
 
 KERNEL_MODULES = ("moorline.physics.fused", "moorline.solvers.fast_fluid",
                   "moorline.solvers.fast_rigid", "moorline.solvers.fast_bodies",
-                  "moorline.solvers.fast_newmark", "moorline.solvers.fast_loop",
+                  "moorline.solvers.fast_newmark", "moorline.solvers.fast_local",
+                  "moorline.solvers.fast_loop",
                   "moorline.solvers.frequency_sweep")
 """The modules holding numba kernels."""
 

@@ -298,6 +298,31 @@ elements 5,166 -> 4,140 iterations and 1.21 -> 1.08 s from ratio 0.2; 100 elemen
 P1 three-line run likewise faster)."""
 
 
+LOCAL_ITERATIONS = 20
+"""Local (windowed) Newton iterations after a full one in a time step of a line-only model
+(:mod:`moorline.solvers.newton`: nonlinear elimination). The hard slack-snap steps converge
+slowly because after one or two full iterations the residual sits on a few small groups of
+nodes near touchdown where Newton creeps (~0.9 per iteration); a window around them converges
+cheaply (issue 16, P4)."""
+
+LOCAL_MIN_FREE_NODES = 300
+"""Free nodes a line-only model needs for the local phase. It pays where a window is a small
+part of the line: one OC3 line under the P1 motion at 1,000 elements steps 1.65x faster with
+it (4.24 -> 2.56 ms a step), at 100 elements no faster (0.16 ms either way: the full iteration
+is cheap there), and on the P1 three-line run at 20 segments the stepping is unchanged while
+loading the compiled step with the local phase in it costs 0.2-0.3 s more of the process. A
+model below this size gets the compiled step without the local code
+(:func:`moorline.solvers.fast_newmark.newmark_step` with ``local`` None)."""
+
+
+def _local_iterations(model: DynamicModel) -> int:
+    """The local iterations of the model's Newton policy: :data:`LOCAL_ITERATIONS` for a
+    line-only model of at least :data:`LOCAL_MIN_FREE_NODES` free nodes, else 0."""
+    if model.mesh.body_names or int(np.count_nonzero(model.mesh.free_nodes)) < LOCAL_MIN_FREE_NODES:
+        return 0
+    return LOCAL_ITERATIONS
+
+
 def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: float,
              system: System | None = None, start: StepState | None = None):
     """The time stepper of the settings: the compiled backend when the model allows it, else
@@ -308,7 +333,8 @@ def _stepper(model: DynamicModel, fluid, settings: DynamicsSettings, tolerance: 
     coefficients = Coefficients.for_scheme(settings.scheme, settings.alpha)
     policy = NewtonPolicy(tolerance=tolerance, max_iterations=settings.max_iterations,
                           stiffness_update=settings.stiffness_update, age_per="solve",
-                          refresh_ratio=REFRESH_RATIO)
+                          refresh_ratio=REFRESH_RATIO,
+                          local_iterations=_local_iterations(model))
     rayleigh = _rayleigh(settings)
     has_bodies = bool(model.mesh.body_names)
     reason = fast_path_reason(model, fluid, settings.scheme, settings.variant, has_bodies,

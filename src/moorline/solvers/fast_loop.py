@@ -43,7 +43,7 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, f
      seabed_on, seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, beta,
      gamma, alpha) = model
     (tol, max_iter, refresh_ratio, stall_ratio, stall_limit, max_halvings,
-     stiffness_update) = newton
+     stiffness_update, local) = newton
     lu, buf, rvec, trial, pforce, uf, af = work
     for q in range(fixed.shape[0]):
         n = fixed[q]
@@ -64,7 +64,7 @@ def _sub_step(j, x0, v0, a0, x1, v1, a1, hs, xc, vc, ac, fixed, fnodes, fvals, f
         maxwell0, tol,
         max_iter, refresh, lu, buf, rvec,
         trial, counters, refresh_ratio, stall_ratio, stall_limit, max_halvings, fluid, j,
-        bodies)
+        bodies, local)
     if refactored:
         tan[0], tan[1], tan[2] = 1.0, h, 0.0
     if not ok:

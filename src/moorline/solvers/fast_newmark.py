@@ -368,7 +368,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                  seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta,
                  gamma, alpha, other0, strain0, maxwell0, tol,
                  max_iter, refresh, lu, buf, rvec, trial, counters, refresh_ratio, stall_ratio,
-                 stall_limit, max_halvings, fluid, j, bodies):
+                 stall_limit, max_halvings, fluid, j, bodies, local):
     """One Newmark (or HHT-alpha: ``alpha`` and the non-inertial forces at the start of the
     step ``other0``, :func:`_residual_norm`) step with modified-Newton iterations: the
     algorithm of :func:`moorline.solvers.newton.solve` (same refresh, line-search,
@@ -390,7 +390,10 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     (:func:`~moorline.physics.fused.set_viscoelastic_step`). ``bodies``: the free rigid
     bodies, their state and the border of the tangent (:mod:`moorline.solvers.fast_bodies`;
     None without bodies); ``rvec`` then has their ``6 nb`` rows after the band's.
-    Returns (converged, final max-norm, whether the tangent was factored this step).
+    ``local``: the local phase's (iterations, fraction, pad, max share, node incidence)
+    (:func:`moorline.solvers.fast_local.local_phase`; without bodies), ``counters[3]`` its
+    iterations; None: no local phase (numba then compiles this step without its code, which
+    loads faster: :data:`moorline.solvers.dynamics.LOCAL_MIN_FREE_NODES`). Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
     cv = (1 + alpha) * gamma / (beta * h)
@@ -486,6 +489,16 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
         x1[:, :] = trial
         fb.take_trial(bodies)
         norm = n_new
+        if local is not None and norm > tol:  # None: compiled without the local phase
+            norm, worked = local_phase(
+                x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
+                with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
+                seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta,
+                gamma, alpha, other0, buf, rvec, norm, tol, fluid, j, local, max_halvings,
+                stall_ratio, counters)
+            if worked:  # the next full iteration starts from a fresh tangent
+                refresh = True
+                stalled = 0
         if stall_limit > 0 and stalled >= stall_limit:
             return False, norm, refactored
     return norm <= tol, norm, refactored
@@ -503,8 +516,10 @@ def _factor_border(bodies, lu, bw):
     return fb.schur(bodies)
 
 
+@numba.njit(**_JIT)
 def make_buffers(n_el: int, n_nodes: int) -> tuple:
-    """Work arrays of :func:`newmark_step`."""
+    """Work arrays of :func:`newmark_step` (compiled: the local phase makes them for its
+    sub-models)."""
     e = np.empty
     return (e((n_el, 2, 3)), e((n_el, 2, 3)), e((n_el, 2, 3)), e(n_el), e(n_el),
             e(n_el, dtype=np.bool_), e((n_el, 6, 6)), e((n_el, 6, 6)), e((n_el, 6, 6)),
@@ -535,8 +550,8 @@ class FastStepper:
         n_dof = int(self.free.sum()) * 3
         self.lu = np.zeros((n_dof, 2 * self.bw + 1))
         self.tan = np.zeros(3)  # factorization valid, its step size, its age [steps]
-        self.buf = make_buffers(mesh.n_elements, mesh.n_nodes)
-        self.counts = np.zeros(3, dtype=np.int64)
+        self.buf = make_buffers.py_func(mesh.n_elements, mesh.n_nodes)  # no kernel load
+        self.counts = np.zeros(4, dtype=np.int64)
         self.fixed = np.flatnonzero(~self.free)
         n_el, n_nodes = mesh.n_elements, mesh.n_nodes
         # the free rigid bodies (BodyModel; None: none) and the general stepper with them
@@ -563,7 +578,11 @@ class FastStepper:
         self.newton_args = (float(pol.tolerance), int(pol.max_iterations),
                             np.inf if pol.refresh_ratio is None else float(pol.refresh_ratio),
                             float(pol.stall_ratio), int(pol.stall_limit),
-                            int(pol.max_halvings), float(pol.stiffness_update))
+                            int(pol.max_halvings), float(pol.stiffness_update),
+                            None if not pol.local_iterations or bodies is not None else
+                            (float(pol.local_iterations), float(pol.local_fraction),
+                             float(pol.local_pad), float(pol.local_max_share),
+                             *incidence(mesh.elements, mesh.n_nodes)))
         self.waves, self.current = fluid_parts(model.fluid)
         if self.waves is not None:
             c = self.waves._coef
@@ -603,8 +622,9 @@ class FastStepper:
     @property
     def counters(self) -> dict:
         """Same keys as :class:`~moorline.solvers.newmark.Stepper`."""
-        it, res, fac = (int(v) for v in self.counts)
-        return {"iterations": it, "residuals": res, "tangents": fac, "factorizations": fac}
+        it, res, fac, loc = (int(v) for v in self.counts)
+        return {"iterations": it, "residuals": res, "tangents": fac, "factorizations": fac,
+                "local_iterations": loc}
 
     def _fluid_inputs(self, times: FloatArray) -> tuple:
         """What :func:`moorline.solvers.fast_loop._fluid` takes for sub-steps ending at
@@ -714,3 +734,6 @@ class Block:
     tensions: FloatArray
     end_forces: FloatArray
     bodies: tuple = ()
+
+
+from .fast_local import incidence, local_phase  # noqa: E402  (it compiles in this module's kernels)

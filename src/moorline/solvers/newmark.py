@@ -48,6 +48,7 @@ if TYPE_CHECKING:
     import scipy.sparse as sp
 
 FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
 
 
 @dataclass(frozen=True)
@@ -356,6 +357,37 @@ class Stepper:
                 if d >= 0:
                     dq[k] += du[d:d + 6]
         return x1, dq
+
+    def local_window(self, trial: _Trial, threshold: float, pad: int, share: float
+                     ) -> IntArray | None:
+        """The unknowns of the local phase's window (:mod:`.newton`): the free nodes whose
+        residual (max over their three dofs) exceeds ``threshold``, padded by ``pad`` rings
+        of elements; None with bodies or slave nodes, or when the window has more than
+        ``share`` of the free nodes."""
+        if self.coupled:
+            return None
+        mesh = self.model.mesh
+        el = mesh.elements
+        node_r = np.zeros(mesh.n_nodes)
+        node_r[self.free] = np.abs(trial.r[self.dof[self.free]]).max(axis=1)
+        mark = node_r > threshold
+        for _ in range(pad):
+            mark[el[mark[el].any(axis=1)]] = True
+        mark &= self.free
+        count = int(mark.sum())
+        if count == 0 or count > share * int(self.free.sum()):
+            return None
+        return self.dof[mark].ravel()
+
+    def local_step(self, u, trial: _Trial, window: IntArray) -> FloatArray:
+        """The step of the window's unknowns from their rows and columns of the effective
+        tangent at ``trial`` (zero elsewhere)."""
+        import scipy.sparse.linalg as spla
+
+        K = self.tangent_matrix(u, trial).tocsc()[window][:, window]
+        du = np.zeros(self.layout.n_unknowns)
+        du[window] = spla.spsolve(K.tocsc(), trial.r[window])
+        return du
 
     # ------------------------------------------------------------------ the step
     def step(self, s0: StepState, h: float, constrained, point_forces

@@ -21,7 +21,21 @@ The rules (one set, for every analysis):
   fresh tangent, otherwise the last trial is taken;
 - stall: ``stall_limit`` iterations in a row each reducing the max-norm by less than
   ``stall_ratio`` end the solve as failed (the caller cuts the step);
-- at most ``max_iterations`` solves; the final iterate is checked once more.
+- at most ``max_iterations`` solves; the final iterate is checked once more;
+- local phase (``local_iterations > 0``, problems with ``local_window``): after an accepted
+  iteration that did not converge, while the residual sits on a few nodes, Newton on a window
+  of nodes around them (the rest frozen): the nodes whose residual (max over their dofs)
+  exceeds ``max(local_fraction * norm, tolerance)``, padded by ``local_pad`` rings of
+  elements; a fresh tangent of the window, backtracking on the residual 2-norm; it stops
+  when the window covers more than ``local_max_share`` of the free nodes, when the line
+  search fails, when an iteration reduces the max-norm by less than ``stall_ratio``, at
+  convergence, or after ``local_iterations``; the next full iteration refreshes the tangent.
+  This is nonlinear elimination (Lanzkron, Rose and Wilkes 1996, "An analysis of approximate
+  nonlinear elimination", SIAM J. Sci. Comput. 17(2):538-559), a restricted nonlinear
+  Schwarz correction on the strongly nonlinear subdomain (Cai and Li 2011, "Inexact Newton
+  methods with restricted additive Schwarz based nonlinear elimination for problems with
+  high local nonlinearity", SIAM J. Sci. Comput. 33(2):746-762). The convergence test is the
+  full residual's: only the path changes.
 """
 
 from __future__ import annotations
@@ -60,6 +74,11 @@ class NewtonPolicy:
         Line-search halvings of a step (``max_halvings + 1`` trials).
     merit
         What the line search asks to decrease: the residual's 2-norm or its max-norm.
+    local_iterations
+        Local (windowed) iterations after a full one (0: no local phase; see the module).
+    local_fraction, local_pad, local_max_share
+        The window: nodes above ``local_fraction`` of the max-norm, padded by ``local_pad``
+        element rings, at most ``local_max_share`` of the free nodes.
     """
 
     tolerance: float
@@ -71,6 +90,10 @@ class NewtonPolicy:
     stall_limit: int = 3
     max_halvings: int = 4
     merit: Literal["l2", "max"] = "l2"
+    local_iterations: int = 0
+    local_fraction: float = 1e-2
+    local_pad: int = 8
+    local_max_share: float = 0.3
 
 
 @dataclass
@@ -81,11 +104,13 @@ class Counters:
     residuals: int = 0
     tangents: int = 0
     factorizations: int = 0
+    local_iterations: int = 0
 
     def as_dict(self) -> dict[str, int]:
         """The counters as a plain dict."""
         return {"iterations": self.iterations, "residuals": self.residuals,
-                "tangents": self.tangents, "factorizations": self.factorizations}
+                "tangents": self.tangents, "factorizations": self.factorizations,
+                "local_iterations": self.local_iterations}
 
 
 @dataclass
@@ -206,6 +231,11 @@ def solve(problem: Problem, u: Any, policy: NewtonPolicy, cache: TangentCache,
             refresh = True
         stalled = stalled + 1 if norm_new > policy.stall_ratio * norm else 0
         u, trial, norm = getattr(trial_new, "u", u_new), trial_new, norm_new
+        if policy.local_iterations and norm > policy.tolerance \
+                and hasattr(problem, "local_window"):
+            u, trial, norm, worked = _local_phase(problem, u, trial, norm, policy, counters)
+            if worked:  # the next full iteration starts from a fresh tangent
+                refresh, stalled = True, 0
         history.append(norm)
         if policy.stall_limit and stalled >= policy.stall_limit:
             return Outcome(False, u, trial, norm, it + 1, "stalled", history)
@@ -256,3 +286,41 @@ def _line_search(problem: Problem, u: Any, du: FloatArray, trial0: Trial,
             return u_try, trial, True
         alpha *= 0.5
     return u_try, trial, False
+
+
+def _local_phase(problem: Problem, u: Any, trial: Trial, norm: float, policy: NewtonPolicy,
+                 counters: Counters) -> tuple[Any, Trial, float, bool]:
+    """Newton on a window of nodes around the residual, the rest frozen (nonlinear
+    elimination, see the module). The problem supplies ``local_window(trial, threshold, pad,
+    share)`` (the window's unknowns, or None) and ``local_step(u, trial, window)`` (the
+    step of the window's unknowns with the window's rows and columns of the tangent at
+    ``trial``, evaluated with it). Returns the iterate, its trial, max-norm and whether a
+    local step was solved."""
+    worked = False
+    for _ in range(policy.local_iterations):
+        window = problem.local_window(trial, max(policy.local_fraction * norm,
+                                                 policy.tolerance),
+                                      policy.local_pad, policy.local_max_share)
+        if window is None:
+            break
+        here = problem.residual(u, True)
+        du = problem.local_step(u, here, window)
+        counters.local_iterations += 1
+        worked = True
+        merit0 = float(np.linalg.norm(here.r))
+        alpha, accepted = 1.0, False
+        for _ls in range(policy.max_halvings + 1):
+            u_try = problem.update(u, alpha * du)
+            t_try = problem.residual(u_try, False)
+            if float(np.linalg.norm(t_try.r)) < merit0:
+                accepted = True
+                break
+            alpha *= 0.5
+        if not accepted:
+            break
+        u, trial = u_try, t_try
+        new = max_norm(trial.r)
+        ratio, norm = new / norm, new
+        if norm <= policy.tolerance or ratio > policy.stall_ratio:
+            break
+    return u, trial, norm, worked
