@@ -393,7 +393,8 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     ``local``: the local phase's (iterations, fraction, pad, max share, node incidence)
     (:func:`moorline.solvers.fast_local.local_phase`; without bodies), ``counters[3]`` its
     iterations; None: no local phase (numba then compiles this step without its code, which
-    loads faster: :data:`moorline.solvers.dynamics.LOCAL_MIN_FREE_NODES`). Returns (converged, final max-norm, whether the tangent was factored this step).
+    loads faster: :data:`moorline.solvers.dynamics.LOCAL_MIN_FREE_NODES`).
+    Returns (converged, final max-norm, whether the tangent was factored this step).
     """
     ca = 1.0 / (beta * h * h)
     cv = (1 + alpha) * gamma / (beta * h)
