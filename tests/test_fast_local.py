@@ -102,7 +102,7 @@ def test_compiled_window_is_the_general_stepper_window():
     for pad, share in [(2, 0.5), (3, 0.5), (3, 0.2)]:
         compiled = _window(rvec, band, free, int(free.sum()), mesh.elements, ptr, inc, 0.1,
                            pad, share, np.full(n_nodes, -1, dtype=np.int64), 0,
-                           np.empty(n_nodes, dtype=np.int64))
+                           np.empty(n_nodes, dtype=np.int64), np.empty(n_nodes, dtype=np.int64))
         dofs = general.local_window(trial, 0.1, pad, share)
         seen.append(dofs is None)
         if dofs is None:

@@ -11,8 +11,12 @@ order as the full evaluation and its residual is the full residual's to the last
 other nodes' residual does not change). The window's rows and columns of the effective
 tangent keep the band's order, so they form a band matrix of the same bandwidth
 (:func:`~moorline.solvers.fast_newmark._assemble` with a local band map,
-:func:`~moorline.solvers.fast_newmark._band_lu`). Scans over all nodes (the window's
-selection, the norms) remain; they are a few operations per node.
+:func:`~moorline.solvers.fast_newmark._band_lu`). The sub-model lives in work arrays made
+once per stepper (:func:`workspace`), its index sets are put in order by a scan of the
+marked span (no sort), and the max-norm after a local step is the frozen part's (taken with
+the merit's scan) and the recomputed part's. Two scans over all nodes remain per local
+iteration (the window's selection, the frozen part's merit and norm); they are a few
+operations per node.
 """
 
 from __future__ import annotations
@@ -58,11 +62,11 @@ def _grow(stamp, it, queue, first, last, elements, ptr, inc):
 
 @numba.njit(**_JIT)
 def _window(rvec, band, free, n_free, elements, ptr, inc, threshold, pad, share, stamp, it,
-            queue):
-    """The window's nodes (sorted; empty: no local iteration): free nodes whose residual
-    (max over their dofs) exceeds ``threshold``, padded by ``pad`` rings of elements (through
-    any node), at most ``share`` of the free nodes (``Stepper.local_window``). Marks them
-    with ``it`` in ``stamp``."""
+            queue, out):
+    """The window's nodes (ascending, in ``out``'s leading part; empty: no local iteration):
+    free nodes whose residual (max over their dofs) exceeds ``threshold``, padded by ``pad``
+    rings of elements (through any node), at most ``share`` of the free nodes
+    (``Stepper.local_window``). Marks them with ``it`` in ``stamp``."""
     k = 0
     for n in range(band.shape[0]):
         if not free[n]:
@@ -78,72 +82,84 @@ def _window(rvec, band, free, n_free, elements, ptr, inc, threshold, pad, share,
         k = _grow(stamp, it, queue, first, last, elements, ptr, inc)
         first = last
     count = 0
+    lo, hi = band.shape[0], -1
     for q in range(k):
-        if free[queue[q]]:
+        n = queue[q]
+        if free[n]:
             count += 1
+            lo = min(lo, n)
+            hi = max(hi, n)
     if count == 0 or count > share * n_free:
-        return np.zeros(0, dtype=np.int64)
-    out = np.empty(count, dtype=np.int64)
-    count = 0
-    for q in range(k):
-        if free[queue[q]]:
-            out[count] = queue[q]
-            count += 1
-    return np.sort(out)
+        return out[:0]
+    return _marked(stamp, it, lo, hi, free, True, out)
 
 
 @numba.njit(**_JIT)
-def _sub_model(window, band, elements, ptr, inc, stamps, it, queue):
+def _marked(stamp, it, lo, hi, mask, masked, out):
+    """The indices in ``lo..hi`` stamped ``it`` (and, if ``masked``, true in ``mask``),
+    ascending, in ``out``'s leading part (a scan of the marked span instead of a sort)."""
+    count = 0
+    for n in range(lo, hi + 1):
+        if stamp[n] == it and (not masked or mask[n]):
+            out[count] = n
+            count += 1
+    return out[:count]
+
+
+@numba.njit(**_JIT)
+def _sub_model(window, band, elements, ptr, inc, stamps, it, queue, out):
     """The window's sub-model: ``(sub_elements, sub_nodes, band_local)``: the elements
     touching the window and its first ring of nodes (``stamps[1] == it``: their residual is
-    recomputed exactly), sorted; those elements' nodes (sorted; ``stamps[3]`` their index
-    among them); ``band_local`` (n_sub, 3) the window's dofs' positions in its own band
-    (their band indices sorted; -1 off the window)."""
+    recomputed exactly), ascending; those elements' nodes (ascending; ``stamps[3]`` their
+    index among them); ``band_local`` (n_sub, 3) the window's dofs' positions in its own
+    band (their band indices sorted; -1 off the window). ``out``: (elements, nodes,
+    band_local, dof stamps, dof positions) arrays whose leading parts receive them."""
     ring, el_stamp, used, local = stamps
+    el_out, node_out, band_out, dof_stamp, dof_pos = out
     nw = window.shape[0]
     for q in range(nw):
         ring[window[q]] = it
         queue[q] = window[q]
     k = _grow(ring, it, queue, 0, nw, elements, ptr, inc)
-    n_el = 0
+    lo, hi = elements.shape[0], -1
     for q in range(k):
         n = queue[q]
         for p in range(ptr[n], ptr[n + 1]):
             e = inc[p]
             if el_stamp[e] != it:
                 el_stamp[e] = it
-                n_el += 1
-    sub_elements = np.empty(n_el, dtype=np.int64)
-    n_el = 0
-    for q in range(k):
-        n = queue[q]
-        for p in range(ptr[n], ptr[n + 1]):
-            e = inc[p]
-            if el_stamp[e] == it:
-                el_stamp[e] = -2 - it  # listed
-                sub_elements[n_el] = e
-                n_el += 1
-    sub_elements.sort()
-    n_sub = 0
+                lo = min(lo, e)
+                hi = max(hi, e)
+    sub_elements = _marked(el_stamp, it, lo, hi, ring, False, el_out)
+    lo, hi = band.shape[0], -1
     for e in sub_elements:
         for m in range(2):
             n = elements[e, m]
             if used[n] != it:
                 used[n] = it
-                queue[n_sub] = n
-                n_sub += 1
-    sub_nodes = np.sort(queue[:n_sub])
+                lo = min(lo, n)
+                hi = max(hi, n)
+    sub_nodes = _marked(used, it, lo, hi, ring, False, node_out)
+    n_sub = sub_nodes.shape[0]
     for q in range(n_sub):
         local[sub_nodes[q]] = q
-    dofs = np.empty(3 * nw, dtype=np.int64)
+    lo, hi = dof_stamp.shape[0], -1
     for q in range(nw):
         for c in range(3):
-            dofs[3 * q + c] = band[window[q], c]
-    order = np.sort(dofs)
-    band_local = np.full((n_sub, 3), -1, dtype=np.int64)
+            d = band[window[q], c]
+            dof_stamp[d] = it
+            lo = min(lo, d)
+            hi = max(hi, d)
+    count = 0
+    for d in range(lo, hi + 1):
+        if dof_stamp[d] == it:
+            dof_pos[d] = count
+            count += 1
+    band_local = band_out[:n_sub]
+    band_local[:, :] = -1
     for q in range(nw):
         for c in range(3):
-            band_local[local[window[q]], c] = np.searchsorted(order, band[window[q], c])
+            band_local[local[window[q]], c] = dof_pos[band[window[q], c]]
     return sub_elements, sub_nodes, band_local
 
 
@@ -159,6 +175,35 @@ def _node_residual(sub, n, c, alpha, mass, a, other0):
 
 
 @numba.njit(**_JIT)
+def _sub_buffers(full, ne, nn):
+    """The leading ``ne`` elements' and ``nn`` nodes' part of the work arrays ``full``
+    (:func:`moorline.solvers.fast_newmark.make_buffers` of the whole model)."""
+    return (full[0][:ne], full[1][:ne], full[2][:ne], full[3][:ne], full[4][:ne],
+            full[5][:ne], full[6][:ne], full[7][:ne], full[8][:ne], full[9][:nn],
+            full[10][:nn], full[11][:nn], full[12][:nn], full[13][:nn], full[14][:nn],
+            full[15][:nn], full[16][:nn], full[17][:ne], full[18][:ne], full[19][:ne])
+
+
+def workspace(n_el: int, n_nodes: int, n_props: int, law: IntArray, sag_active: NDArray,
+              bw: int) -> tuple:
+    """Work arrays of :func:`local_phase`, made once per stepper at the whole model's size
+    (a window's sub-model uses their leading part): node and element stamps, a queue, the
+    sub-model's element data, node data (6 vectors, 5 scalars), band matrix and right-hand
+    side, the evaluation's buffers, the window, and :func:`_sub_model`'s ``out``."""
+    full = lambda: np.full(n_nodes, -1, dtype=np.int64)  # noqa: E731
+    return (full(), full(), np.full(n_el, -1, dtype=np.int64), full(), full(),
+            np.empty(n_nodes, dtype=np.int64), np.empty((n_el, 2), dtype=np.int64),
+            np.empty(n_props * n_el), np.empty(n_el, dtype=law.dtype),
+            np.empty(n_el, dtype=sag_active.dtype), np.empty((n_el, 3)),
+            np.empty((n_el, 3)), np.empty((6, n_nodes, 3)), np.empty((5, n_nodes)),
+            np.empty((3 * n_nodes, 2 * bw + 1)), np.empty(3 * n_nodes),
+            fn.make_buffers.py_func(n_el, n_nodes), np.empty(n_nodes, dtype=np.int64),
+            (np.empty(n_el, dtype=np.int64), np.empty(n_nodes, dtype=np.int64),
+             np.empty((n_nodes, 3), dtype=np.int64), np.full(3 * n_nodes, -1, dtype=np.int64),
+             np.empty(3 * n_nodes, dtype=np.int64)))
+
+
+@numba.njit(**_JIT)
 def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, with_drag,
                 with_added_mass, node_mass, external, point_force, uf, af, seabed_on,
                 seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta,
@@ -166,12 +211,12 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
                 stall_ratio, counters):
     """Local iterations from the iterate ``x1`` (``v1, a1``, ``buf`` and ``rvec`` evaluated
     there) of :func:`moorline.solvers.fast_newmark.newmark_step` (its arguments);
-    ``local = (iterations, fraction, pad, max share, ptr, inc)`` (the last two: the
-    elements of every node, :func:`incidence`). Updates the iterate, its evaluation
-    (the recomputed elements' and nodes' entries of ``buf``, ``uf``, ``af``) and ``rvec``;
-    counts local iterations in ``counters[3]``. Returns (max-norm, whether a local step was
-    solved)."""
-    n_iter, fraction, pad, share, ptr, inc = local
+    ``local = (iterations, fraction, pad, max share, ptr, inc, work)`` (``ptr, inc``: the
+    elements of every node, :func:`incidence`; ``work``: :func:`workspace`). Updates the
+    iterate, its evaluation (the recomputed elements' and nodes' entries of ``buf``, ``uf``,
+    ``af``) and ``rvec``; counts local iterations in ``counters[3]``. Returns (max-norm,
+    whether a local step was solved)."""
+    n_iter, fraction, pad, share, ptr, inc, work = local
     ca = 1.0 / (beta * h * h)
     cv = (1 + alpha) * gamma / (beta * h)
     ck = 1.0 + alpha
@@ -182,40 +227,47 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
         if free[n]:
             n_free += 1
     law, start, breaks, coef, end_slope = laws
-    stamp = np.full(n_nodes, -1, dtype=np.int64)
-    stamps = (np.full(n_nodes, -1, dtype=np.int64), np.full(elements.shape[0], -1,
-                                                             dtype=np.int64),
-              np.full(n_nodes, -1, dtype=np.int64), np.full(n_nodes, -1, dtype=np.int64))
-    ring, local_of = stamps[0], stamps[3]
-    queue = np.empty(n_nodes, dtype=np.int64)
+    (stamp, ring, el_stamp, used, local_of, queue, el_w, props_w, law_w, active_w, uf_w,
+     af_w, node3_w, node1_w, ab_w, dx_w, sub_w, window_w, sub_out) = work
+    stamp[:] = -1
+    ring[:] = -1
+    el_stamp[:] = -1
+    used[:] = -1
+    sub_out[3][:] = -1
+    stamps = (ring, el_stamp, used, local_of)
+    n_props = props.shape[0]
     worked = False
     for it in range(int(n_iter)):
         window = _window(rvec, band, free, n_free, elements, ptr, inc,
-                         max(fraction * norm, tol), int(pad), share, stamp, it, queue)
+                         max(fraction * norm, tol), int(pad), share, stamp, it, queue,
+                         window_w)
         if window.shape[0] == 0:
             break
         sub_el, sub_nodes, band_l = _sub_model(window, band, elements, ptr, inc, stamps, it,
-                                               queue)
+                                               queue, sub_out)
         ne, nn = sub_el.shape[0], sub_nodes.shape[0]
-        el_l = np.empty((ne, 2), dtype=np.int64)
-        props_l = np.empty((props.shape[0], ne))
-        law_l = law[sub_el]
-        active_l = sag_active[sub_el]
-        uf_l = np.empty((ne, 3))
-        af_l = np.empty((ne, 3))
+        el_l = el_w[:ne]
+        props_l = props_w[:n_props * ne].reshape((n_props, ne))
+        law_l = law_w[:ne]
+        active_l = active_w[:ne]
+        uf_l = uf_w[:ne]
+        af_l = af_w[:ne]
         for q in range(ne):
             e = sub_el[q]
             el_l[q, 0] = local_of[elements[e, 0]]
             el_l[q, 1] = local_of[elements[e, 1]]
-            for p in range(props.shape[0]):
+            law_l[q] = law[e]
+            active_l[q] = sag_active[e]
+            for p in range(n_props):
                 props_l[p, q] = props[p, e]
             for c in range(3):
                 uf_l[q, c] = uf[e, c]
                 af_l[q, c] = af[e, c]
-        x_l, v_l, a_l = np.empty((nn, 3)), np.empty((nn, 3)), np.empty((nn, 3))
-        ext_l, pf_l, oth_l = np.empty((nn, 3)), np.empty((nn, 3)), np.empty((nn, 3))
-        mass_l, k_l, c_l, ramp_l, load_l = (np.empty(nn), np.empty(nn), np.empty(nn),
-                                            np.empty(nn), np.empty(nn))
+        x_l, v_l, a_l = node3_w[0, :nn], node3_w[1, :nn], node3_w[2, :nn]
+        ext_l, pf_l, oth_l = node3_w[3, :nn], node3_w[4, :nn], node3_w[5, :nn]
+        mass_l, k_l, c_l, ramp_l, load_l = (node1_w[0, :nn], node1_w[1, :nn],
+                                            node1_w[2, :nn], node1_w[3, :nn],
+                                            node1_w[4, :nn])
         for q in range(nn):
             g = sub_nodes[q]
             for c in range(3):
@@ -231,16 +283,22 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
             ramp_l[q] = ramp[g]
             load_l[q] = sag_load[g]
         laws_l = (law_l, start, breaks, coef, end_slope)
-        sub = fn.make_buffers(ne, nn)
+        sub = _sub_buffers(sub_w, ne, nn)
         nw = 3 * window.shape[0]
-        ab = np.zeros((nw, 2 * bw + 1))
-        dx = np.empty(nw)
-        # the merit (residual 2-norm squared): the frozen nodes' part and the ring's
+        ab = ab_w[:nw]
+        dx = dx_w[:nw]
+        # the merit (residual 2-norm squared): the frozen nodes' part and the ring's; the
+        # frozen part's max-norm (the ring's comes with the accepted trial)
         base = 0.0
+        frozen = 0.0
         for n in range(n_nodes):
             if free[n] and ring[n] != it:
                 for c in range(3):
-                    base += rvec[band[n, c]] * rvec[band[n, c]]
+                    r = rvec[band[n, c]]
+                    base += r * r
+                    r = abs(r)
+                    if not (r <= frozen):
+                        frozen = r if r == r else math.inf
         merit0 = base
         step = 2.0
         accepted = False
@@ -286,13 +344,9 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
                 break
         if not accepted:
             break
-        _take(sub, sub_el, sub_nodes, ring, it, window, local_of, x_l, v_l, a_l, uf_l,
-              af_l, x1, v1, a1, uf, af, buf, rvec, band, free, alpha, mass_l, oth_l)
-        new = 0.0
-        for k in range(rvec.shape[0]):
-            r = abs(rvec[k])
-            if not (r <= new):
-                new = r if r == r else math.inf
+        new = max(frozen, _take(sub, sub_el, sub_nodes, ring, it, window, local_of, x_l,
+                                v_l, a_l, uf_l, af_l, x1, v1, a1, uf, af, buf, rvec, band,
+                                free, alpha, mass_l, oth_l))
         ratio = new / norm
         norm = new
         if norm <= tol or ratio > stall_ratio:
@@ -304,7 +358,9 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
 def _take(sub, sub_el, sub_nodes, ring, it, window, local_of, x_l, v_l, a_l, uf_l, af_l, x1, v1,
           a1, uf, af, buf, rvec, band, free, alpha, mass_l, oth_l):
     """Accept a local trial: the window's kinematics, the recomputed elements' and nodes'
-    evaluation and residual into the step's arrays."""
+    evaluation and residual into the step's arrays; returns the max-norm of the recomputed
+    residual (``inf`` with a NaN)."""
+    top = 0.0
     for g in window:
         q = local_of[g]
         for c in range(3):
@@ -332,7 +388,12 @@ def _take(sub, sub_el, sub_nodes, ring, it, window, local_of, x_l, v_l, a_l, uf_
             buf[10][g, c] = sub[10][q, c]
             buf[11][g, c] = sub[11][q, c]
             if free[g]:
-                rvec[band[g, c]] = _node_residual(sub, q, c, alpha, mass_l[q], a_l, oth_l)
+                r = _node_residual(sub, q, c, alpha, mass_l[q], a_l, oth_l)
+                rvec[band[g, c]] = r
+                r = abs(r)
+                if not (r <= top):
+                    top = r if r == r else math.inf
+    return top
 
 
 from . import fast_newmark as fn  # noqa: E402  (a cycle: its step calls local_phase)

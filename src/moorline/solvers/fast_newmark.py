@@ -390,7 +390,8 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
     (:func:`~moorline.physics.fused.set_viscoelastic_step`). ``bodies``: the free rigid
     bodies, their state and the border of the tangent (:mod:`moorline.solvers.fast_bodies`;
     None without bodies); ``rvec`` then has their ``6 nb`` rows after the band's.
-    ``local``: the local phase's (iterations, fraction, pad, max share, node incidence)
+    ``local``: the local phase's (iterations, fraction, pad, max share, node incidence,
+    work arrays)
     (:func:`moorline.solvers.fast_local.local_phase`; without bodies), ``counters[3]`` its
     iterations; None: no local phase (numba then compiles this step without its code, which
     loads faster: :data:`moorline.solvers.dynamics.LOCAL_MIN_FREE_NODES`).
@@ -583,7 +584,9 @@ class FastStepper:
                             None if not pol.local_iterations or bodies is not None else
                             (float(pol.local_iterations), float(pol.local_fraction),
                              float(pol.local_pad), float(pol.local_max_share),
-                             *incidence(mesh.elements, mesh.n_nodes)))
+                             *incidence(mesh.elements, mesh.n_nodes),
+                             local_workspace(n_el, n_nodes, f.props.shape[0], f.laws[0],
+                                             self.model_args[18], self.bw)))
         self.waves, self.current = fluid_parts(model.fluid)
         if self.waves is not None:
             c = self.waves._coef
@@ -738,3 +741,4 @@ class Block:
 
 
 from .fast_local import incidence, local_phase  # noqa: E402  (it compiles in this module's kernels)
+from .fast_local import workspace as local_workspace  # noqa: E402
