@@ -35,6 +35,10 @@ def _case():
     return system, start
 
 
+# slow: the first run compiles the compiled loop a second time, with the local phase in it
+# (about two minutes on a 2-core machine, no line-only model of make test's is large enough to
+# use it); `make verify` runs it
+@pytest.mark.slow
 @pytest.mark.parametrize("scheme", ["newmark", "hht"])
 def test_compiled_local_phase_equals_the_general_stepper(scheme, monkeypatch):
     system, start = _case()
