@@ -691,7 +691,9 @@ class TableLaws(NamedTuple):
         if laws is None:
             return cls(np.full(n_el, -1, dtype=np.int64), np.zeros(1, dtype=np.int64),
                        np.zeros(0), np.zeros((7, 0)), np.zeros(0))
-        law = np.ascontiguousarray(np.broadcast_to(laws.ids, (n_el,)), dtype=np.int64)
+        # a writeable copy: a read-only array (broadcast_to's view) is another numba type, and
+        # every compiled step taking it would be compiled a second time
+        law = np.array(np.broadcast_to(laws.ids, (n_el,)), dtype=np.int64)
         breaks, coef, start = [], [], [0]
         for table in laws.tables:
             f, df = table._f, table._df

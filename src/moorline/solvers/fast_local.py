@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..jit import numba
+from ..physics.fused import TableLaws
 from .fast_fluid import fluid_at_midpoints
 
 IntArray = NDArray[np.int64]
@@ -67,7 +68,7 @@ def _window(rvec, band, free, n_free, elements, ptr, inc, threshold, pad, share,
     free nodes whose residual (max over their dofs) exceeds ``threshold``, padded by ``pad``
     rings of elements (through any node), at most ``share`` of the free nodes
     (``Stepper.local_window``). Marks them with ``it`` in ``stamp``."""
-    k = 0
+    k = np.int64(0)  # np.int64: a literal 0 would compile _grow twice (numba)
     for n in range(band.shape[0]):
         if not free[n]:
             continue
@@ -76,13 +77,13 @@ def _window(rvec, band, free, n_free, elements, ptr, inc, threshold, pad, share,
             stamp[n] = it
             queue[k] = n
             k += 1
-    first = 0
+    first = np.int64(0)
     for _ in range(pad):
         last = k
         k = _grow(stamp, it, queue, first, last, elements, ptr, inc)
         first = last
     count = 0
-    lo, hi = band.shape[0], -1
+    lo, hi = band.shape[0], np.int64(-1)
     for q in range(k):
         n = queue[q]
         if free[n]:
@@ -120,8 +121,8 @@ def _sub_model(window, band, elements, ptr, inc, stamps, it, queue, out):
     for q in range(nw):
         ring[window[q]] = it
         queue[q] = window[q]
-    k = _grow(ring, it, queue, 0, nw, elements, ptr, inc)
-    lo, hi = elements.shape[0], -1
+    k = _grow(ring, it, queue, np.int64(0), nw, elements, ptr, inc)
+    lo, hi = elements.shape[0], np.int64(-1)
     for q in range(k):
         n = queue[q]
         for p in range(ptr[n], ptr[n + 1]):
@@ -131,7 +132,7 @@ def _sub_model(window, band, elements, ptr, inc, stamps, it, queue, out):
                 lo = min(lo, e)
                 hi = max(hi, e)
     sub_elements = _marked(el_stamp, it, lo, hi, ring, False, el_out)
-    lo, hi = band.shape[0], -1
+    lo, hi = band.shape[0], np.int64(-1)
     for e in sub_elements:
         for m in range(2):
             n = elements[e, m]
@@ -143,7 +144,7 @@ def _sub_model(window, band, elements, ptr, inc, stamps, it, queue, out):
     n_sub = sub_nodes.shape[0]
     for q in range(n_sub):
         local[sub_nodes[q]] = q
-    lo, hi = dof_stamp.shape[0], -1
+    lo, hi = dof_stamp.shape[0], np.int64(-1)
     for q in range(nw):
         for c in range(3):
             d = band[window[q], c]
@@ -222,7 +223,7 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
     ck = 1.0 + alpha
     moving = fluid[0] or fluid[6]
     n_nodes = x1.shape[0]
-    n_free = 0
+    n_free = np.int64(0)
     for n in range(n_nodes):
         if free[n]:
             n_free += 1
@@ -282,7 +283,7 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
             c_l[q] = c_sb[g]
             ramp_l[q] = ramp[g]
             load_l[q] = sag_load[g]
-        laws_l = (law_l, start, breaks, coef, end_slope)
+        laws_l = TableLaws(law_l, start, breaks, coef, end_slope)  # the step's type: one compile
         sub = _sub_buffers(sub_w, ne, nn)
         nw = 3 * window.shape[0]
         ab = ab_w[:nw]

@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..jit import numba
 from ..physics.fused import maxwell_forces
 from . import fast_bodies as fb
@@ -109,8 +111,8 @@ def advance_block(x0, v0, a0, x1, v1, a1, hs, per_step, record, xc, vc, ac, fixe
     body_out = out[6:]
     buf = work[1]
     n_steps = hs.shape[0] // per_step
-    j = 0
-    r = 0
+    j = np.int64(0)  # not the literal 0: its callees would be compiled twice (numba)
+    r = np.int64(0)
     norm = 0.0
     for k in range(n_steps):
         for i in range(per_step):

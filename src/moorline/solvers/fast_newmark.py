@@ -408,7 +408,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                 x1[n, c] = x0[n, c] + h * v0[n, c]
     fb.predict(bodies, h, j)
     _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
-    fb.place(bodies, False, h, beta, gamma, x1, v1, a1)
+    fb.place(bodies, np.bool_(False), h, beta, gamma, x1, v1, a1)
     moving = fluid[0] or fluid[6]
     if moving:
         fluid_at_midpoints(x1, elements, j, fluid, uf, af)
@@ -431,7 +431,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                 _evaluate(x1, v1, a1, uf, af, elements, props, laws, with_drag,
                           with_added_mass, node_mass, external, point_force, seabed_on,
                           seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load,
-                          True, buf)
+                          np.bool_(True), buf)
                 counters[1] += 1
                 norm = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
                 norm = fb.residual(bodies, j, buf, rvec, alpha, node_mass, a1, norm)
@@ -461,12 +461,13 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                     trial[n, c] = x1[n, c] + (step * dx[k] if k >= 0 else 0.0)
             fb.try_step(bodies, step, dx)
             _kinematics(x0, v0, a0, trial, h, beta, gamma, free, v1, a1)
-            fb.place(bodies, True, h, beta, gamma, trial, v1, a1)
+            fb.place(bodies, np.bool_(True), h, beta, gamma, trial, v1, a1)
             if moving:
                 fluid_at_midpoints(trial, elements, j, fluid, uf, af)
             _evaluate(trial, v1, a1, uf, af, elements, props, laws, with_drag,
                       with_added_mass, node_mass, external, point_force, seabed_on, seabed_z,
-                      k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, False, buf)
+                      k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load,
+                      np.bool_(False), buf)
             counters[1] += 1
             n_new = _residual_norm(buf, band, rvec, alpha, node_mass, a1, buf[10], other0)
             n_new = fb.residual(bodies, j, buf, rvec, alpha, node_mass, a1, n_new)
@@ -482,7 +483,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
             refresh = True
             have_tangent = False
             _kinematics(x0, v0, a0, x1, h, beta, gamma, free, v1, a1)
-            fb.place(bodies, False, h, beta, gamma, x1, v1, a1)
+            fb.place(bodies, np.bool_(False), h, beta, gamma, x1, v1, a1)
             continue
         have_tangent = False  # trials are evaluated without it (made again when refreshed)
         if n_new > refresh_ratio * norm:
