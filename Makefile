@@ -15,6 +15,7 @@ $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e ".[test]"
+	$(BIN)/moorline compile
 	touch $(STAMP)
 
 $(COMPARE): $(STAMP)
@@ -31,13 +32,17 @@ demo: $(STAMP)
 	$(BIN)/moorline run cases/oc3_dynamics.yaml --out out
 	@echo "results, plots and reports written: out/oc3-line/report.html, out/oc3-dynamics/report.html"
 
+# pytest-xdist: TEST_WORKERS processes share the tests and the kernel cache (`moorline compile`
+# filled it at install, in parallel, so the workers do not compile the same step at once)
+TEST_WORKERS ?= 2
+
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS)
 
 # -rs lists every skipped test with its reason: with all extras installed only the case
 # files the compiled backend does not take (test_fast_newmark) may remain.
 verify: $(EXTRAS)
-	$(BIN)/python -m pytest -q -rs -m "slow or not slow"
+	$(BIN)/python -m pytest -q -rs -n $(TEST_WORKERS) -m "slow or not slow"
 	$(BIN)/moorline verify
 
 # bench_all.py: P1-P6 and the streaming cost side by side against MoorDyn, CableDyn and MoorPy

@@ -706,6 +706,47 @@ def bem(case: Path, body: str, omega: float, out: Path | None, panel: float | No
     _note(f"wrote {table.path}", quiet)
 
 
+# ----------------------------------------------------------------------------- compile
+
+
+@cli.command(name="compile")
+@click.argument("kinds", nargs=-1)
+@click.option("--jobs", "-j", type=click.IntRange(min=1), default=None,
+              help="Processes compiling at once (default: the CPUs, at most one per kind).")
+@_json_option
+@_common_options
+def compile_kernels(kinds: tuple[str, ...], jobs: int | None, as_json: bool, quiet: bool,
+                    verbose: bool) -> None:
+    """Compile the numba kernels into the kernel cache now.
+
+    The compiled time step is built for each kind of model (bodies, lines, lines-local: lines
+    of at least 300 free nodes, with the local Newton phase) at the first run of a case of that
+    kind on a machine (0.5-2 minutes each). This runs a tiny case of each KIND (default: all)
+    in parallel so that no later run pays it: after install (make does it), in a container
+    build, or before a sweep whose workers would otherwise all compile at once.
+    """
+    _configure_logging(verbose)
+    from .precompile import KINDS, Compiled, precompile
+
+    unknown = [k for k in kinds if k not in KINDS]
+    if unknown:
+        _fail(f"compile: unknown kind {unknown[0]!r}; expected one of {', '.join(KINDS)}",
+              EXIT_BAD_INPUT)
+
+    def done(result: Compiled) -> None:
+        what = (f"compiled {result.kernels} kernels" if result.kernels
+                else "already in the cache")
+        _note(f"{result.kind}: {what} ({result.seconds:.1f} s)", quiet or as_json)
+
+    results = precompile(kinds or KINDS, jobs, done)
+    if as_json:
+        from dataclasses import asdict
+
+        click.echo(json.dumps([asdict(r) for r in results], indent=2))
+    else:
+        _note(f"kernel cache: {results[0].cache}", quiet)
+
+
 def main() -> None:
     """Entry point of the ``moorline`` console script."""
     cli(prog_name="moorline")
