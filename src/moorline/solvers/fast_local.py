@@ -214,8 +214,10 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
     ``local = (iterations, fraction, pad, max share, ptr, inc, work)`` (``ptr, inc``: the
     elements of every node, :func:`incidence`; ``work``: :func:`workspace`). Updates the
     iterate, its evaluation (the recomputed elements' and nodes' entries of ``buf``, ``uf``,
-    ``af``) and ``rvec``; counts local iterations in ``counters[3]``. Returns (max-norm,
-    whether a local step was solved)."""
+    ``af``) and ``rvec``; counts local iterations in ``counters[3]`` and residual evaluations
+    (the iterate's with the tangent, the line search's trials) in ``counters[1]``, as
+    :func:`moorline.solvers.newton._local_phase` does. Returns (max-norm, whether a local
+    step was solved)."""
     n_iter, fraction, pad, share, ptr, inc, work = local
     ca = 1.0 / (beta * h * h)
     cv = (1 + alpha) * gamma / (beta * h)
@@ -320,6 +322,7 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
             fn._evaluate(x_l, v_l, a_l, uf_l, af_l, el_l, props_l, laws_l, with_drag,
                          with_added_mass, mass_l, ext_l, pf_l, seabed_on, seabed_z, k_l, c_l,
                          ramp_l, mu, v_slip, sag_on, active_l, load_l, attempt == 0, sub)
+            counters[1] += 1
             merit = base
             for q in range(nn):
                 g = sub_nodes[q]

@@ -26,7 +26,8 @@ The rules (one set, for every analysis):
   iteration that did not converge, while the residual sits on a few nodes, Newton on a window
   of nodes around them (the rest frozen): the nodes whose residual (max over their dofs)
   exceeds ``max(local_fraction * norm, tolerance)``, padded by ``local_pad`` rings of
-  elements; a fresh tangent of the window, backtracking on the residual 2-norm; it stops
+  elements; a fresh tangent of the window, the full iterations' line search (the policy's
+  merit; its residual evaluations counted like theirs); it stops
   when the window covers more than ``local_max_share`` of the free nodes, when the line
   search fails, when an iteration reduces the max-norm by less than ``stall_ratio``, at
   convergence, or after ``local_iterations``; the next full iteration refreshes the tangent.
@@ -269,8 +270,11 @@ def _factorize(problem: Problem, u: Any, trial: Trial, cache: TangentCache, key:
 
 def _line_search(problem: Problem, u: Any, du: FloatArray, trial0: Trial,
                  policy: NewtonPolicy, counters: Counters) -> tuple[Any, Trial, bool]:
-    """Halve the step until the merit decreases or the problem accepts the trial. Returns the
-    last trial and whether it was accepted."""
+    """Halve the step until the merit (``policy.merit`` of the residual) falls below the
+    merit at ``trial0`` or the problem accepts the trial (its optional ``accept`` and
+    ``search_context``); every trial counts as a residual evaluation. The one line search of
+    the full and the local iterations. Returns the last trial's unknowns, the trial and
+    whether it was accepted."""
     accept = getattr(problem, "accept", None)
     measure = max_norm if policy.merit == "max" else np.linalg.norm
     merit0 = float(measure(trial0.r))
@@ -303,19 +307,11 @@ def _local_phase(problem: Problem, u: Any, trial: Trial, norm: float, policy: Ne
                                       policy.local_pad, policy.local_max_share)
         if window is None:
             break
-        here = problem.residual(u, True)
+        here = _evaluate(problem, u, True, counters)
         du = problem.local_step(u, here, window)
         counters.local_iterations += 1
         worked = True
-        merit0 = float(np.linalg.norm(here.r))
-        alpha, accepted = 1.0, False
-        for _ls in range(policy.max_halvings + 1):
-            u_try = problem.update(u, alpha * du)
-            t_try = problem.residual(u_try, False)
-            if float(np.linalg.norm(t_try.r)) < merit0:
-                accepted = True
-                break
-            alpha *= 0.5
+        u_try, t_try, accepted = _line_search(problem, u, du, here, policy, counters)
         if not accepted:
             break
         u, trial = u_try, t_try
