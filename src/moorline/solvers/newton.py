@@ -27,10 +27,13 @@ The rules (one set, for every analysis):
   of nodes around them (the rest frozen): the nodes whose residual (max over their dofs)
   exceeds ``max(local_fraction * norm, tolerance)``, padded by ``local_pad`` rings of
   elements; a fresh tangent of the window, the full iterations' line search (the policy's
-  merit; its residual evaluations counted like theirs); it stops
-  when the window covers more than ``local_max_share`` of the free nodes, when the line
-  search fails, when an iteration reduces the max-norm by less than ``stall_ratio``, at
-  convergence, or after ``local_iterations``; the next full iteration refreshes the tangent.
+  merit; its residual evaluations counted like theirs); it stops when the window covers
+  more than ``local_max_share`` of the free nodes, when the line search fails, when an
+  iteration reduces the max-norm by less than ``stall_ratio``, when the largest residual
+  left is outside the window (a window's step moves residual onto its frozen edge, which
+  more local iterations only push outwards), at convergence, or after
+  ``local_iterations``. The next full iteration keeps the factorization (the refresh rules
+  above apply): what the local phase leaves is the smooth part a stale tangent handles.
   This is nonlinear elimination (Lanzkron, Rose and Wilkes 1996, "An analysis of approximate
   nonlinear elimination", SIAM J. Sci. Comput. 17(2):538-559), a restricted nonlinear
   Schwarz correction on the strongly nonlinear subdomain (Cai and Li 2011, "Inexact Newton
@@ -235,8 +238,8 @@ def solve(problem: Problem, u: Any, policy: NewtonPolicy, cache: TangentCache,
         if policy.local_iterations and norm > policy.tolerance \
                 and hasattr(problem, "local_window"):
             u, trial, norm, worked = _local_phase(problem, u, trial, norm, policy, counters)
-            if worked:  # the next full iteration starts from a fresh tangent
-                refresh, stalled = True, 0
+            if worked:  # the factorization stays (refreshed by the usual rules)
+                stalled = 0
         history.append(norm)
         if policy.stall_limit and stalled >= policy.stall_limit:
             return Outcome(False, u, trial, norm, it + 1, "stalled", history)
@@ -317,6 +320,9 @@ def _local_phase(problem: Problem, u: Any, trial: Trial, norm: float, policy: Ne
         u, trial = u_try, t_try
         new = max_norm(trial.r)
         ratio, norm = new / norm, new
-        if norm <= policy.tolerance or ratio > policy.stall_ratio:
+        # the largest residual left outside the window: its frozen edge, not Newton, limits
+        # the local iterations; a full iteration follows
+        if norm <= policy.tolerance or ratio > policy.stall_ratio \
+                or max_norm(trial.r[window]) < new:
             break
     return u, trial, norm, worked
