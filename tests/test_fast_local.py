@@ -47,6 +47,8 @@ def test_compiled_local_phase_equals_the_general_stepper(scheme, monkeypatch):
     slow = reference_run(system, settings, start, 0.05, monkeypatch)
     assert_same_run(fast, slow)
     assert fast.counters["local_iterations"] == slow.counters["local_iterations"] > 0
+    # the local phase's line search counts its residual evaluations on both
+    assert fast.counters["residuals"] == slow.counters["residuals"]
 
 
 def test_local_phase_changes_the_path_not_the_answer(monkeypatch):

@@ -116,3 +116,40 @@ def test_converged_start_costs_no_factorization(b):
     counters = Counters()
     out = solve(_Cubic([b]), np.zeros(1), NewtonPolicy(1e-12, 10), TangentCache(), counters)
     assert out.converged and out.iterations == 0 and counters.factorizations == 0
+
+
+class _LocalCubic(_Cubic):
+    """:class:`_Cubic` with a local phase (``local_window``: the components above the
+    threshold; ``local_step``: Newton on them alone) and a count of residual evaluations."""
+
+    def __init__(self, b):
+        super().__init__(b)
+        self.calls = 0
+
+    def residual(self, u, tangent):
+        self.calls += 1
+        return super().residual(u, tangent)
+
+    def local_window(self, trial, threshold, pad, share):
+        window = np.flatnonzero(np.abs(trial.r) > threshold)
+        return window if 0 < len(window) <= share * len(trial.r) else None
+
+    def local_step(self, u, trial, window):
+        du = np.zeros_like(u)
+        du[window] = trial.r[window] / (1 + 3 * u[window] ** 2)
+        return du
+
+
+def test_local_phase_line_search_counts_its_residual_evaluations():
+    # two large components among 18 small ones: after one full iteration the residual sits
+    # on the two, which the local phase solves; every evaluation it makes is counted
+    b = np.full(20, 1e-3)
+    b[[4, 11]] = [30.0, -8.0]
+    problem = _LocalCubic(b)
+    policy = NewtonPolicy(tolerance=1e-12, max_iterations=30, age_per="iteration",
+                          local_iterations=20)
+    counters = Counters()
+    out = solve(problem, np.zeros(20), policy, TangentCache(), counters)
+    assert out.converged and np.allclose(out.u, _cardano(b), rtol=0, atol=1e-12)
+    assert counters.local_iterations > 0
+    assert counters.residuals == problem.calls

@@ -215,8 +215,10 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
     ``local = (iterations, fraction, pad, max share, ptr, inc, work)`` (``ptr, inc``: the
     elements of every node, :func:`incidence`; ``work``: :func:`workspace`). Updates the
     iterate, its evaluation (the recomputed elements' and nodes' entries of ``buf``, ``uf``,
-    ``af``) and ``rvec``; counts local iterations in ``counters[3]``. Returns (max-norm,
-    whether a local step was solved)."""
+    ``af``) and ``rvec``; counts local iterations in ``counters[3]`` and residual evaluations
+    (the iterate's with the tangent, the line search's trials) in ``counters[1]``, as
+    :func:`moorline.solvers.newton._local_phase` does. Returns (max-norm, whether a local
+    step was solved)."""
     n_iter, fraction, pad, share, ptr, inc, work = local
     ca = 1.0 / (beta * h * h)
     cv = (1 + alpha) * gamma / (beta * h)
@@ -321,6 +323,7 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
             fn._evaluate(x_l, v_l, a_l, uf_l, af_l, el_l, props_l, laws_l, with_drag,
                          with_added_mass, mass_l, ext_l, pf_l, seabed_on, seabed_z, k_l, c_l,
                          ramp_l, mu, v_slip, sag_on, active_l, load_l, attempt == 0, sub)
+            counters[1] += 1
             merit = base
             for q in range(nn):
                 g = sub_nodes[q]
@@ -345,23 +348,27 @@ def local_phase(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, w
                 break
         if not accepted:
             break
-        new = max(frozen, _take(sub, sub_el, sub_nodes, ring, it, window, local_of, x_l,
-                                v_l, a_l, uf_l, af_l, x1, v1, a1, uf, af, buf, rvec, band,
-                                free, alpha, mass_l, oth_l))
+        inside, outside = _take(sub, sub_el, sub_nodes, ring, stamp, it, window, local_of,
+                                x_l, v_l, a_l, uf_l, af_l, x1, v1, a1, uf, af, buf, rvec,
+                                band, free, alpha, mass_l, oth_l)
+        new = max(frozen, inside, outside)
         ratio = new / norm
         norm = new
-        if norm <= tol or ratio > stall_ratio:
+        # the largest residual left outside the window: its frozen edge, not Newton, limits
+        # the local iterations; a full iteration follows
+        if norm <= tol or ratio > stall_ratio or max(frozen, outside) > inside:
             break
     return norm, worked
 
 
 @numba.njit(**_JIT)
-def _take(sub, sub_el, sub_nodes, ring, it, window, local_of, x_l, v_l, a_l, uf_l, af_l, x1, v1,
-          a1, uf, af, buf, rvec, band, free, alpha, mass_l, oth_l):
+def _take(sub, sub_el, sub_nodes, ring, stamp, it, window, local_of, x_l, v_l, a_l, uf_l, af_l,
+          x1, v1, a1, uf, af, buf, rvec, band, free, alpha, mass_l, oth_l):
     """Accept a local trial: the window's kinematics, the recomputed elements' and nodes'
     evaluation and residual into the step's arrays; returns the max-norm of the recomputed
-    residual (``inf`` with a NaN)."""
+    residual (``inf`` with a NaN) on the window's nodes (``stamp == it``) and on the others."""
     top = 0.0
+    edge = 0.0
     for g in window:
         q = local_of[g]
         for c in range(3):
@@ -392,9 +399,12 @@ def _take(sub, sub_el, sub_nodes, ring, it, window, local_of, x_l, v_l, a_l, uf_
                 r = _node_residual(sub, q, c, alpha, mass_l[q], a_l, oth_l)
                 rvec[band[g, c]] = r
                 r = abs(r)
-                if not (r <= top):
-                    top = r if r == r else math.inf
-    return top
+                if stamp[g] == it:
+                    if not (r <= top):
+                        top = r if r == r else math.inf
+                elif not (r <= edge):
+                    edge = r if r == r else math.inf
+    return top, edge
 
 
 from . import fast_newmark as fn  # noqa: E402  (a cycle: its step calls local_phase)

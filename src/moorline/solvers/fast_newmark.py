@@ -499,8 +499,7 @@ def newmark_step(x0, v0, a0, x1, v1, a1, free, band, bw, elements, props, laws, 
                 seabed_z, k_sb, c_sb, ramp, mu, v_slip, sag_on, sag_active, sag_load, h, beta,
                 gamma, alpha, other0, buf, rvec, norm, tol, fluid, j, local, max_halvings,
                 stall_ratio, counters)
-            if worked:  # the next full iteration starts from a fresh tangent
-                refresh = True
+            if worked:  # the factorization stays (refreshed by the usual rules)
                 stalled = 0
         if stall_limit > 0 and stalled >= stall_limit:
             return False, norm, refactored
