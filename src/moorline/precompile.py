@@ -18,6 +18,10 @@ from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from multiprocessing import get_context
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .model import System
 
 KINDS = ("bodies", "lines", "lines-local")
 """The model kinds :func:`precompile` compiles, the longest first."""
@@ -36,13 +40,7 @@ class Compiled:
     """The kernel cache directory."""
 
 
-def _lines_case(segments: int):  # noqa: ANN202  (a System; the import stays lazy)
-    from .verification.oc3_system import oc3_three_lines
-
-    return oc3_three_lines(segments)
-
-
-def _bodies_case():  # noqa: ANN202
+def _bodies_case() -> System:
     """A body on a heave spring (hydrostatic matrix) held by four taut vertical ropes."""
     from .model import Body, Environment, Hydrostatics, Line, LineType, Point, System
 
@@ -65,11 +63,13 @@ def _bodies_case():  # noqa: ANN202
                   points=points, lines=lines, bodies={"b": body})
 
 
-def _case(kind: str):  # noqa: ANN202
+def _case(kind: str) -> System:
     if kind == "bodies":
         return _bodies_case()
+    from .verification.oc3_system import oc3_three_lines
+
     # lines-local: 3 x 110 segments = 327 free nodes, above LOCAL_MIN_FREE_NODES (300)
-    return _lines_case(110 if kind == "lines-local" else 10)
+    return oc3_three_lines(110 if kind == "lines-local" else 10)
 
 
 def compile_kind(kind: str) -> Compiled:
