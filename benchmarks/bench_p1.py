@@ -367,7 +367,8 @@ def search(code: str, log=print) -> dict[str, Any]:
     increasing order of ``segments / dt`` until one is within 1 %.
     """
     ref_n, ref_dt = REFERENCE[code]
-    log(f"  {code}: reference {ref_n} segments, dt {ref_dt:g} s ...")
+    step = f"dt {ref_dt:g} s" if math.isfinite(ref_dt) else "dt at its stable step"
+    log(f"  {code}: reference {ref_n} segments, {step} ...")
     done: dict[tuple[int, float], Run] = {}
 
     def run_code(code: str, n: int, dt: float) -> Run:  # each setting once

@@ -299,3 +299,36 @@ def test_blocks_give_the_record_by_record_envelope_bit_for_bit(n_elements: int) 
     for name, value in one.values().items():
         np.testing.assert_array_equal(blocks.values()[name], value, err_msg=name)
         np.testing.assert_array_equal(whole.values()[name], value, err_msg=name)
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_both_passes_equal_numpy_record_by_record(compiled: bool) -> None:
+    """The compiled envelope pass (:func:`moorline.fast_envelope.accumulate`, runs on the
+    compiled path) and the numpy one (runs that do not load numba) against numpy's own
+    operations record by record (``np.minimum``, ``np.maximum``, shifted sums added in
+    order): equal to the last bit; a NaN tension makes the minimum and maximum NaN, as numpy
+    does."""
+    from moorline.envelope import TensionEnvelope
+
+    rng = np.random.default_rng(11)
+    tensions = 8.0e5 + 1.0e5 * rng.standard_normal((500, 9))
+    tensions[200, 4] = np.nan
+    static = tensions[0].copy()
+    low, high = np.full(9, np.inf), np.full(9, -np.inf)
+    total, square = np.zeros(9), np.zeros(9)
+    for row in tensions:
+        np.minimum(low, row, out=low)
+        np.maximum(high, row, out=high)
+        shifted = row - static
+        total += shifted
+        square += shifted * shifted
+    envelope = TensionEnvelope(9, 0.0, static)
+    for first in range(0, 500, 137):  # blocks, as a stream gives them
+        envelope._accumulate(tensions[first:first + 137], compiled=compiled)
+    got = envelope.values()
+    np.testing.assert_array_equal(got["tension_min"], low)
+    np.testing.assert_array_equal(got["tension_max"], high)
+    np.testing.assert_array_equal(got["tension_mean"], static + total / 500)
+    variance = np.maximum(square / 500 - (total / 500) ** 2, 0.0)
+    np.testing.assert_array_equal(got["tension_std"], np.sqrt(variance))
+    assert np.isnan(got["tension_min"][4]) and np.isnan(got["tension_max"][4])

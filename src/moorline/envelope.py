@@ -31,6 +31,7 @@ bit for bit, without reading the history back or holding it twice.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -190,17 +191,12 @@ class TensionEnvelope:
             self.static, self._seen = tension.copy(), True
         if t < self.start:
             return
-        np.minimum(self._min, tension, out=self._min)
-        np.maximum(self._max, tension, out=self._max)
-        shifted = tension - self.static
-        self._sum += shifted
-        self._square += shifted * shifted
-        self.count += 1
+        self._accumulate(tension[None])
 
     def add_records(self, times: FloatArray, tensions: FloatArray) -> None:
         """Add records in order: ``tensions`` (n_t, n_elements) at ``times`` (n_t,)
         (increasing). The same numbers, bit for bit, as :meth:`add` record by record: the
-        sums are accumulated in record order (``np.add.accumulate``), whatever the blocks."""
+        records are added in order, whatever the blocks."""
         times = np.asarray(times, dtype=float)
         tensions = np.asarray(tensions, dtype=float).reshape(len(times), -1)
         if not len(times):
@@ -208,16 +204,33 @@ class TensionEnvelope:
         if not self._seen:
             self.static, self._seen = tensions[0].copy(), True
         kept = tensions if times[0] >= self.start else tensions[times >= self.start]
-        per_pass = max(1, _PASS_BYTES // (8 * max(1, kept.shape[1])))
-        for first in range(0, len(kept), per_pass):  # temporaries that stay in the cache
-            rows = kept[first:first + per_pass]
-            np.minimum(self._min, rows.min(axis=0), out=self._min)
-            np.maximum(self._max, rows.max(axis=0), out=self._max)
-            shifted = rows - self.static
-            square = shifted * shifted
-            self._sum = _in_order(self._sum, shifted)
-            self._square = _in_order(self._square, square)
-        self.count += len(kept)
+        if len(kept):
+            self._accumulate(kept)
+
+    def _accumulate(self, rows: FloatArray, compiled: bool | None = None) -> None:
+        """Add ``rows`` (n, n_elements) in order: in one compiled pass
+        (:func:`moorline.fast_envelope.accumulate`) when numba is loaded already (a run on
+        the compiled path), else with numpy in passes that stay in the cache (a run on the
+        general path does not import numba for it); the same numbers to the last bit
+        (tested). ``compiled``: force one or the other."""
+        if compiled is None:
+            compiled = "moorline.jit" in sys.modules
+        if compiled:
+            from .fast_envelope import accumulate
+
+            accumulate(np.ascontiguousarray(rows, dtype=float), self.static, self._min,
+                       self._max, self._sum, self._square)
+        else:
+            per_pass = max(1, _PASS_BYTES // (8 * max(1, rows.shape[1])))
+            for first in range(0, len(rows), per_pass):
+                block = rows[first:first + per_pass]
+                np.minimum(self._min, block.min(axis=0), out=self._min)
+                np.maximum(self._max, block.max(axis=0), out=self._max)
+                shifted = block - self.static
+                square = shifted * shifted
+                self._sum = _in_order(self._sum, shifted)
+                self._square = _in_order(self._square, square)
+        self.count += len(rows)
 
     def values(self) -> dict[str, FloatArray]:
         """``tension_min``, ``tension_max``, ``tension_mean``, ``tension_std``,

@@ -15,7 +15,7 @@ KERNEL_MODULES = ("moorline.physics.fused", "moorline.solvers.fast_fluid",
                   "moorline.solvers.fast_rigid", "moorline.solvers.fast_bodies",
                   "moorline.solvers.fast_newmark", "moorline.solvers.fast_local",
                   "moorline.solvers.fast_loop",
-                  "moorline.solvers.frequency_sweep")
+                  "moorline.solvers.frequency_sweep", "moorline.fast_envelope")
 """The modules holding numba kernels."""
 
 

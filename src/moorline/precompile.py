@@ -89,6 +89,10 @@ def compile_kind(kind: str) -> Compiled:
                    output_every=0.05)
     if not run.success:
         raise RuntimeError(f"precompile {kind}: dynamics failed: {run.message}")
+    if kind == "lines":  # the tension envelope's pass (results of every dynamics run)
+        from .envelope import TensionEnvelope
+
+        TensionEnvelope(1).add_records(run.time, run.tension[:, :1])
     kernels, where = compiled_kernels()
     # where: numba's directory of one kernel module, inside moorline's numba-<hash> directory
     return Compiled(kind, kernels, time.perf_counter() - start, os.path.dirname(where))

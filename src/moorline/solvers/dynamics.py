@@ -81,10 +81,11 @@ def simulate(
     """
     mesh, fluid, excitation, state, stepper = start(system, settings, initial, fluid, maxwell)
     every = max(output_every or system.output.every, settings.dt)
-    recorder = _Recorder(mesh, writer, fluid,
-                         initial.tension if isinstance(initial, StaticResult) else None)
-    recorder.add(state)
     n_steps = int(round(settings.duration / settings.dt))
+    recorder = _Recorder(mesh, writer, fluid,
+                         initial.tension if isinstance(initial, StaticResult) else None,
+                         _expected_records(n_steps, settings.dt, every))
+    recorder.add(state)
     loop = _Loop(settings, n_steps, every)
     blocks = _BlockRunner(stepper, excitation, mesh, recorder, loop) \
         if COMPILED_LOOP and hasattr(stepper, "run_block") else None
@@ -131,6 +132,13 @@ def simulate(
     counters = dict(stepper.counters, steps=n_steps, step_cuts=cuts)
     return recorder.result(True, f"completed {n_steps} steps", counters, system,
                            asdict(settings))
+
+
+def _expected_records(n_steps: int, dt: float, every: float) -> int:
+    """Output records of a run of ``n_steps`` steps of ``dt`` written every ``every``
+    (:meth:`_Loop.output_due`): the initial state, one per ``every`` and the last step (one
+    more for the roundoff of the schedule)."""
+    return 3 + int(math.floor(n_steps * dt / every + 1e-9))
 
 
 class _Loop:
@@ -184,6 +192,9 @@ class _BlockRunner:
         self.n_lines = len(mesh.line_names)
         self.n_bodies = len(mesh.body_names)
         self.body_records = _BodyRecords(mesh, self.end_el, self.end_side)
+        # the records the compiled loop writes into the recorder's arrays (per-record shapes)
+        self.slot_shapes = {"position": (mesh.n_nodes, 3), "velocity": (mesh.n_nodes, 3),
+                            "tension": (mesh.n_elements,), "end_force": (self.n_lines, 2, 3)}
 
     def _length(self, remaining: int) -> int:
         loop = self.loop
@@ -224,9 +235,13 @@ class _BlockRunner:
             record[s] = loop.output_due(float(times[(s + 1) * per - 1]), k + s + 1)
         kin = self.excitation.constrained_states(times)
         forces = (self.excitation.force_nodes, self.excitation.force_histories(times))
+        n_out = int(np.count_nonzero(record))
+        slots = self.recorder.slots(n_out, self.slot_shapes)
         started = self.clock()
-        block = self.stepper.run_block(state, times, hs, per, record, kin, forces, self.end_el,
-                                       self.end_side)
+        block = self.stepper.run_block(
+            state, times, hs, per, record, kin, forces, self.end_el, self.end_side,
+            out=(slots["position"], slots["velocity"], slots["tension"],
+                 slots["end_force"].reshape(n_out, 2 * self.n_lines, 3)))
         done = block.steps
         if done and not loop.level:
             self.per_step_wall = (self.clock() - started) / done
@@ -239,14 +254,14 @@ class _BlockRunner:
         if n_rec:
             rec_steps = np.flatnonzero(record[:done])
             rec_times = times[(rec_steps + 1) * per - 1]
-            ends = block.end_forces.copy()
-            ends[:, :, 2] -= self.end_weight
+            bodies = self.body_records.records(block)  # from the elements' end forces
+            block.end_forces[:, :, 2] -= self.end_weight  # the records' end forces, in place
             self.recorder.add_block(rec_times, {
                 "position": block.positions, "velocity": block.velocities,
                 "tension": block.tensions,
-                "end_force": ends.reshape(n_rec, self.n_lines, 2, 3),
-                **self.body_records.records(block),
-                "wave_elevation": self.recorder.elevations(rec_times)})
+                "end_force": block.end_forces.reshape(n_rec, self.n_lines, 2, 3),
+                **bodies, "wave_elevation": self.recorder.elevations(rec_times)},
+                in_place=("position", "velocity", "tension", "end_force"))
         if block.stopped < 0:
             return block.state, k + done, None
         return block.state, k + done, (block.stopped, float(hs[done * per]), block.norm)
@@ -494,42 +509,83 @@ def describe_unknown(mesh: Mesh, body_dof: NDArray[np.int64], dof: int) -> str:
 
 
 class _Recorder:
-    """Collects output records in blocks (and streams them when a writer is given)."""
+    """Collects output records (and streams them when a writer is given).
+
+    The records go into one array per variable, allocated at the first record for
+    ``capacity`` records (the run's output times: :func:`_expected_records`; grown should a
+    run give more), so the result holds views of them, not a concatenation of blocks (half
+    the peak memory of a long run, and no copy at its end), and the compiled loop writes its
+    records straight into them (:meth:`slots`)."""
 
     def __init__(self, mesh: Mesh, writer, fluid=None,
-                 static_tension: FloatArray | None = None) -> None:
+                 static_tension: FloatArray | None = None, capacity: int = 1) -> None:
         self.mesh = mesh
         self.writer = writer
         self.fluid = fluid
         self.static_tension = (np.zeros(0) if static_tension is None
                                else np.array(static_tension, dtype=float))
-        self.blocks: list[dict[str, FloatArray]] = []
+        self.capacity = max(int(capacity), 1)
+        self.arrays: dict[str, FloatArray] = {}
+        self.count = 0
         self.last_time = -math.inf
 
     def add(self, state: StepState) -> None:
         """One record: the state."""
-        record = {"position": state.x.copy(), "velocity": state.v.copy(),
-                  "tension": state.evaluation.tension.copy(),
+        record = {"position": state.x, "velocity": state.v,
+                  "tension": state.evaluation.tension,
                   "end_force": _end_forces(self.mesh, state),
                   "body_pose": (state.bodies.pose() if state.bodies is not None
                                 else np.zeros((0, 6))),
-                  "body_velocity": (state.bodies.vel.copy() if state.bodies is not None
+                  "body_velocity": (state.bodies.vel if state.bodies is not None
                                     else np.zeros((0, 6))),
                   "body_mooring_force": _mooring_forces(self.mesh, state),
-                  "body_pin_force": (state.pin_force.copy() if state.pin_force is not None
+                  "body_pin_force": (state.pin_force if state.pin_force is not None
                                      else np.zeros((len(self.mesh.body_names), 3))),
                   "wave_elevation": self._elevation(state.t)}
         self.add_block(np.array([state.t]),
                        {key: np.asarray(value)[None] for key, value in record.items()})
 
-    def add_block(self, times: FloatArray, records: dict[str, FloatArray]) -> None:
-        """Records at ``times`` (n,), each key stacked along a first axis of length n
-        (arrays of their own, kept for the result and never changed: handed to the writer
-        as they are)."""
-        self.blocks.append({"time": np.asarray(times, dtype=float), **records})
+    def slots(self, n: int, like: dict[str, tuple[int, ...]]) -> dict[str, FloatArray]:
+        """Views of the next ``n`` rows of the record arrays of the keys of ``like`` (their
+        shapes per record), for a block to write its records into in place before
+        :meth:`add_block` takes them (``in_place``)."""
+        self._reserve(n, like)
+        return {key: self.arrays[key][self.count:self.count + n] for key in like}
+
+    def add_block(self, times: FloatArray, records: dict[str, FloatArray],
+                  in_place: tuple[str, ...] = ()) -> None:
+        """Records at ``times`` (n,), each key stacked along a first axis of length n; the
+        keys of ``in_place`` were written into :meth:`slots` already. The writer gets views
+        of the record arrays (never changed afterwards)."""
+        n = len(times)
+        self._reserve(n, {key: np.shape(value)[1:] for key, value in records.items()})
+        rows = slice(self.count, self.count + n)
+        self.arrays["time"][rows] = times
+        for key, value in records.items():
+            if key not in in_place:
+                self.arrays[key][rows] = value
+        self.count += n
         self.last_time = float(times[-1])
         if self.writer is not None:
-            self.writer.append_block(times, records, owned=True)
+            self.writer.append_block(self.arrays["time"][rows],
+                                     {key: self.arrays[key][rows] for key in records},
+                                     owned=True)
+
+    def _reserve(self, n: int, shapes: dict[str, tuple[int, ...]]) -> None:
+        """Room for ``n`` more records (the arrays made at the first call, with their
+        per-record ``shapes``; doubled when full)."""
+        if not self.arrays:
+            self.capacity = max(self.capacity, n)
+            self.arrays = {"time": np.empty(self.capacity)}
+            self.arrays.update({key: np.empty((self.capacity, *shape))
+                                for key, shape in shapes.items()})
+        elif self.count + n > self.capacity:
+            self.capacity = max(2 * self.capacity, self.count + n)
+            grown = {}
+            for key, old in self.arrays.items():
+                grown[key] = np.empty((self.capacity, *old.shape[1:]))
+                grown[key][:self.count] = old[:self.count]
+            self.arrays = grown  # views handed out before keep the old arrays alive
 
     def _elevation(self, t: float) -> float:
         """Free-surface elevation at the origin (x = y = 0) [length]."""
@@ -547,7 +603,7 @@ class _Recorder:
 
     def result(self, ok: bool, message: str, counters: dict, system: System,
                settings: dict) -> DynamicResult:
-        arrays = {k: np.concatenate([b[k] for b in self.blocks]) for k in self.blocks[0]}
+        arrays = {key: value[:self.count] for key, value in self.arrays.items()}
         return DynamicResult(ok, message, arrays["time"], arrays["position"],
                              arrays["velocity"], arrays["tension"], arrays["end_force"],
                              counters, self.mesh, system.name, system.units, settings,

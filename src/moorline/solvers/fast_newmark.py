@@ -652,12 +652,16 @@ class FastStepper:
 
     def run_block(self, s0, times: FloatArray, hs: FloatArray, per_step: int,
                   record: NDArray[np.bool_], kinematics: tuple, forces: tuple,
-                  end_elements: IntArray, end_sides: IntArray) -> Block:
+                  end_elements: IntArray, end_sides: IntArray,
+                  out: tuple[FloatArray, ...] | None = None) -> Block:
         """Advance from ``s0`` by the sub-steps ``hs`` (ending at ``times``), ``per_step``
         to a full step, with the fixed and prescribed nodes' kinematics
         ``(x, v, a)`` (n_sub, n_fixed, 3) and the point forces ``(nodes, values)``
         (values (n_sub, n_forces, 3)) at those times; records after the full steps flagged
-        in ``record`` (:func:`moorline.solvers.fast_loop.advance_block`)."""
+        in ``record`` (:func:`moorline.solvers.fast_loop.advance_block`), into ``out``
+        (positions, velocities (n_rec, n_nodes, 3), tensions (n_rec, n_el), end element
+        forces (n_rec, n_ends, 3): C-ordered, e.g. rows of the run's record arrays) or new
+        arrays."""
         from .fast_loop import advance_block
 
         mesh = self.model.mesh
@@ -670,9 +674,10 @@ class FastStepper:
                  np.array(material.maxwell, dtype=float))
         n_rec = int(np.count_nonzero(record))
         inputs = self.body_inputs
-        out = (np.empty((n_rec, n_nodes, 3)), np.empty((n_rec, n_nodes, 3)),
-               np.empty((n_rec, n_el)), np.empty((n_rec, len(end_elements), 3)),
-               end_elements, end_sides, *inputs.records(n_rec))
+        if out is None:
+            out = (np.empty((n_rec, n_nodes, 3)), np.empty((n_rec, n_nodes, 3)),
+                   np.empty((n_rec, n_el)), np.empty((n_rec, len(end_elements), 3)))
+        out = (*out, end_elements, end_sides, *inputs.records(n_rec))
         other0 = s0.evaluation.nodal - s0.evaluation.inertial  # HHT: F0 - F_am0
         body_other0 = None
         if inputs.nb and self.c.alpha:  # HHT: the bodies' F0
