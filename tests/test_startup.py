@@ -92,12 +92,15 @@ def test_run_without_plots_needs_neither_xarray_nor_matplotlib(tmp_path: Path) -
 def test_cached_kernels_load_without_numba_compiler_registries(tmp_path: Path) -> None:
     """A second run loads the compiled kernels from numba's cache without refreshing numba's
     compiler context (moorline.jit): its lowering registries (``numba.np.linalg``...)
-    stay unimported; the first run may have compiled them (a cold cache) and needed them.
+    stay unimported, and so do the modules of numba's helpers compiled into the kernels
+    (``numba.np.arrayobj``, ``numba.cpython.unicode``: their environments are rebuilt
+    without them); the first run may have compiled them (a cold cache) and needed them.
     Both runs write the same summary."""
     case = tmp_path / "short.yaml"
     text = (ROOT / "cases" / "oc3_dynamics.yaml").read_text(encoding="utf-8")
     case.write_text(re.sub(r"duration: *[0-9.]+", "duration: 1", text), encoding="utf-8")
-    names = ("numba", "numba.np.linalg", "numba.typed.typeddict", "numba.misc.gdb_hook")
+    names = ("numba", "numba.np.linalg", "numba.typed.typeddict", "numba.misc.gdb_hook",
+             "numba.np.arrayobj", "numba.cpython.unicode", "numba.cpython.charseq")
     summaries = []
     for k in range(2):
         out = tmp_path / f"out{k}"

@@ -15,6 +15,8 @@ Other numba functions in the process load as numba does.
 
 from __future__ import annotations
 
+import sys
+
 from .numba_cache import use_source_keyed_cache
 
 use_source_keyed_cache()
@@ -38,6 +40,10 @@ def _version(text: str) -> tuple[int, int]:
         return 0, 0
 
 
+_loading_kernel = [False]
+"""True while one of moorline's kernels loads from the cache (:func:`_lean_cache_loading`)."""
+
+
 def _lean_cache_loading() -> None:
     """Load moorline's cached kernels without numba's compiler-context refresh (see the
     module docstring); nothing changes when numba's cache lacks the expected methods."""
@@ -57,11 +63,48 @@ def _lean_cache_loading() -> None:
         if getattr(getattr(self, "_py_func", None), "__module__", None) not in kernels:
             return full(self, sig, target_context)
         rtsys.initialize(target_context)  # the runtime, as refresh() would set it up
-        with self._guard_against_spurious_io_errors():
-            return self._load_overload(sig, target_context)
+        _loading_kernel[0] = True
+        try:
+            with self._guard_against_spurious_io_errors():
+                return self._load_overload(sig, target_context)
+        finally:
+            _loading_kernel[0] = False
 
     load_overload._moorline_lean = True  # type: ignore[attr-defined]
     cache.load_overload = load_overload
+    _lean_environments()
+
+
+def _lean_environments() -> None:
+    """Rebuild the environments of numba's own helpers without importing their modules.
+
+    Loading a cached kernel unpickles an environment (:class:`numba.core.environment.
+    Environment`: the defining module's globals and the function's constants) for every
+    function compiled into it, importing the module to get its globals. The array
+    allocations in moorline's compiled step bring numba's helpers for the allocation's
+    error message (``numba.np.arrayobj``, ``numba.cpython.unicode``, ``charseq``): importing
+    those cost ~50 ms of every run (issue 16, P1). Their environments hold no constants, and
+    a function compiled in nopython mode reads no globals from its environment, so while one
+    of moorline's kernels loads they get an environment of their own module name only;
+    environments with constants, of modules already imported, and of any other function
+    are rebuilt as numba does."""
+    from numba.core import environment
+
+    full = environment._rebuild_env
+    if getattr(full, "_moorline_lean", False):
+        return
+
+    def rebuild(modname, consts, env_name):  # noqa: ANN001, ANN202 (numba's signature)
+        if not _loading_kernel[0] or consts or not str(modname).startswith("numba.") \
+                or modname in sys.modules or environment.lookup_environment(env_name):
+            return full(modname, consts, env_name)
+        env = environment.Environment({"__name__": modname})
+        env.env_name = env_name
+        environment.Environment._memo[env_name] = env
+        return env
+
+    rebuild._moorline_lean = True  # type: ignore[attr-defined]
+    environment._rebuild_env = rebuild
 
 
 _lean_cache_loading()
