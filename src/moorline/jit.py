@@ -40,14 +40,14 @@ def _version(text: str) -> tuple[int, int]:
         return 0, 0
 
 
-_loading_kernel = [False]
-"""True while one of moorline's kernels loads from the cache (:func:`_lean_cache_loading`)."""
+_NUMBA_REBUILD_ENV: list = []
+"""numba's ``numba.core.environment._rebuild_env`` (set by :func:`_lean_cache_loading`)."""
 
 
 def _lean_cache_loading() -> None:
     """Load moorline's cached kernels without numba's compiler-context refresh (see the
     module docstring); nothing changes when numba's cache lacks the expected methods."""
-    from numba.core import caching
+    from numba.core import caching, environment
     from numba.core.runtime import rtsys
 
     from .kernel_cache import KERNEL_MODULES
@@ -58,25 +58,27 @@ def _lean_cache_loading() -> None:
             or not _TESTED_NUMBA[0] <= _version(numba.__version__) < _TESTED_NUMBA[1]:
         return
     kernels = frozenset(KERNEL_MODULES)
+    _NUMBA_REBUILD_ENV.append(environment._rebuild_env)
 
     def load_overload(self, sig, target_context):  # noqa: ANN001, ANN202 (numba's signature)
         if getattr(getattr(self, "_py_func", None), "__module__", None) not in kernels:
             return full(self, sig, target_context)
         rtsys.initialize(target_context)  # the runtime, as refresh() would set it up
-        _loading_kernel[0] = True
+        # lean environments while loading only (see _lean_rebuild_env)
+        environment._rebuild_env = _lean_rebuild_env
         try:
             with self._guard_against_spurious_io_errors():
                 return self._load_overload(sig, target_context)
         finally:
-            _loading_kernel[0] = False
+            environment._rebuild_env = _NUMBA_REBUILD_ENV[0]
 
     load_overload._moorline_lean = True  # type: ignore[attr-defined]
     cache.load_overload = load_overload
-    _lean_environments()
 
 
-def _lean_environments() -> None:
-    """Rebuild the environments of numba's own helpers without importing their modules.
+def _lean_rebuild_env(modname, consts, env_name):  # noqa: ANN001, ANN202 (numba's signature)
+    """Rebuild the environment of a function compiled into a kernel being loaded, without
+    importing the module of numba's own helpers.
 
     Loading a cached kernel unpickles an environment (:class:`numba.core.environment.
     Environment`: the defining module's globals and the function's constants) for every
@@ -84,27 +86,21 @@ def _lean_environments() -> None:
     allocations in moorline's compiled step bring numba's helpers for the allocation's
     error message (``numba.np.arrayobj``, ``numba.cpython.unicode``, ``charseq``): importing
     those cost ~50 ms of every run (issue 16, P1). Their environments hold no constants, and
-    a function compiled in nopython mode reads no globals from its environment, so while one
-    of moorline's kernels loads they get an environment of their own module name only;
-    environments with constants, of modules already imported, and of any other function
-    are rebuilt as numba does."""
-    from numba.core import environment
+    a function compiled in nopython mode reads no globals from its environment, so they get
+    an environment of their own module name only; environments with constants, and those
+    of modules already imported, are rebuilt by numba. In place only while one of moorline's
+    kernels loads (:func:`_lean_cache_loading`): an environment pickled while a kernel is
+    compiled names numba's own function (a cache written with this one in place would pickle
+    it, by value)."""
+    from numba.core.environment import Environment, lookup_environment
 
-    full = environment._rebuild_env
-    if getattr(full, "_moorline_lean", False):
-        return
-
-    def rebuild(modname, consts, env_name):  # noqa: ANN001, ANN202 (numba's signature)
-        if not _loading_kernel[0] or consts or not str(modname).startswith("numba.") \
-                or modname in sys.modules or environment.lookup_environment(env_name):
-            return full(modname, consts, env_name)
-        env = environment.Environment({"__name__": modname})
-        env.env_name = env_name
-        environment.Environment._memo[env_name] = env
-        return env
-
-    rebuild._moorline_lean = True  # type: ignore[attr-defined]
-    environment._rebuild_env = rebuild
+    if consts or not str(modname).startswith("numba.") or modname in sys.modules \
+            or lookup_environment(env_name) is not None:
+        return _NUMBA_REBUILD_ENV[0](modname, consts, env_name)
+    env = Environment({"__name__": modname})
+    env.env_name = env_name
+    Environment._memo[env_name] = env
+    return env
 
 
 _lean_cache_loading()

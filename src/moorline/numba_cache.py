@@ -32,9 +32,10 @@ from .user_cache import cache_root
 __all__ = ["KEEP", "KERNEL_SOURCES", "UNUSED_S", "cache_directory", "kernel_files", "prune",
            "source_key", "use_source_keyed_cache"]
 
-KERNEL_SOURCES = (*KERNEL_MODULES, "moorline.physics.sag")
-"""The modules whose source the compiled kernels depend on: the kernel modules and
-:mod:`moorline.physics.sag` (whose constants :mod:`moorline.physics.fused` compiles in)."""
+KERNEL_SOURCES = (*KERNEL_MODULES, "moorline.physics.sag", "moorline.jit")
+"""The modules whose source the compiled kernels depend on: the kernel modules,
+:mod:`moorline.physics.sag` (whose constants :mod:`moorline.physics.fused` compiles in) and
+:mod:`moorline.jit` (how the cached kernels are loaded and what their pickles name)."""
 
 KEEP = 3
 """Cache directories of other sources kept (the most recently used)."""
