@@ -175,6 +175,7 @@ class _BlockRunner:
     and a SIGKILL loses no more than its :data:`~moorline.io.stream.SYNC_WALL`."""
 
     BLOCK_WALL = 0.2  # wall time of a block [s] (the writer syncs every second)
+    IN_PLACE = ("position", "velocity", "tension", "end_force")  # written by the compiled loop
 
     def __init__(self, stepper, excitation: Excitation, mesh: Mesh, recorder: _Recorder,
                  loop: _Loop) -> None:
@@ -192,9 +193,6 @@ class _BlockRunner:
         self.n_lines = len(mesh.line_names)
         self.n_bodies = len(mesh.body_names)
         self.body_records = _BodyRecords(mesh, self.end_el, self.end_side)
-        # the records the compiled loop writes into the recorder's arrays (per-record shapes)
-        self.slot_shapes = {"position": (mesh.n_nodes, 3), "velocity": (mesh.n_nodes, 3),
-                            "tension": (mesh.n_elements,), "end_force": (self.n_lines, 2, 3)}
 
     def _length(self, remaining: int) -> int:
         loop = self.loop
@@ -236,7 +234,7 @@ class _BlockRunner:
         kin = self.excitation.constrained_states(times)
         forces = (self.excitation.force_nodes, self.excitation.force_histories(times))
         n_out = int(np.count_nonzero(record))
-        slots = self.recorder.slots(n_out, self.slot_shapes)
+        slots = self.recorder.slots(n_out, self.IN_PLACE)
         started = self.clock()
         block = self.stepper.run_block(
             state, times, hs, per, record, kin, forces, self.end_el, self.end_side,
@@ -261,7 +259,7 @@ class _BlockRunner:
                 "tension": block.tensions,
                 "end_force": block.end_forces.reshape(n_rec, self.n_lines, 2, 3),
                 **bodies, "wave_elevation": self.recorder.elevations(rec_times)},
-                in_place=("position", "velocity", "tension", "end_force"))
+                in_place=self.IN_PLACE)
         if block.stopped < 0:
             return block.state, k + done, None
         return block.state, k + done, (block.stopped, float(hs[done * per]), block.norm)
@@ -545,12 +543,12 @@ class _Recorder:
         self.add_block(np.array([state.t]),
                        {key: np.asarray(value)[None] for key, value in record.items()})
 
-    def slots(self, n: int, like: dict[str, tuple[int, ...]]) -> dict[str, FloatArray]:
-        """Views of the next ``n`` rows of the record arrays of the keys of ``like`` (their
-        shapes per record), for a block to write its records into in place before
-        :meth:`add_block` takes them (``in_place``)."""
-        self._reserve(n, like)
-        return {key: self.arrays[key][self.count:self.count + n] for key in like}
+    def slots(self, n: int, keys: tuple[str, ...]) -> dict[str, FloatArray]:
+        """Views of the next ``n`` rows of the record arrays ``keys`` (made by the first
+        record), for a block to write its records into in place before :meth:`add_block`
+        takes them (``in_place``)."""
+        self._reserve(n, {})
+        return {key: self.arrays[key][self.count:self.count + n] for key in keys}
 
     def add_block(self, times: FloatArray, records: dict[str, FloatArray],
                   in_place: tuple[str, ...] = ()) -> None:
@@ -572,7 +570,7 @@ class _Recorder:
                                      owned=True)
 
     def _reserve(self, n: int, shapes: dict[str, tuple[int, ...]]) -> None:
-        """Room for ``n`` more records (the arrays made at the first call, with their
+        """Room for ``n`` more records (the arrays made at the first record, with its
         per-record ``shapes``; doubled when full)."""
         if not self.arrays:
             self.capacity = max(self.capacity, n)
